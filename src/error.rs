@@ -1,0 +1,51 @@
+//! The crate's typed error.
+//!
+//! Every fallible gyrostat function returns `Result<_, Error>`; none panics on bad input and none
+//! returns a silent NaN. The enum is `#[non_exhaustive]` so that new checks can be added without a
+//! breaking change.
+
+use core::fmt;
+
+/// Why an input was rejected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Error {
+    /// An input number was NaN or infinite.
+    NonFinite,
+    /// A quaternion, axis or vector that must be normalised has (near-)zero norm: its direction is
+    /// undefined. The threshold is [`crate::UnitQuat::MIN_NORM_SQUARED`]-style: see the constructor.
+    ZeroNorm,
+    /// A quaternion that must already be of unit norm is too far from it (the caller's data is
+    /// not an attitude).
+    NotUnit,
+    /// A matrix that must be a rotation is not orthonormal with determinant +1 within tolerance.
+    NotRotation,
+    /// The requested conversion or inverse is singular at this configuration (gimbal lock, a
+    /// 180° Gibbs vector, a non-invertible matrix).
+    Singular,
+    /// An inertia tensor is not physical: not symmetric, not positive definite, or its principal
+    /// moments violate the triangle inequality `I_a ≤ I_b + I_c`.
+    NonPhysicalInertia,
+    /// A time step is too long for the requested algorithm to stay within its stated accuracy.
+    StepTooLong,
+    /// An argument is outside the documented domain (for example a negative step or count).
+    InvalidArgument,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = match self {
+            Error::NonFinite => "input is NaN or infinite",
+            Error::ZeroNorm => "input has zero norm, its direction is undefined",
+            Error::NotUnit => "quaternion is too far from unit norm",
+            Error::NotRotation => "matrix is not a proper rotation",
+            Error::Singular => "configuration is singular for this conversion",
+            Error::NonPhysicalInertia => "inertia tensor is not physical",
+            Error::StepTooLong => "time step is too long for this algorithm",
+            Error::InvalidArgument => "argument outside the documented domain",
+        };
+        f.write_str(s)
+    }
+}
+
+impl core::error::Error for Error {}

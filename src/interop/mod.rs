@@ -1,0 +1,17 @@
+//! Optional integrations, one file per dependency.
+//!
+//! - `defmt` (feature `defmt`): `defmt::Format` for every public type, for logging on targets.
+//! - `nalgebra` (feature `nalgebra`): conversions with nalgebra's geometry types, without std.
+//! - `mint` (feature `mint`): conversions with mint's plain types, the lingua franca of glam,
+//!   cgmath and other math crates.
+//!
+//! Every conversion keeps the conventions of the crate docs: quaternions are Hamilton, the
+//! scalar part is `w` in every library, and a unit quaternion means the same rotation on both
+//! sides (nalgebra's `UnitQuaternion` is also Hamilton and also active).
+
+#[cfg(feature = "defmt")]
+mod defmt;
+#[cfg(feature = "mint")]
+mod mint;
+#[cfg(feature = "nalgebra")]
+mod nalgebra;

@@ -1,0 +1,12 @@
+//! Linear-algebra primitives: only what the library needs.
+//!
+//! [`Vec3`] and [`Mat3`] (row-major, `m[row][col]`) for vectors, rotation matrices and inertia
+//! tensors; [`Complex`] for the SU(2) spinor matrices of seed (6.6.4).
+
+mod complex;
+mod mat3;
+mod vec3;
+
+pub use complex::Complex;
+pub use mat3::Mat3;
+pub use vec3::Vec3;

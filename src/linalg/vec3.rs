@@ -1,0 +1,214 @@
+//! Three-vectors.
+
+use core::ops::{Add, AddAssign, Div, Index, IndexMut, Mul, Neg, Sub, SubAssign};
+
+use crate::{Error, Real};
+
+/// A 3-vector `(x, y, z)`. Plain data: which frame it lives in is said by the name of the variable
+/// or field holding it (`omega_body`, `j_lab`, ...).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Vec3<T> {
+    /// x component.
+    pub x: T,
+    /// y component.
+    pub y: T,
+    /// z component.
+    pub z: T,
+}
+
+impl<T: Real> Vec3<T> {
+    /// The zero vector.
+    pub const ZERO: Self = Self::new(T::ZERO, T::ZERO, T::ZERO);
+    /// Unit vector along x.
+    pub const X: Self = Self::new(T::ONE, T::ZERO, T::ZERO);
+    /// Unit vector along y.
+    pub const Y: Self = Self::new(T::ZERO, T::ONE, T::ZERO);
+    /// Unit vector along z.
+    pub const Z: Self = Self::new(T::ZERO, T::ZERO, T::ONE);
+
+    /// Builds `(x, y, z)`.
+    #[inline]
+    pub const fn new(x: T, y: T, z: T) -> Self {
+        Self { x, y, z }
+    }
+
+    /// Builds from `[x, y, z]`.
+    #[inline]
+    pub const fn from_array(a: [T; 3]) -> Self {
+        Self::new(a[0], a[1], a[2])
+    }
+
+    /// Returns `[x, y, z]`.
+    #[inline]
+    pub const fn to_array(self) -> [T; 3] {
+        [self.x, self.y, self.z]
+    }
+
+    /// The `i`-th unit vector (0 → x, 1 → y, otherwise z).
+    #[inline]
+    pub fn unit(i: usize) -> Self {
+        match i {
+            0 => Self::X,
+            1 => Self::Y,
+            _ => Self::Z,
+        }
+    }
+
+    /// Dot product.
+    #[inline]
+    pub fn dot(self, o: Self) -> T {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// Cross product `self × o` (right-handed).
+    #[inline]
+    pub fn cross(self, o: Self) -> Self {
+        Self::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+
+    /// Squared Euclidean norm.
+    #[inline]
+    pub fn norm_squared(self) -> T {
+        self.dot(self)
+    }
+
+    /// Euclidean norm, computed with `hypot` so that it neither overflows nor underflows for
+    /// components near the range limits.
+    #[inline]
+    pub fn norm(self) -> T {
+        self.x.hypot(self.y).hypot(self.z)
+    }
+
+    /// `self * s`.
+    #[inline]
+    pub fn scale(self, s: T) -> Self {
+        Self::new(self.x * s, self.y * s, self.z * s)
+    }
+
+    /// Component-wise product.
+    #[inline]
+    pub fn component_mul(self, o: Self) -> Self {
+        Self::new(self.x * o.x, self.y * o.y, self.z * o.z)
+    }
+
+    /// Largest absolute component.
+    #[inline]
+    pub fn max_abs(self) -> T {
+        self.x.abs().max(self.y.abs()).max(self.z.abs())
+    }
+
+    /// `true` when every component is finite.
+    #[inline]
+    pub fn is_finite(self) -> bool {
+        self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+
+    /// Returns `self` if every component is finite, else [`Error::NonFinite`].
+    #[inline]
+    pub fn try_finite(self) -> Result<Self, Error> {
+        if self.is_finite() {
+            Ok(self)
+        } else {
+            Err(Error::NonFinite)
+        }
+    }
+
+    /// The unit vector along `self`.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite component; [`Error::ZeroNorm`] when `|self|` is zero
+    /// (no direction). Any non-zero finite vector is normalised, however short: floating-point
+    /// division keeps full relative precision.
+    pub fn try_normalize(self) -> Result<Self, Error> {
+        let v = self.try_finite()?;
+        let n = v.norm();
+        if n > T::ZERO && n.is_finite() {
+            Ok(v.scale(T::ONE / n))
+        } else {
+            Err(Error::ZeroNorm)
+        }
+    }
+}
+
+impl<T: Real> Add for Vec3<T> {
+    type Output = Self;
+    #[inline]
+    fn add(self, o: Self) -> Self {
+        Self::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+impl<T: Real> Sub for Vec3<T> {
+    type Output = Self;
+    #[inline]
+    fn sub(self, o: Self) -> Self {
+        Self::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl<T: Real> AddAssign for Vec3<T> {
+    #[inline]
+    fn add_assign(&mut self, o: Self) {
+        *self = *self + o;
+    }
+}
+
+impl<T: Real> SubAssign for Vec3<T> {
+    #[inline]
+    fn sub_assign(&mut self, o: Self) {
+        *self = *self - o;
+    }
+}
+
+impl<T: Real> Neg for Vec3<T> {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Self::new(-self.x, -self.y, -self.z)
+    }
+}
+
+impl<T: Real> Mul<T> for Vec3<T> {
+    type Output = Self;
+    #[inline]
+    fn mul(self, s: T) -> Self {
+        self.scale(s)
+    }
+}
+
+impl<T: Real> Div<T> for Vec3<T> {
+    type Output = Self;
+    #[inline]
+    fn div(self, s: T) -> Self {
+        Self::new(self.x / s, self.y / s, self.z / s)
+    }
+}
+
+/// Component access by index: 0 → x, 1 → y, anything else → z (never panics).
+impl<T> Index<usize> for Vec3<T> {
+    type Output = T;
+    #[inline]
+    fn index(&self, i: usize) -> &T {
+        match i {
+            0 => &self.x,
+            1 => &self.y,
+            _ => &self.z,
+        }
+    }
+}
+
+/// Component access by index: 0 → x, 1 → y, anything else → z (never panics).
+impl<T> IndexMut<usize> for Vec3<T> {
+    #[inline]
+    fn index_mut(&mut self, i: usize) -> &mut T {
+        match i {
+            0 => &mut self.x,
+            1 => &mut self.y,
+            _ => &mut self.z,
+        }
+    }
+}

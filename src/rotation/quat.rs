@@ -1,0 +1,166 @@
+//! General (not necessarily unit) Hamilton quaternions.
+
+use core::ops::{Add, Mul, Neg, Sub};
+
+use crate::{Error, Real, UnitQuat, Vec3};
+
+/// A Hamilton quaternion `w + x·i + y·j + z·k` with `i·j = k`, stored scalar-first.
+///
+/// No invariant: use [`UnitQuat`] for attitudes. Fields are public and named so that nobody has
+/// to guess where the scalar part is.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Quat<T> {
+    /// Scalar part.
+    pub w: T,
+    /// `i` component.
+    pub x: T,
+    /// `j` component.
+    pub y: T,
+    /// `k` component.
+    pub z: T,
+}
+
+impl<T: Real> Quat<T> {
+    /// The multiplicative identity `1`.
+    pub const IDENTITY: Self = Self::new(T::ONE, T::ZERO, T::ZERO, T::ZERO);
+    /// The zero quaternion.
+    pub const ZERO: Self = Self::new(T::ZERO, T::ZERO, T::ZERO, T::ZERO);
+
+    /// Builds `w + x·i + y·j + z·k`.
+    #[inline]
+    pub const fn new(w: T, x: T, y: T, z: T) -> Self {
+        Self { w, x, y, z }
+    }
+
+    /// Builds from a scalar part and a vector part.
+    #[inline]
+    pub const fn from_parts(w: T, v: Vec3<T>) -> Self {
+        Self::new(w, v.x, v.y, v.z)
+    }
+
+    /// Builds from `[w, x, y, z]`.
+    #[inline]
+    pub const fn from_array(a: [T; 4]) -> Self {
+        Self::new(a[0], a[1], a[2], a[3])
+    }
+
+    /// Returns `[w, x, y, z]`.
+    #[inline]
+    pub const fn to_array(self) -> [T; 4] {
+        [self.w, self.x, self.y, self.z]
+    }
+
+    /// The vector part `(x, y, z)`.
+    #[inline]
+    pub const fn vector(self) -> Vec3<T> {
+        Vec3::new(self.x, self.y, self.z)
+    }
+
+    /// Conjugate `w − x·i − y·j − z·k`.
+    #[inline]
+    pub fn conjugate(self) -> Self {
+        Self::new(self.w, -self.x, -self.y, -self.z)
+    }
+
+    /// Four-dimensional dot product.
+    #[inline]
+    pub fn dot(self, o: Self) -> T {
+        self.w * o.w + self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// Squared norm `w² + x² + y² + z²`.
+    #[inline]
+    pub fn norm_squared(self) -> T {
+        self.dot(self)
+    }
+
+    /// Norm, computed with `hypot` (no overflow or underflow for extreme components).
+    #[inline]
+    pub fn norm(self) -> T {
+        self.w.hypot(self.x).hypot(self.y.hypot(self.z))
+    }
+
+    /// `self · s` for a real `s`.
+    #[inline]
+    pub fn scale(self, s: T) -> Self {
+        Self::new(self.w * s, self.x * s, self.y * s, self.z * s)
+    }
+
+    /// `true` when every component is finite.
+    #[inline]
+    pub fn is_finite(self) -> bool {
+        self.w.is_finite() && self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+
+    /// The multiplicative inverse `conj(q)/|q|²`.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite component, [`Error::ZeroNorm`] for a zero quaternion
+    /// (or one whose squared norm underflows to zero).
+    pub fn try_inverse(self) -> Result<Self, Error> {
+        if !self.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        let n2 = self.norm_squared();
+        if n2 > T::ZERO && n2.is_finite() {
+            Ok(self.conjugate().scale(T::ONE / n2))
+        } else {
+            Err(Error::ZeroNorm)
+        }
+    }
+
+    /// The unit quaternion along `self`; see [`UnitQuat::try_new`].
+    ///
+    /// # Errors
+    /// As [`UnitQuat::try_new`].
+    #[inline]
+    pub fn try_normalize(self) -> Result<UnitQuat<T>, Error> {
+        UnitQuat::try_new(self)
+    }
+}
+
+/// The Hamilton product (`i·j = k`): `(w₁w₂ − v₁·v₂, w₁v₂ + w₂v₁ + v₁ × v₂)`.
+impl<T: Real> Mul for Quat<T> {
+    type Output = Self;
+    #[inline]
+    fn mul(self, o: Self) -> Self {
+        Self::new(
+            self.w * o.w - self.x * o.x - self.y * o.y - self.z * o.z,
+            self.w * o.x + self.x * o.w + self.y * o.z - self.z * o.y,
+            self.w * o.y - self.x * o.z + self.y * o.w + self.z * o.x,
+            self.w * o.z + self.x * o.y - self.y * o.x + self.z * o.w,
+        )
+    }
+}
+
+impl<T: Real> Mul<T> for Quat<T> {
+    type Output = Self;
+    #[inline]
+    fn mul(self, s: T) -> Self {
+        self.scale(s)
+    }
+}
+
+impl<T: Real> Add for Quat<T> {
+    type Output = Self;
+    #[inline]
+    fn add(self, o: Self) -> Self {
+        Self::new(self.w + o.w, self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+impl<T: Real> Sub for Quat<T> {
+    type Output = Self;
+    #[inline]
+    fn sub(self, o: Self) -> Self {
+        Self::new(self.w - o.w, self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl<T: Real> Neg for Quat<T> {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Self::new(-self.w, -self.x, -self.y, -self.z)
+    }
+}
