@@ -15,7 +15,7 @@
 //! By default the transcendental functions come from [`libm`] (a port of musl's libm, correctly
 //! rounded or within 1 ulp for the functions used here). With the `micromath` feature, the f32
 //! implementation of `sqrt`, `sin`, `cos`, `sin_cos` and `atan2` switches to micromath's fast
-//! approximations; f64 keeps libm. Their worst errors, measured by this module's unit tests
+//! approximations; f64 keeps libm, and `floor`, `exp`, `ln` always come from libm. Their worst errors, measured by this module's unit tests
 //! (`cargo test -p gyrostat --lib --features micromath real::`) against f64 libm over dense sweeps:
 //!
 //! | function | libm f32 (default)        | micromath f32                    |
@@ -124,6 +124,12 @@ pub trait Real:
     fn atan2(self, x: Self) -> Self;
     /// `sqrt(self² + other²)` without undue overflow or underflow.
     fn hypot(self, other: Self) -> Self;
+    /// The largest integer value not greater than `self`.
+    fn floor(self) -> Self;
+    /// `e^self`.
+    fn exp(self) -> Self;
+    /// Natural logarithm; the argument must be positive (else an unspecified value, no panic).
+    fn ln(self) -> Self;
 }
 
 macro_rules! consts {
@@ -180,6 +186,18 @@ impl Real for f64 {
     fn hypot(self, other: Self) -> Self {
         libm::hypot(self, other)
     }
+    #[inline]
+    fn floor(self) -> Self {
+        libm::floor(self)
+    }
+    #[inline]
+    fn exp(self) -> Self {
+        libm::exp(self)
+    }
+    #[inline]
+    fn ln(self) -> Self {
+        libm::log(self)
+    }
 }
 
 impl Real for f32 {
@@ -223,6 +241,18 @@ impl Real for f32 {
     #[inline]
     fn hypot(self, other: Self) -> Self {
         f32_backend::hypot(self, other)
+    }
+    #[inline]
+    fn floor(self) -> Self {
+        libm::floorf(self)
+    }
+    #[inline]
+    fn exp(self) -> Self {
+        libm::expf(self)
+    }
+    #[inline]
+    fn ln(self) -> Self {
+        libm::logf(self)
     }
 }
 

@@ -1,0 +1,1 @@
+//! Reserved for the reference of its issue; see the crate docs.

@@ -1,0 +1,180 @@
+//! The independent f64 reference: 3×3 matrices, Rodrigues rotations and SU(2) matrices.
+//!
+//! Written from the seed's formulas, not from gyrostat's code: rotation matrices come from the
+//! Rodrigues form (6.6.13)–(6.6.15) of an axis and angle, spinors from the 2×2 matrix (6.6.4).
+
+/// A 3×3 matrix, `m[row][col]`.
+pub type M3 = [[f64; 3]; 3];
+/// A 3-vector.
+pub type V3 = [f64; 3];
+
+/// A complex number `(re, im)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct C {
+    /// Real part.
+    pub re: f64,
+    /// Imaginary part.
+    pub im: f64,
+}
+
+impl C {
+    /// Builds `re + i·im`.
+    pub const fn new(re: f64, im: f64) -> Self {
+        Self { re, im }
+    }
+    /// Product.
+    pub fn mul(self, o: C) -> C {
+        C::new(
+            self.re * o.re - self.im * o.im,
+            self.re * o.im + self.im * o.re,
+        )
+    }
+    /// Sum.
+    pub fn add(self, o: C) -> C {
+        C::new(self.re + o.re, self.im + o.im)
+    }
+    /// Modulus of the difference.
+    pub fn dist(self, o: C) -> f64 {
+        (self.re - o.re).hypot(self.im - o.im)
+    }
+}
+
+/// A 2×2 complex matrix.
+pub type U2 = [[C; 2]; 2];
+
+/// Matrix product.
+pub fn mat_mul(a: &M3, b: &M3) -> M3 {
+    let mut r = [[0.0; 3]; 3];
+    for (i, row) in r.iter_mut().enumerate() {
+        for (j, e) in row.iter_mut().enumerate() {
+            *e = (0..3).map(|k| a[i][k] * b[k][j]).sum();
+        }
+    }
+    r
+}
+
+/// Matrix times vector.
+pub fn mat_vec(a: &M3, v: &V3) -> V3 {
+    [0, 1, 2].map(|i| (0..3).map(|k| a[i][k] * v[k]).sum())
+}
+
+/// Transpose.
+pub fn transpose(a: &M3) -> M3 {
+    [0, 1, 2].map(|i| [0, 1, 2].map(|j| a[j][i]))
+}
+
+/// Determinant by cofactor expansion along the first row.
+pub fn det(a: &M3) -> f64 {
+    a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
+        - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+        + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
+}
+
+/// Largest absolute entry of `a − b`.
+pub fn mat_dist(a: &M3, b: &M3) -> f64 {
+    (0..3)
+        .flat_map(|i| (0..3).map(move |j| (i, j)))
+        .map(|(i, j)| (a[i][j] - b[i][j]).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Largest absolute component of `a − b`.
+pub fn vec_dist(a: &V3, b: &V3) -> f64 {
+    (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max)
+}
+
+/// The identity matrix.
+pub const IDENTITY: M3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+/// The rotation matrix of seed (6.6.14)–(6.6.15) for angle `theta` about `axis` (normalised
+/// here): `R_ML = δ_ML cos Θ − ε_LKM Θ̂_K sin Θ + (1 − cos Θ) Θ̂_M Θ̂_L`.
+pub fn rodrigues(axis: V3, theta: f64) -> M3 {
+    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+    let a = axis.map(|c| c / n);
+    let (s, c) = theta.sin_cos();
+    let mut r = [[0.0; 3]; 3];
+    for (m, row) in r.iter_mut().enumerate() {
+        for (l, e) in row.iter_mut().enumerate() {
+            let delta = if m == l { 1.0 } else { 0.0 };
+            let eps_term: f64 = (0..3).map(|k| levi_civita(l, k, m) * a[k]).sum();
+            *e = delta * c - eps_term * s + (1.0 - c) * a[m] * a[l];
+        }
+    }
+    r
+}
+
+/// The Levi-Civita symbol ε_ijk.
+pub fn levi_civita(i: usize, j: usize, k: usize) -> f64 {
+    match (i, j, k) {
+        (0, 1, 2) | (1, 2, 0) | (2, 0, 1) => 1.0,
+        (0, 2, 1) | (2, 1, 0) | (1, 0, 2) => -1.0,
+        _ => 0.0,
+    }
+}
+
+/// The spinor matrix of seed (6.6.4) for angle `theta` about `axis` (normalised here):
+/// `R[Θ] = [[cos Θ/2 − iΘ̂z sin Θ/2, −i sin Θ/2 (Θ̂x − iΘ̂y)], [−i sin Θ/2 (Θ̂x + iΘ̂y), cos Θ/2 + iΘ̂z sin Θ/2]]`.
+pub fn su2_matrix(axis: V3, theta: f64) -> U2 {
+    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+    let [x, y, z] = axis.map(|c| c / n);
+    let (s, c) = (theta / 2.0).sin_cos();
+    let minus_i_s = C::new(0.0, -s);
+    [
+        [C::new(c, -z * s), minus_i_s.mul(C::new(x, -y))],
+        [minus_i_s.mul(C::new(x, y)), C::new(c, z * s)],
+    ]
+}
+
+/// 2×2 complex matrix product.
+pub fn u2_mul(a: &U2, b: &U2) -> U2 {
+    let e = |i: usize, j: usize| a[i][0].mul(b[0][j]).add(a[i][1].mul(b[1][j]));
+    [[e(0, 0), e(0, 1)], [e(1, 0), e(1, 1)]]
+}
+
+/// Largest modulus of an entry of `a − b`.
+pub fn u2_dist(a: &U2, b: &U2) -> f64 {
+    (0..2)
+        .flat_map(|i| (0..2).map(move |j| (i, j)))
+        .map(|(i, j)| a[i][j].dist(b[i][j]))
+        .fold(0.0, f64::max)
+}
+
+/// The SO(3) matrix a spinor matrix represents, from the adjoint action on Pauli matrices:
+/// `R_ij = ½ tr(σ_i U σ_j U†)`. Independent of any quaternion formula.
+pub fn su2_to_so3(u: &U2) -> M3 {
+    let sigma: [U2; 3] = [
+        [
+            [C::new(0.0, 0.0), C::new(1.0, 0.0)],
+            [C::new(1.0, 0.0), C::new(0.0, 0.0)],
+        ],
+        [
+            [C::new(0.0, 0.0), C::new(0.0, -1.0)],
+            [C::new(0.0, 1.0), C::new(0.0, 0.0)],
+        ],
+        [
+            [C::new(1.0, 0.0), C::new(0.0, 0.0)],
+            [C::new(0.0, 0.0), C::new(-1.0, 0.0)],
+        ],
+    ];
+    let dagger = |m: &U2| -> U2 {
+        [
+            [
+                C::new(m[0][0].re, -m[0][0].im),
+                C::new(m[1][0].re, -m[1][0].im),
+            ],
+            [
+                C::new(m[0][1].re, -m[0][1].im),
+                C::new(m[1][1].re, -m[1][1].im),
+            ],
+        ]
+    };
+    let ud = dagger(u);
+    let mut r = [[0.0; 3]; 3];
+    for (i, row) in r.iter_mut().enumerate() {
+        for (j, e) in row.iter_mut().enumerate() {
+            let p = u2_mul(&u2_mul(&sigma[i], u), &u2_mul(&sigma[j], &ud));
+            *e = 0.5 * (p[0][0].re + p[1][1].re);
+        }
+    }
+    r
+}
