@@ -9,6 +9,7 @@
 //! - [`Su2`]: the same rotation as a 2×2 complex unitary matrix of seed (6.6.4), the spinor view
 //!   whose sign is physical (a 2π rotation is `−1`).
 
+mod exp;
 mod quat;
 mod su2;
 mod unit_quat;
