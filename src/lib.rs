@@ -66,6 +66,7 @@
 mod error;
 pub mod interop;
 pub mod linalg;
+pub mod propagation;
 pub mod real;
 pub mod rotation;
 

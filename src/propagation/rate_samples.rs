@@ -1,0 +1,336 @@
+//! The rate-sample path: 4th-order integrators from equally spaced angular-rate samples.
+//!
+//! Most MEMS gyros deliver rate samples `ωₖ = ω(k h)` (a FIFO at a fixed output data rate), not
+//! increments. Three integrators of `q̇ = ½ q ⊗ (0, ω(t))` are offered, each advancing one
+//! sample interval `[tₖ, tₖ₊₁]` per step:
+//!
+//! - **Magnus-4** ([`magnus4_step`]): `q ← q ⊗ exp(φ)` with
+//!   `φ = (h/2)(ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂`, the two-point Gauss truncation of the Magnus
+//!   series (Iserles, Munthe-Kaas, Nørsett & Zanna 2000, *Acta Numerica* 9, §4; Blanes, Casas,
+//!   Oteo & Ros 2009, *Phys. Rep.* 470 eq. (257) with the sign of the commutator flipped because
+//!   the attitude is multiplied on the right). One exponential.
+//! - **CF4**, commutator-free ([`cf4_step`]): `q ← q ⊗ exp(h(a ω₁ + b ω₂)) ⊗ exp(h(b ω₁ + a ω₂))`
+//!   with `a = ¼ + √3/6`, `b = ¼ − √3/6` (Blanes & Moan 2006, *Appl. Numer. Math.* 56; Celledoni,
+//!   Marthinsen & Owren 2003). Two exponentials, no cross product. The exponential weighted
+//!   towards the EARLIER node is applied first (leftmost, since body-frame rotations compose on
+//!   the right); in the other order the second-order commutator term has the wrong sign and
+//!   the method drops to order 2.
+//! - **RK4** on the quaternion ([`rk4_step`]) with the rates at the start, middle and end of the
+//!   interval, followed by the renormalisation policy: the classical baseline. It does not stay
+//!   on the unit sphere by itself.
+//!
+//! # How samples map to the nodes
+//! `ω₁, ω₂` are the rates at the Gauss nodes `tₖ + (½ ∓ √3/6) h`; RK4 needs `ω(tₖ + h/2)`.
+//! Neither falls on a sample, so they are taken from the cubic Lagrange interpolant through four
+//! consecutive samples that contain the interval. Its error is `O(h⁴)` in `ω`, so each step
+//! keeps a local error `O(h⁵)` and all three methods converge with order 4 (measured in
+//! `host-tests/tests/propagation_rates.rs`). [`RateIntegrator`] uses, for the interval ending at
+//! the newest sample `k`, the samples `k−3 … k` (no look-ahead, so no latency), except at the
+//! start, where the first three intervals wait for sample 3 and use samples `0 … 3`. A record of
+//! only three samples uses the quadratic interpolant (still order 3 locally), one of two samples
+//! the linear one (order 2).
+
+use heapless::Vec as HVec;
+
+use crate::propagation::Normalization;
+use crate::propagation::kinematics::quat_rate_body;
+use crate::{Error, Quat, Real, UnitQuat, Vec3};
+
+/// `√3`, to the f64 rounding.
+const SQRT_3: f64 = 1.732_050_807_568_877_2;
+/// First Gauss–Legendre node on `[0, 1]`: `½ − √3/6`.
+pub const GAUSS_NODE_1: f64 = 0.5 - SQRT_3 / 6.0;
+/// Second Gauss–Legendre node on `[0, 1]`: `½ + √3/6`.
+pub const GAUSS_NODE_2: f64 = 0.5 + SQRT_3 / 6.0;
+/// CF4 weight of the near node: `¼ + √3/6`.
+const CF4_A: f64 = 0.25 + SQRT_3 / 6.0;
+/// CF4 weight of the far node: `¼ − √3/6`.
+const CF4_B: f64 = 0.25 - SQRT_3 / 6.0;
+
+/// Lagrange basis on the nodes `0, 1, …, M−1` evaluated at `tau`.
+const fn lagrange<const M: usize>(tau: f64) -> [f64; M] {
+    let mut w = [0.0; M];
+    let mut i = 0;
+    while i < M {
+        let mut num = 1.0;
+        let mut den = 1.0;
+        let mut j = 0;
+        while j < M {
+            if j != i {
+                num *= tau - j as f64;
+                den *= i as f64 - j as f64;
+            }
+            j += 1;
+        }
+        w[i] = num / den;
+        i += 1;
+    }
+    w
+}
+
+/// Interpolation weights for one interval `[j, j+1]` of an `M`-sample window:
+/// `[Gauss node 1, Gauss node 2, midpoint, start, end]`.
+const fn interval_weights<const M: usize>(j: usize) -> [[f64; M]; 5] {
+    let t = j as f64;
+    [
+        lagrange::<M>(t + GAUSS_NODE_1),
+        lagrange::<M>(t + GAUSS_NODE_2),
+        lagrange::<M>(t + 0.5),
+        lagrange::<M>(t),
+        lagrange::<M>(t + 1.0),
+    ]
+}
+
+const W4: [[[f64; 4]; 5]; 3] = [
+    interval_weights::<4>(0),
+    interval_weights::<4>(1),
+    interval_weights::<4>(2),
+];
+const W3: [[[f64; 3]; 5]; 2] = [interval_weights::<3>(0), interval_weights::<3>(1)];
+const W2: [[[f64; 2]; 5]; 1] = [interval_weights::<2>(0)];
+
+/// Row indices into the weight tables.
+const G1: usize = 0;
+const G2: usize = 1;
+const MID: usize = 2;
+const START: usize = 3;
+const END: usize = 4;
+
+#[inline(always)]
+fn interp<T: Real, const M: usize>(s: &[Vec3<T>; M], w: &[f64; M]) -> Vec3<T> {
+    s.iter()
+        .zip(w.iter())
+        .fold(Vec3::ZERO, |acc, (v, &wi)| acc + v.scale(T::from_f64(wi)))
+}
+
+/// The rates at the two Gauss nodes of interval `interval` (0, 1 or 2; larger values mean 2)
+/// of a window of four consecutive equally spaced samples, from their cubic interpolant.
+#[inline]
+pub fn gauss_rates<T: Real>(window: &[Vec3<T>; 4], interval: usize) -> (Vec3<T>, Vec3<T>) {
+    let w = match interval {
+        0 => &W4[0],
+        1 => &W4[1],
+        _ => &W4[2],
+    };
+    (interp(window, &w[G1]), interp(window, &w[G2]))
+}
+
+/// The rate at the midpoint of interval `interval` (0, 1 or 2; larger values mean 2) of a
+/// window of four consecutive equally spaced samples, from their cubic interpolant.
+#[inline]
+pub fn midpoint_rate<T: Real>(window: &[Vec3<T>; 4], interval: usize) -> Vec3<T> {
+    let w = match interval {
+        0 => &W4[0],
+        1 => &W4[1],
+        _ => &W4[2],
+    };
+    interp(window, &w[MID])
+}
+
+/// The Magnus-4 rotation vector over one step `h` from the rates at the two Gauss nodes:
+/// `φ = (h/2)(ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂` (earlier node first in the cross product).
+#[inline]
+pub fn magnus4_rotation_vector<T: Real>(w1: Vec3<T>, w2: Vec3<T>, h: T) -> Vec3<T> {
+    (w1 + w2).scale(h * T::HALF) + w1.cross(w2).scale(h * h * T::from_f64(SQRT_3 / 12.0))
+}
+
+/// One Magnus-4 step: `q ⊗ exp(φ)` with φ from [`magnus4_rotation_vector`]. Unchecked, not
+/// renormalised (a product of unit quaternions, unit to about one ulp).
+#[inline]
+pub fn magnus4_step<T: Real>(q: UnitQuat<T>, w1: Vec3<T>, w2: Vec3<T>, h: T) -> UnitQuat<T> {
+    q * UnitQuat::exp_unchecked(magnus4_rotation_vector(w1, w2, h))
+}
+
+/// The two CF4 rotation vectors `(φ_first, φ_second)` over one step `h` from the Gauss-node
+/// rates: `φ_first = h(a ω₁ + b ω₂)`, `φ_second = h(b ω₁ + a ω₂)`, `a = ¼ + √3/6`, `b = ¼ − √3/6`.
+/// The attitude update is `q ⊗ exp(φ_first) ⊗ exp(φ_second)`, in this order.
+#[inline]
+pub fn cf4_rotation_vectors<T: Real>(w1: Vec3<T>, w2: Vec3<T>, h: T) -> (Vec3<T>, Vec3<T>) {
+    let a = h * T::from_f64(CF4_A);
+    let b = h * T::from_f64(CF4_B);
+    (w1.scale(a) + w2.scale(b), w1.scale(b) + w2.scale(a))
+}
+
+/// One commutator-free CF4 step: `q ⊗ exp(φ_first) ⊗ exp(φ_second)` (see
+/// [`cf4_rotation_vectors`]). Unchecked, not renormalised.
+#[inline]
+pub fn cf4_step<T: Real>(q: UnitQuat<T>, w1: Vec3<T>, w2: Vec3<T>, h: T) -> UnitQuat<T> {
+    let (p1, p2) = cf4_rotation_vectors(w1, w2, h);
+    q * UnitQuat::exp_unchecked(p1) * UnitQuat::exp_unchecked(p2)
+}
+
+/// One classical RK4 step of `q̇ = ½ q ⊗ (0, ω)` with the rates at the start, midpoint and end
+/// of the step. Returns the raw quaternion, off the unit sphere by the truncation error
+/// `O((|ω| h)⁵)`: apply a [`Normalization`] to it.
+#[inline]
+pub fn rk4_step<T: Real>(
+    q: Quat<T>,
+    w_start: Vec3<T>,
+    w_mid: Vec3<T>,
+    w_end: Vec3<T>,
+    h: T,
+) -> Quat<T> {
+    let hh = h * T::HALF;
+    let k1 = quat_rate_body(q, w_start);
+    let k2 = quat_rate_body(q + k1.scale(hh), w_mid);
+    let k3 = quat_rate_body(q + k2.scale(hh), w_mid);
+    let k4 = quat_rate_body(q + k3.scale(h), w_end);
+    q + (k1 + (k2 + k3).scale(T::TWO) + k4).scale(h / T::from_f64(6.0))
+}
+
+/// Which rate-sample integrator a [`RateIntegrator`] runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RateMethod {
+    /// [`magnus4_step`]: one exponential and one cross product per step.
+    Magnus4,
+    /// [`cf4_step`]: two exponentials per step.
+    Cf4,
+    /// [`rk4_step`] followed by the normalisation policy.
+    Rk4,
+}
+
+/// The attitudes at the sample times a [`RateIntegrator`] call newly reached, oldest first.
+pub type Attitudes<T> = HVec<UnitQuat<T>, 3>;
+
+/// Streaming rate-sample integrator: owns the attitude and the last four samples.
+///
+/// Feed the samples `ω₀, ω₁, …` (body frame, rad/s, equally spaced by `dt`) with
+/// [`RateIntegrator::push`]; it returns the attitudes at the sample times it newly reached:
+/// `[q(t₀)] = [q0]` after sample 0, nothing after samples 1 and 2, `[q(t₁), q(t₂), q(t₃)]`
+/// after sample 3 (the start-up window), then `[q(tₖ)]` after each sample `k`. A record of
+/// fewer than four samples is completed by [`RateIntegrator::finish`]. See the module docs for
+/// the interpolation.
+#[derive(Clone, Debug)]
+pub struct RateIntegrator<T> {
+    q: UnitQuat<T>,
+    method: RateMethod,
+    norm: Normalization,
+    dt: T,
+    /// The last samples, oldest first; the first `count` are valid while `count < 4`.
+    window: [Vec3<T>; 4],
+    count: u8,
+}
+
+impl<T: Real> RateIntegrator<T> {
+    /// Starts at attitude `q0` with sample interval `dt` (seconds).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite `dt` or `q0`; [`Error::InvalidArgument`] for
+    /// `dt ≤ 0`.
+    pub fn new(
+        q0: UnitQuat<T>,
+        method: RateMethod,
+        norm: Normalization,
+        dt: T,
+    ) -> Result<Self, Error> {
+        if !dt.is_finite() || !q0.as_quat().is_finite() {
+            return Err(Error::NonFinite);
+        }
+        if dt <= T::ZERO {
+            return Err(Error::InvalidArgument);
+        }
+        Ok(Self {
+            q: q0,
+            method,
+            norm,
+            dt,
+            window: [Vec3::ZERO; 4],
+            count: 0,
+        })
+    }
+
+    /// The latest attitude computed (at the time of the newest sample once four have arrived).
+    pub fn attitude(&self) -> UnitQuat<T> {
+        self.q
+    }
+
+    /// One step over an interval of an `M`-sample window, given that interval's weight rows.
+    #[inline(always)]
+    fn advance<const M: usize>(&mut self, s: &[Vec3<T>; M], w: &[[f64; M]; 5]) -> UnitQuat<T> {
+        let h = self.dt;
+        self.q = match self.method {
+            RateMethod::Magnus4 => self.norm.apply(magnus4_step(
+                self.q,
+                interp(s, &w[G1]),
+                interp(s, &w[G2]),
+                h,
+            )),
+            RateMethod::Cf4 => {
+                self.norm
+                    .apply(cf4_step(self.q, interp(s, &w[G1]), interp(s, &w[G2]), h))
+            }
+            RateMethod::Rk4 => {
+                let q = rk4_step(
+                    *self.q.as_quat(),
+                    interp(s, &w[START]),
+                    interp(s, &w[MID]),
+                    interp(s, &w[END]),
+                    h,
+                );
+                self.norm.apply_quat(q)
+            }
+        };
+        self.q
+    }
+
+    /// Adds the next rate sample (rad/s, body frame) and integrates every interval it completes.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite component; the sample is discarded and the
+    /// state is unchanged.
+    pub fn push(&mut self, omega: Vec3<T>) -> Result<Attitudes<T>, Error> {
+        let omega = omega.try_finite()?;
+        let mut out = Attitudes::new();
+        match self.count {
+            0..=2 => {
+                if let Some(slot) = self.window.get_mut(usize::from(self.count)) {
+                    *slot = omega;
+                }
+                self.count += 1;
+                if self.count == 1 {
+                    let _ = out.push(self.q);
+                }
+            }
+            3 => {
+                let [a, b, c, _] = self.window;
+                let s = [a, b, c, omega];
+                self.window = s;
+                self.count = 4;
+                for w in &W4 {
+                    let q = self.advance(&s, w);
+                    let _ = out.push(q);
+                }
+            }
+            _ => {
+                let [_, b, c, d] = self.window;
+                let s = [b, c, d, omega];
+                self.window = s;
+                let q = self.advance(&s, &W4[2]);
+                let _ = out.push(q);
+            }
+        }
+        Ok(out)
+    }
+
+    /// Ends the record: integrates what a record of fewer than four samples left pending (two
+    /// samples: the linear interpolant, order 2; three: the quadratic one) and returns those
+    /// attitudes. After four or more samples everything was already integrated and the result is
+    /// empty.
+    pub fn finish(mut self) -> Attitudes<T> {
+        let mut out = Attitudes::new();
+        let [a, b, c, _] = self.window;
+        match self.count {
+            2 => {
+                let _ = out.push(self.advance(&[a, b], &W2[0]));
+            }
+            3 => {
+                for w in &W3 {
+                    let q = self.advance(&[a, b, c], w);
+                    let _ = out.push(q);
+                }
+            }
+            _ => {}
+        }
+        out
+    }
+}
