@@ -85,7 +85,11 @@ impl Coning {
         let one_minus_ca = 2.0 * (0.5 * self.alpha).sin().powi(2);
         let mid = 0.5 * w * (a + b);
         let half = (0.5 * w * (b - a)).sin();
-        [-2.0 * sa * mid.sin() * half, 2.0 * sa * mid.cos() * half, -w * one_minus_ca * (b - a)]
+        [
+            -2.0 * sa * mid.sin() * half,
+            2.0 * sa * mid.cos() * half,
+            -w * one_minus_ca * (b - a),
+        ]
     }
 
     /// The true coning rate along the body z axis: `−Ω(1 − cos α)`.
@@ -164,7 +168,10 @@ mod tests {
     /// Rodrigues matrix (an independent route to the same ω).
     #[test]
     fn coning_body_rate_matches_rodrigues_derivative() {
-        let c = Coning { alpha: 0.3, omega_c: 2.0 };
+        let c = Coning {
+            alpha: 0.3,
+            omega_c: 2.0,
+        };
         for &t in &[0.0, 0.4, 1.3, 2.9] {
             let h = 1e-5;
             let (rp, rm) = (c.matrix(t + h), c.matrix(t - h));
@@ -186,13 +193,22 @@ mod tests {
     /// The increment equals a fine Simpson quadrature of the body rate.
     #[test]
     fn coning_increment_matches_quadrature() {
-        let c = Coning { alpha: 0.2, omega_c: 3.0 };
+        let c = Coning {
+            alpha: 0.2,
+            omega_c: 3.0,
+        };
         let (a, b) = (0.7, 0.95);
         let n = 200;
         let h = (b - a) / n as f64;
         let mut s = [0.0; 3];
         for i in 0..=n {
-            let wgt = if i == 0 || i == n { 1.0 } else if i % 2 == 1 { 4.0 } else { 2.0 };
+            let wgt = if i == 0 || i == n {
+                1.0
+            } else if i % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
             let w = c.body_rate(a + i as f64 * h);
             for k in 0..3 {
                 s[k] += wgt * w[k] * h / 3.0;

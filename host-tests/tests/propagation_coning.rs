@@ -44,7 +44,11 @@ fn measure(c: &Coning, rule: ConingRule, per_cycle: usize, cycles: usize) -> f64
             let k = (cyc * per_cycle + i) as f64;
             integ.push(v3(c.increment(k * h, (k + 1.0) * h))).unwrap();
         }
-        assert_eq!(integ.pending(), 0, "per_cycle must be a multiple of the group size");
+        assert_eq!(
+            integ.pending(),
+            0,
+            "per_cycle must be a multiple of the group size"
+        );
         let t = (cyc + 1) as f64 * period;
         ts.push(t);
         ys.push(body_error(c.attitude(t), to_q(integ.attitude()))[2]);
@@ -57,15 +61,26 @@ fn measure(c: &Coning, rule: ConingRule, per_cycle: usize, cycles: usize) -> f64
 /// has the sign of the true axial rate `−Ω(1 − cos α)`: negative.
 fn check(name: &str, measured: f64, theory: f64) {
     let rel = (measured.abs() - theory).abs() / theory;
-    println!("{name}: measured drift {measured:.6e} rad/s, theory {theory:.6e}, rel. diff {rel:.2e}");
-    assert!(measured < 0.0, "{name}: drift has the wrong sign: {measured:e}");
-    assert!(rel < 0.05, "{name}: measured {measured:e} vs theory {theory:e}");
+    println!(
+        "{name}: measured drift {measured:.6e} rad/s, theory {theory:.6e}, rel. diff {rel:.2e}"
+    );
+    assert!(
+        measured < 0.0,
+        "{name}: drift has the wrong sign: {measured:e}"
+    );
+    assert!(
+        rel < 0.05,
+        "{name}: measured {measured:e} vs theory {theory:e}"
+    );
 }
 
 #[test]
 fn exp_per_increment_drift_is_alpha2_omega_omegah2_over_12() {
     // α = 0.02, Ωh = 2π/60 ≈ 0.105: the next term of ½(1 − sin x / x) is x²/20 ≈ 0.05% relative.
-    let c = Coning { alpha: 0.02, omega_c: 2.0 * std::f64::consts::PI };
+    let c = Coning {
+        alpha: 0.02,
+        omega_c: 2.0 * std::f64::consts::PI,
+    };
     let per = 60;
     let x = c.omega_c * (2.0 * std::f64::consts::PI / c.omega_c) / per as f64;
     let d = measure(&c, ConingRule::Exp, per, 50);
@@ -75,31 +90,52 @@ fn exp_per_increment_drift_is_alpha2_omega_omegah2_over_12() {
 #[test]
 fn one_plus_previous_drift_is_alpha2_omega_omegah4_over_60() {
     // Ωh = 2π/48 ≈ 0.131.
-    let c = Coning { alpha: 0.05, omega_c: 2.0 * std::f64::consts::PI };
+    let c = Coning {
+        alpha: 0.05,
+        omega_c: 2.0 * std::f64::consts::PI,
+    };
     let per = 48;
     let x = 2.0 * std::f64::consts::PI / per as f64;
     let d = measure(&c, ConingRule::OnePlusPrevious, per, 100);
-    check("one+previous", d, c.alpha.powi(2) * c.omega_c * x.powi(4) / 60.0);
+    check(
+        "one+previous",
+        d,
+        c.alpha.powi(2) * c.omega_c * x.powi(4) / 60.0,
+    );
 }
 
 #[test]
 fn two_sample_drift_is_alpha2_omega_omegat4_over_960() {
     // ΩT = 2·2π/48 ≈ 0.262.
-    let c = Coning { alpha: 0.05, omega_c: 2.0 * std::f64::consts::PI };
+    let c = Coning {
+        alpha: 0.05,
+        omega_c: 2.0 * std::f64::consts::PI,
+    };
     let per = 48;
     let x = 2.0 * 2.0 * std::f64::consts::PI / per as f64;
     let d = measure(&c, ConingRule::TwoSample, per, 100);
-    check("2-sample", d, c.alpha.powi(2) * c.omega_c * x.powi(4) / 960.0);
+    check(
+        "2-sample",
+        d,
+        c.alpha.powi(2) * c.omega_c * x.powi(4) / 960.0,
+    );
 }
 
 #[test]
 fn three_sample_drift_is_alpha2_omega_omegat6_over_204120() {
     // ΩT = 3·2π/36 ≈ 0.524.
-    let c = Coning { alpha: 0.05, omega_c: 2.0 * std::f64::consts::PI };
+    let c = Coning {
+        alpha: 0.05,
+        omega_c: 2.0 * std::f64::consts::PI,
+    };
     let per = 36;
     let x = 3.0 * 2.0 * std::f64::consts::PI / per as f64;
     let d = measure(&c, ConingRule::ThreeSample, per, 200);
-    check("3-sample", d, c.alpha.powi(2) * c.omega_c * x.powi(6) / 204120.0);
+    check(
+        "3-sample",
+        d,
+        c.alpha.powi(2) * c.omega_c * x.powi(6) / 204120.0,
+    );
 }
 
 #[test]
@@ -109,14 +145,25 @@ fn four_sample_is_measurably_better_than_three_sample() {
     // It is so small that the O(α⁴) terms every rule neglects (the rules are derived to O(α²))
     // dominate it unless α is tiny: at α = 0.05 they are 100× larger. With α = 0.001 and
     // Ωh = 2π/24 the α² term dominates both rules; measured ratio ≈ 64.
-    let c = Coning { alpha: 0.001, omega_c: 2.0 * std::f64::consts::PI };
+    let c = Coning {
+        alpha: 0.001,
+        omega_c: 2.0 * std::f64::consts::PI,
+    };
     let per = 24;
     let x = 2.0 * std::f64::consts::PI / per as f64;
     let d3 = measure(&c, ConingRule::ThreeSample, per, 100);
     let d4 = measure(&c, ConingRule::FourSample, per, 100);
     println!("same sample interval h = period/24: 3-sample {d3:e}, 4-sample {d4:e} rad/s");
-    check("3-sample (α = 0.001)", d3, c.alpha.powi(2) * c.omega_c * (3.0 * x).powi(6) / 204120.0);
-    check("4-sample (α = 0.001)", d4, c.alpha.powi(2) * c.omega_c * (4.0 * x).powi(8) / 82_575_360.0);
+    check(
+        "3-sample (α = 0.001)",
+        d3,
+        c.alpha.powi(2) * c.omega_c * (3.0 * x).powi(6) / 204120.0,
+    );
+    check(
+        "4-sample (α = 0.001)",
+        d4,
+        c.alpha.powi(2) * c.omega_c * (4.0 * x).powi(8) / 82_575_360.0,
+    );
     assert!(d4.abs() * 20.0 < d3.abs());
 }
 
@@ -127,7 +174,10 @@ fn two_speed_accumulator_drift_is_one_plus_previous_at_sample_rate() {
     // α = 0.01: the O(α⁴) terms the rule neglects (Bortz terms beyond ½ α × ω, which grow with
     // the update interval, here ΩT ≈ 1.05) add a relative ≈ 70 α²: 18% at α = 0.05 (measured),
     // 0.9% at α = 0.01.
-    let c = Coning { alpha: 0.01, omega_c: 2.0 * std::f64::consts::PI };
+    let c = Coning {
+        alpha: 0.01,
+        omega_c: 2.0 * std::f64::consts::PI,
+    };
     let per = 48;
     let per_update = 8;
     let period = 1.0;
@@ -148,19 +198,32 @@ fn two_speed_accumulator_drift_is_one_plus_previous_at_sample_rate() {
         ts.push(t);
         ys.push(body_error(c.attitude(t), to_q(q))[2]);
     }
-    check("two-speed, 8 samples/update", fit_slope(&ts, &ys), c.alpha.powi(2) * c.omega_c * x.powi(4) / 60.0);
+    check(
+        "two-speed, 8 samples/update",
+        fit_slope(&ts, &ys),
+        c.alpha.powi(2) * c.omega_c * x.powi(4) / 60.0,
+    );
 }
 
 /// The hot-path `coning2_update` (f32 and f64) is the TwoSample rule with fast renormalisation:
 /// over one coning period it tracks the closed form as well as the f64 integrator.
 #[test]
 fn coning2_update_tracks_closed_form_f32_and_f64() {
-    let c = Coning { alpha: 0.1, omega_c: 3.0 };
+    let c = Coning {
+        alpha: 0.1,
+        omega_c: 3.0,
+    };
     let n = 200;
     let h = 2.0 * std::f64::consts::PI / c.omega_c / n as f64;
     let a0 = c.attitude(0.0);
     let mut q64 = start(&c);
-    let mut q32 = UnitQuat::try_new(Quat::new(a0[0] as f32, a0[1] as f32, a0[2] as f32, a0[3] as f32)).unwrap();
+    let mut q32 = UnitQuat::try_new(Quat::new(
+        a0[0] as f32,
+        a0[1] as f32,
+        a0[2] as f32,
+        a0[3] as f32,
+    ))
+    .unwrap();
     for k in (0..n).step_by(2) {
         let kf = k as f64;
         let d1 = c.increment(kf * h, (kf + 1.0) * h);
@@ -187,7 +250,11 @@ fn partial_groups_use_lower_order_rules() {
     let th: Vec<Vec3<f64>> = (0..7)
         .map(|k| {
             let t = k as f64;
-            Vec3::new(0.01 * (0.3 * t).cos(), 0.012 * (0.5 * t).sin(), 0.004 + 0.001 * t)
+            Vec3::new(
+                0.01 * (0.3 * t).cos(),
+                0.012 * (0.5 * t).sin(),
+                0.004 + 0.001 * t,
+            )
         })
         .collect();
     let q0 = UnitQuat::try_from_axis_angle(Vec3::new(1.0, 2.0, 3.0), 0.4).unwrap();
@@ -200,8 +267,14 @@ fn partial_groups_use_lower_order_rules() {
     let done = integ.flush();
     assert_eq!(prov, done);
     // Manual: 4-sample rule on the first group, then the 3-sample rule on the last three.
-    let first = th[0] + th[1] + th[2] + th[3] + (th[0].scale(54.0 / 105.0) + th[1].scale(92.0 / 105.0) + th[2].scale(214.0 / 105.0)).cross(th[3]);
-    let last = th[4] + th[5] + th[6] + (th[4].scale(9.0 / 20.0) + th[5].scale(27.0 / 20.0)).cross(th[6]);
+    let first = th[0]
+        + th[1]
+        + th[2]
+        + th[3]
+        + (th[0].scale(54.0 / 105.0) + th[1].scale(92.0 / 105.0) + th[2].scale(214.0 / 105.0))
+            .cross(th[3]);
+    let last =
+        th[4] + th[5] + th[6] + (th[4].scale(9.0 / 20.0) + th[5].scale(27.0 / 20.0)).cross(th[6]);
     let manual = q0 * UnitQuat::exp(first).unwrap() * UnitQuat::exp(last).unwrap();
     assert!((manual.dot(done) - 1.0).abs() < 1e-15);
     // A single trailing sample uses the one-plus-previous correction with the sample before it.
@@ -222,12 +295,25 @@ fn partial_groups_use_lower_order_rules() {
 /// Non-finite increments are rejected with a typed error and leave the state unchanged.
 #[test]
 fn non_finite_increment_is_rejected() {
-    let mut integ = IncrementIntegrator::new(UnitQuat::<f32>::IDENTITY, ConingRule::TwoSample, Normalization::Fast);
+    let mut integ = IncrementIntegrator::new(
+        UnitQuat::<f32>::IDENTITY,
+        ConingRule::TwoSample,
+        Normalization::Fast,
+    );
     integ.push(Vec3::new(0.01, 0.0, 0.0)).unwrap();
-    assert_eq!(integ.push(Vec3::new(f32::NAN, 0.0, 0.0)), Err(gyrostat::Error::NonFinite));
-    assert_eq!(integ.push(Vec3::new(0.0, f32::INFINITY, 0.0)), Err(gyrostat::Error::NonFinite));
+    assert_eq!(
+        integ.push(Vec3::new(f32::NAN, 0.0, 0.0)),
+        Err(gyrostat::Error::NonFinite)
+    );
+    assert_eq!(
+        integ.push(Vec3::new(0.0, f32::INFINITY, 0.0)),
+        Err(gyrostat::Error::NonFinite)
+    );
     assert_eq!(integ.pending(), 1);
     let mut acc = ConingAccumulator::<f64>::new();
-    assert_eq!(acc.push(Vec3::new(0.0, 0.0, f64::NAN)), Err(gyrostat::Error::NonFinite));
+    assert_eq!(
+        acc.push(Vec3::new(0.0, 0.0, f64::NAN)),
+        Err(gyrostat::Error::NonFinite)
+    );
     assert_eq!(acc.count(), 0);
 }

@@ -1,9 +1,13 @@
 //! Kinematics, the exact exponential step and spin precession (6.6.16a–c), f32 and f64.
 
 use gyrostat::propagation::exponential::{step_constant_rate, step_constant_rate_unchecked};
-use gyrostat::propagation::kinematics::{body_rate_between, body_rate_from_quat_rate, lab_rate_between, quat_rate_body, quat_rate_lab};
+use gyrostat::propagation::kinematics::{
+    body_rate_between, body_rate_from_quat_rate, lab_rate_between, quat_rate_body, quat_rate_lab,
+};
 use gyrostat::propagation::normalization::norm_deviation;
-use gyrostat::propagation::{ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod};
+use gyrostat::propagation::{
+    ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
+};
 use gyrostat::{Error, Quat, Real, UnitQuat, Vec3};
 use host_tests::ref_propagation::{Coning, crank_axis, spin_precession};
 use host_tests::tolerance::Tolerance;
@@ -15,10 +19,19 @@ fn v<T: Real>(a: [f64; 3]) -> Vec3<T> {
 /// `q̇ = ½ q ⊗ (0, ω_body) = ½ (0, ω_lab) ⊗ q` against central differences of the closed-form
 /// coning attitude, whose body rate is known in closed form.
 fn quat_rate_matches_closed_form<T: Real + Tolerance>() {
-    let c = Coning { alpha: 0.4, omega_c: 1.7 };
+    let c = Coning {
+        alpha: 0.4,
+        omega_c: 1.7,
+    };
     for &t in &[0.0, 0.3, 1.9] {
         let a = c.attitude(t);
-        let q = UnitQuat::<T>::try_new(Quat::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]), T::from_f64(a[3]))).unwrap();
+        let q = UnitQuat::<T>::try_new(Quat::new(
+            T::from_f64(a[0]),
+            T::from_f64(a[1]),
+            T::from_f64(a[2]),
+            T::from_f64(a[3]),
+        ))
+        .unwrap();
         let w: Vec3<T> = v(c.body_rate(t));
         let qd = quat_rate_body(*q.as_quat(), w);
         let dt = 1e-6;
@@ -59,11 +72,23 @@ fn rate_between_inverts_step<T: Real + Tolerance>() {
     let wl = lab_rate_between(q0, q1, dt).unwrap();
     assert!((wb - w).norm().to_f64() < 4.0 * T::SHORT);
     assert!((wl - q0.rotate(w)).norm().to_f64() < 4.0 * T::SHORT);
-    assert_eq!(body_rate_between(q0, q1, T::ZERO), Err(Error::InvalidArgument));
+    assert_eq!(
+        body_rate_between(q0, q1, T::ZERO),
+        Err(Error::InvalidArgument)
+    );
     assert_eq!(body_rate_between(q0, q1, -dt), Err(Error::InvalidArgument));
-    assert_eq!(lab_rate_between(q0, q1, T::from_f64(f64::NAN)), Err(Error::NonFinite));
-    assert_eq!(step_constant_rate(q0, v([f64::NAN, 0.0, 0.0]), dt), Err(Error::NonFinite));
-    assert_eq!(step_constant_rate(q0, w, T::from_f64(f64::INFINITY)), Err(Error::NonFinite));
+    assert_eq!(
+        lab_rate_between(q0, q1, T::from_f64(f64::NAN)),
+        Err(Error::NonFinite)
+    );
+    assert_eq!(
+        step_constant_rate(q0, v([f64::NAN, 0.0, 0.0]), dt),
+        Err(Error::NonFinite)
+    );
+    assert_eq!(
+        step_constant_rate(q0, w, T::from_f64(f64::INFINITY)),
+        Err(Error::NonFinite)
+    );
 }
 
 #[test]
@@ -87,7 +112,8 @@ fn exact_step_beyond_pi_and_tiny() {
     }
     let four_pi = step_constant_rate(q0, axis.scale(4.0), core::f64::consts::PI).unwrap();
     assert!((four_pi.dot(q0) - 1.0).abs() < 1e-15);
-    let tiny = step_constant_rate_unchecked(UnitQuat::<f32>::IDENTITY, Vec3::new(0.0, 2e-30, 0.0), 1.0);
+    let tiny =
+        step_constant_rate_unchecked(UnitQuat::<f32>::IDENTITY, Vec3::new(0.0, 2e-30, 0.0), 1.0);
     assert_eq!(tiny.y(), 1e-30);
 }
 
@@ -98,7 +124,11 @@ fn exact_step_beyond_pi_and_tiny() {
 fn spin_precession_matches_seed<T: Real + Tolerance>() {
     let (theta, phi, big_omega) = (0.955, 0.785, 2.5); // near the seed's magic angle, φ = π/4
     let axis = crank_axis(theta, phi);
-    let w: Vec3<T> = v([axis[0] * big_omega, axis[1] * big_omega, axis[2] * big_omega]);
+    let w: Vec3<T> = v([
+        axis[0] * big_omega,
+        axis[1] * big_omega,
+        axis[2] * big_omega,
+    ]);
     let dt = 0.01;
     let n = 400; // 4 s: Θ = 10 rad, beyond 2π
     let dtt = T::from_f64(dt);
@@ -106,12 +136,19 @@ fn spin_precession_matches_seed<T: Real + Tolerance>() {
     let check = |name: &str, k: usize, q: UnitQuat<T>, tol: f64| {
         let s = spin_precession(theta, phi, big_omega, k as f64 * dt);
         let col = z(q);
-        let err = ((col.x.to_f64() - s[0]).powi(2) + (col.y.to_f64() - s[1]).powi(2) + (col.z.to_f64() - s[2]).powi(2)).sqrt();
+        let err = ((col.x.to_f64() - s[0]).powi(2)
+            + (col.y.to_f64() - s[1]).powi(2)
+            + (col.z.to_f64() - s[2]).powi(2))
+        .sqrt();
         assert!(err < tol, "{name} at step {k}: {err}");
     };
     // Rounding budget for n = 400 chained updates: f32 ~ 400 × 6e-8 worst case ≈ 2.4e-5 (the
     // walk is random, so 2e-5 holds with margin); f64 ~ 400 × 1.1e-16 ≈ 5e-14.
-    let tol = if T::EPSILON.to_f64() > 1e-10 { 2e-5 } else { 1e-12 };
+    let tol = if T::EPSILON.to_f64() > 1e-10 {
+        2e-5
+    } else {
+        1e-12
+    };
     // Exact exponential step.
     let mut q = UnitQuat::<T>::IDENTITY;
     for k in 1..=n {
@@ -119,8 +156,15 @@ fn spin_precession_matches_seed<T: Real + Tolerance>() {
         check("exp step", k, q, tol);
     }
     // Increments (constant rate: every coning correction vanishes, increments are ω dt).
-    for rule in [ConingRule::Exp, ConingRule::OnePlusPrevious, ConingRule::TwoSample, ConingRule::ThreeSample, ConingRule::FourSample] {
-        let mut integ = IncrementIntegrator::new(UnitQuat::<T>::IDENTITY, rule, Normalization::Fast);
+    for rule in [
+        ConingRule::Exp,
+        ConingRule::OnePlusPrevious,
+        ConingRule::TwoSample,
+        ConingRule::ThreeSample,
+        ConingRule::FourSample,
+    ] {
+        let mut integ =
+            IncrementIntegrator::new(UnitQuat::<T>::IDENTITY, rule, Normalization::Fast);
         for k in 1..=n {
             integ.push(w.scale(dtt)).unwrap();
             check("increments", k, integ.provisional_attitude(), tol);
@@ -129,8 +173,13 @@ fn spin_precession_matches_seed<T: Real + Tolerance>() {
     // Rate samples. RK4 adds its truncation error, per step 2(|ω| dt/2)⁵/120 ≈ 5e-12 in angle:
     // over 400 steps ≤ 2e-9 (below the f32 rounding budget, above the f64 one).
     let rk4_tol = tol.max(3e-9);
-    for (method, tol) in [(RateMethod::Magnus4, tol), (RateMethod::Cf4, tol), (RateMethod::Rk4, rk4_tol)] {
-        let mut integ = RateIntegrator::new(UnitQuat::<T>::IDENTITY, method, Normalization::Fast, dtt).unwrap();
+    for (method, tol) in [
+        (RateMethod::Magnus4, tol),
+        (RateMethod::Cf4, tol),
+        (RateMethod::Rk4, rk4_tol),
+    ] {
+        let mut integ =
+            RateIntegrator::new(UnitQuat::<T>::IDENTITY, method, Normalization::Fast, dtt).unwrap();
         let mut k = 0;
         for _ in 0..=n {
             for q in integ.push(w).unwrap() {
@@ -162,7 +211,10 @@ fn normalisation_policies_and_health() {
         assert!(norm_deviation(Normalization::Exact.apply(q)).abs() < 3e-16);
         // Fast: |q|² = 1 − 3δ²/4 + O(δ³) → |q| − 1 ≈ −3δ²/8 (2δ³ bounds the O(δ³) part).
         let f = norm_deviation(Normalization::Fast.apply(q));
-        assert!((f + 1.5 * delta * delta).abs() < 2.0 * delta.abs().powi(3) + 3e-16, "{delta}: {f}");
+        assert!(
+            (f + 1.5 * delta * delta).abs() < 2.0 * delta.abs().powi(3) + 3e-16,
+            "{delta}: {f}"
+        );
         assert_eq!(Normalization::None.apply(q), q);
     }
     let q = UnitQuat::new_unchecked(Quat::new(1.0f32 + 3.0 * f32::EPSILON, 0.0, 0.0, 0.0));

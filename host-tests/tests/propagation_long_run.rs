@@ -53,7 +53,9 @@ fn run(norm: Normalization, two_sample: bool) -> (f64, Vec<(usize, f64)>) {
 #[test]
 fn million_f32_steps_keep_unit_norm_with_fast_renormalisation() {
     let (worst, log) = run(Normalization::Fast, false);
-    println!("exp + fast renormalisation: max ||q| − 1| = {worst:e}; attitude error (steps, rad): {log:?}");
+    println!(
+        "exp + fast renormalisation: max ||q| − 1| = {worst:e}; attitude error (steps, rad): {log:?}"
+    );
     assert!(worst < 1e-6, "{worst}");
     // Worst-case bound: each step rounds each of 4 components (|qᵢ| ≤ 1) by ≤ 2⁻²⁵, an attitude
     // error ≤ 2·√4·2⁻²⁵ ≈ 1.2e-7 rad per step, ≤ 0.12 rad after 10⁶ fully biased steps. The
@@ -62,7 +64,9 @@ fn million_f32_steps_keep_unit_norm_with_fast_renormalisation() {
     assert!(final_err < 0.12, "{final_err}");
 
     let (worst2, log2) = run(Normalization::Fast, true);
-    println!("coning2_update (2 increments per update, 5·10⁵ updates): max ||q| − 1| = {worst2:e}; error: {log2:?}");
+    println!(
+        "coning2_update (2 increments per update, 5·10⁵ updates): max ||q| − 1| = {worst2:e}; error: {log2:?}"
+    );
     assert!(worst2 < 1e-6, "{worst2}");
 }
 

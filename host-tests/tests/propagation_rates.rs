@@ -7,12 +7,17 @@
 //! `q(3 s)`. The order is `log₂(e(h)/e(h/2))`, averaged over three halvings. f64, so that the
 //! finest error (~1e-11) stays far above rounding (~1e-15).
 
-use gyrostat::propagation::rate_samples::{cf4_rotation_vectors, cf4_step, gauss_rates, magnus4_step, midpoint_rate, rk4_step};
+use gyrostat::propagation::rate_samples::{
+    cf4_rotation_vectors, cf4_step, gauss_rates, magnus4_step, midpoint_rate, rk4_step,
+};
 use gyrostat::propagation::{Normalization, RateIntegrator, RateMethod};
 use gyrostat::{Quat, UnitQuat, Vec3};
 use host_tests::ref_propagation::{Coning, angle_between};
 
-const CONE: Coning = Coning { alpha: 0.6, omega_c: 2.0 };
+const CONE: Coning = Coning {
+    alpha: 0.6,
+    omega_c: 2.0,
+};
 const T_END: f64 = 3.0;
 
 fn v3(a: [f64; 3]) -> Vec3<f64> {
@@ -98,7 +103,12 @@ fn cf4_swapped_exponentials_drop_to_order_2() {
         let mut q = q0();
         for k in 0..n {
             let t = k as f64 * h;
-            q = magnus4_step(q, v3(CONE.body_rate(t + c1 * h)), v3(CONE.body_rate(t + c2 * h)), h);
+            q = magnus4_step(
+                q,
+                v3(CONE.body_rate(t + c1 * h)),
+                v3(CONE.body_rate(t + c2 * h)),
+                h,
+            );
         }
         angle_between(CONE.attitude(T_END), q.to_array())
     };
@@ -109,7 +119,13 @@ fn cf4_swapped_exponentials_drop_to_order_2() {
 /// each interval of the window (the property the order-4 argument rests on).
 #[test]
 fn interpolation_is_exact_for_cubics() {
-    let f = |t: f64| Vec3::new(1.0 + 2.0 * t - 0.5 * t * t + 0.25 * t * t * t, -t * t * t, 3.0 - t);
+    let f = |t: f64| {
+        Vec3::new(
+            1.0 + 2.0 * t - 0.5 * t * t + 0.25 * t * t * t,
+            -t * t * t,
+            3.0 - t,
+        )
+    };
     let window = [f(0.0), f(1.0), f(2.0), f(3.0)];
     let (c1, c2) = (0.5 - 3f64.sqrt() / 6.0, 0.5 + 3f64.sqrt() / 6.0);
     for j in 0..3 {
@@ -133,8 +149,13 @@ fn constant_rate_is_exact_for_lie_group_methods() {
     // term is (|ω|h/2)⁵/120 ≈ 9.7e-9 in the quaternion, 2× that in angle; 100 steps ≈ 1.9e-6.
     let x = w.norm() * h / 2.0;
     let rk4_budget = 100.0 * 2.0 * x.powi(5) / 120.0 * 1.2;
-    for (method, tol) in [(RateMethod::Magnus4, 1e-13), (RateMethod::Cf4, 1e-13), (RateMethod::Rk4, rk4_budget)] {
-        let mut integ = RateIntegrator::new(UnitQuat::IDENTITY, method, Normalization::Exact, h).unwrap();
+    for (method, tol) in [
+        (RateMethod::Magnus4, 1e-13),
+        (RateMethod::Cf4, 1e-13),
+        (RateMethod::Rk4, rk4_budget),
+    ] {
+        let mut integ =
+            RateIntegrator::new(UnitQuat::IDENTITY, method, Normalization::Exact, h).unwrap();
         let mut q = UnitQuat::IDENTITY;
         for _ in 0..=100 {
             if let Some(last) = integ.push(w).unwrap().last() {
@@ -155,8 +176,15 @@ fn constant_rate_is_exact_for_lie_group_methods() {
 fn short_records_are_finished() {
     for n in 1..=4usize {
         let h = 0.01;
-        let mut i64 = RateIntegrator::new(q0(), RateMethod::Magnus4, Normalization::Fast, h).unwrap();
-        let mut i32 = RateIntegrator::new(UnitQuat::<f32>::IDENTITY, RateMethod::Cf4, Normalization::Fast, h as f32).unwrap();
+        let mut i64 =
+            RateIntegrator::new(q0(), RateMethod::Magnus4, Normalization::Fast, h).unwrap();
+        let mut i32 = RateIntegrator::new(
+            UnitQuat::<f32>::IDENTITY,
+            RateMethod::Cf4,
+            Normalization::Fast,
+            h as f32,
+        )
+        .unwrap();
         let mut count = 0;
         let mut last = q0();
         for k in 0..n {
@@ -166,7 +194,8 @@ fn short_records_are_finished() {
             if let Some(q) = out.last() {
                 last = *q;
             }
-            i32.push(Vec3::new(w[0] as f32, w[1] as f32, w[2] as f32)).unwrap();
+            i32.push(Vec3::new(w[0] as f32, w[1] as f32, w[2] as f32))
+                .unwrap();
         }
         let rest = i64.finish();
         count += rest.len();
@@ -185,9 +214,36 @@ fn short_records_are_finished() {
 #[test]
 fn bad_input_is_rejected() {
     use gyrostat::Error;
-    assert_eq!(RateIntegrator::new(UnitQuat::<f64>::IDENTITY, RateMethod::Rk4, Normalization::Fast, 0.0).err(), Some(Error::InvalidArgument));
-    assert_eq!(RateIntegrator::new(UnitQuat::<f32>::IDENTITY, RateMethod::Rk4, Normalization::Fast, f32::NAN).err(), Some(Error::NonFinite));
-    let mut integ = RateIntegrator::new(UnitQuat::<f32>::IDENTITY, RateMethod::Cf4, Normalization::Fast, 0.01).unwrap();
-    assert_eq!(integ.push(Vec3::new(0.0, f32::NAN, 0.0)).err(), Some(Error::NonFinite));
+    assert_eq!(
+        RateIntegrator::new(
+            UnitQuat::<f64>::IDENTITY,
+            RateMethod::Rk4,
+            Normalization::Fast,
+            0.0
+        )
+        .err(),
+        Some(Error::InvalidArgument)
+    );
+    assert_eq!(
+        RateIntegrator::new(
+            UnitQuat::<f32>::IDENTITY,
+            RateMethod::Rk4,
+            Normalization::Fast,
+            f32::NAN
+        )
+        .err(),
+        Some(Error::NonFinite)
+    );
+    let mut integ = RateIntegrator::new(
+        UnitQuat::<f32>::IDENTITY,
+        RateMethod::Cf4,
+        Normalization::Fast,
+        0.01,
+    )
+    .unwrap();
+    assert_eq!(
+        integ.push(Vec3::new(0.0, f32::NAN, 0.0)).err(),
+        Some(Error::NonFinite)
+    );
     assert_eq!(integ.push(Vec3::new(0.1, 0.0, 0.0)).unwrap().len(), 1); // still sample 0
 }
