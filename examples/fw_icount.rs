@@ -175,13 +175,17 @@ mod firmware {
 
     fn exit(code: debug::ExitStatus) -> ! {
         debug::exit(code);
-        loop {}
+        loop {
+            cortex_m::asm::wfi();
+        }
     }
 
     #[panic_handler]
     fn panic(_: &core::panic::PanicInfo) -> ! {
         debug::exit(debug::EXIT_FAILURE);
-        loop {}
+        loop {
+            cortex_m::asm::wfi();
+        }
     }
 }
 

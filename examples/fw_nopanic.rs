@@ -74,7 +74,9 @@ mod firmware {
         } else {
             debug::exit(debug::EXIT_FAILURE);
         }
-        loop {}
+        loop {
+            cortex_m::asm::wfi();
+        }
     }
 
     #[panic_handler]

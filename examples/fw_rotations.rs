@@ -64,13 +64,17 @@ mod firmware {
                 debug::exit(debug::EXIT_FAILURE);
             }
         }
-        loop {}
+        loop {
+            cortex_m::asm::wfi();
+        }
     }
 
     #[panic_handler]
     fn panic(_: &core::panic::PanicInfo) -> ! {
         debug::exit(debug::EXIT_FAILURE);
-        loop {}
+        loop {
+            cortex_m::asm::wfi();
+        }
     }
 }
 

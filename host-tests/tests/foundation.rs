@@ -4,6 +4,9 @@
 //! matrix (6.6.4), both in `host_tests::reference` (no gyrostat code). Tolerances per type come
 //! from `host_tests::tolerance::Tolerance::SHORT` (f32 2e-6, f64 1e-13), stated there.
 
+// Angles near π and 2π (3.14159, 6.2831853) are deliberate test inputs, not approximations.
+#![allow(clippy::approx_constant)]
+
 use gyrostat::{Complex, Error, Mat3, Quat, Real, Su2, UnitQuat, Vec3};
 use host_tests::reference::{self as r, C, M3, U2};
 use host_tests::tolerance::Tolerance;
