@@ -13,7 +13,7 @@ pub enum Error {
     /// An input number was NaN or infinite.
     NonFinite,
     /// A quaternion, axis or vector that must be normalised has (near-)zero norm: its direction is
-    /// undefined. The threshold is [`crate::UnitQuat::MIN_NORM_SQUARED`]-style: see the constructor.
+    /// undefined. For quaternions the threshold is [`crate::UnitQuat::MIN_NORM`].
     ZeroNorm,
     /// A quaternion that must already be of unit norm is too far from it (the caller's data is
     /// not an attitude).

@@ -71,6 +71,11 @@ pub mod real;
 pub mod rotation;
 
 pub use error::Error;
+
+/// The README's Rust examples, compiled and run as doctests so that they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
 pub use linalg::{Complex, Mat3, Vec3};
 pub use real::Real;
 pub use rotation::{Quat, Su2, UnitQuat};

@@ -5,7 +5,7 @@
 //! that an agreement between the two is evidence, not a tautology. Each area of the library has
 //! its own module.
 //!
-//! - [`reference`]: matrices, Rodrigues rotations (6.6.13)–(6.6.15), SU(2) matrices (6.6.4).
+//! - [`mod@reference`]: matrices, Rodrigues rotations (6.6.13)–(6.6.15), SU(2) matrices (6.6.4).
 //! - [`ref_rotation`]: Euler-angle matrices and representation conversions (issue: rotations).
 //! - [`ref_propagation`]: closed-form coning motion and kinematics (issue: propagation).
 //! - [`ref_dynamics`]: rigid-body reference integrators and closed forms (issue: dynamics).

@@ -1,0 +1,94 @@
+//! Firmware: proof that gyrostat's firmware path links with no panicking branch.
+//!
+//! ```text
+//! cargo run --release --example fw_nopanic --target thumbv7em-none-eabihf
+//! ```
+//! Every library entry point a firmware calls is fed opaque inputs (`core::hint::black_box`), so
+//! the optimiser must keep all of their branches, error paths included. The `#[panic_handler]`
+//! calls an `extern "C"` function that exists nowhere: if any panicking branch (an index out of
+//! bounds, an `unwrap`, an overflow check, a failed assertion) survived optimisation in the code
+//! reachable from `main`, the link fails with an undefined reference to
+//! `gyrostat_firmware_path_contains_a_panicking_branch`. A successful link is the proof; running
+//! the image under QEMU then checks that the calls also behave (exit 0).
+//!
+//! Later modules add their entry points to `exercise` in one line each.
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[cfg(target_os = "none")]
+mod firmware {
+    use core::hint::black_box;
+    use cortex_m_rt::entry;
+    use cortex_m_semihosting::debug;
+    use gyrostat::{Mat3, Quat, Su2, UnitQuat, Vec3};
+
+    /// Folds any result into a checksum the optimiser cannot see through.
+    fn sink<T>(x: T) {
+        black_box(x);
+    }
+
+    fn exercise() -> bool {
+        let v = black_box(Vec3::new(0.3f32, -0.2, 0.9));
+        let raw = black_box(Quat::new(0.9f32, 0.1, -0.3, 0.2));
+        let angle = black_box(0.7f32);
+        let mut ok = true;
+        let q = match UnitQuat::try_new(raw) {
+            Ok(q) => q,
+            Err(_) => return false,
+        };
+        ok &= UnitQuat::try_new(black_box(Quat::<f32>::ZERO)).is_err();
+        sink(UnitQuat::try_from_near_unit(raw, black_box(1e-3)));
+        sink(UnitQuat::try_from_axis_angle(v, angle));
+        sink(raw.try_inverse());
+        sink(q * q.inverse());
+        sink(q.rotate(v));
+        sink(q.inverse_rotate(v));
+        sink(q.to_rotation_matrix());
+        sink(q.renormalize());
+        sink(q.renormalize_fast());
+        sink(UnitQuat::exp(v));
+        sink(q.log());
+        sink(q.angle());
+        let u = Su2::from(q);
+        sink(u * u.inverse());
+        sink(u.rotate(v));
+        sink(UnitQuat::from(u));
+        let m = black_box(Mat3::from_rows(
+            [2.0f32, 0.1, 0.0],
+            [0.1, 3.0, 0.2],
+            [0.0, 0.2, 4.0],
+        ));
+        sink(m.try_inverse());
+        sink(m * v);
+        sink(v.try_normalize());
+        // f64 (soft float on every Cortex-M) goes through the same paths.
+        let q64 =
+            UnitQuat::try_from_axis_angle(black_box(Vec3::new(1.0f64, 2.0, 3.0)), black_box(0.5));
+        sink(q64.map(|q| q.rotate(Vec3::X)));
+        ok
+    }
+
+    #[entry]
+    fn main() -> ! {
+        if exercise() {
+            debug::exit(debug::EXIT_SUCCESS);
+        } else {
+            debug::exit(debug::EXIT_FAILURE);
+        }
+        loop {
+            cortex_m::asm::wfi();
+        }
+    }
+
+    #[panic_handler]
+    fn panic(_: &core::panic::PanicInfo) -> ! {
+        unsafe extern "C" {
+            fn gyrostat_firmware_path_contains_a_panicking_branch() -> !;
+        }
+        // SAFETY: the symbol does not exist; reaching this line at link time is the failure
+        // this example exists to detect.
+        unsafe { gyrostat_firmware_path_contains_a_panicking_branch() }
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+fn main() {}
