@@ -12,7 +12,9 @@ use std::hint::black_box;
 use criterion::{Criterion, criterion_group, criterion_main};
 use gyrostat::propagation::coning::{coning2_update, four_sample, one_plus_previous, three_sample};
 use gyrostat::propagation::exponential::{apply_rotation_vector, step_constant_rate_unchecked};
-use gyrostat::propagation::rate_samples::{cf4_step, gauss_rates, magnus4_step, midpoint_rate, rk4_step};
+use gyrostat::propagation::rate_samples::{
+    cf4_step, gauss_rates, magnus4_step, midpoint_rate, rk4_step,
+};
 use gyrostat::propagation::{ConingAccumulator, Normalization};
 use gyrostat::{UnitQuat, Vec3};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
@@ -54,7 +56,11 @@ macro_rules! bench_type {
         // One increment with the previous-interval correction.
         g.bench_function("coning1/gyrostat", |b| {
             b.iter(|| {
-                q = apply_rotation_vector(q, one_plus_previous(black_box(th[0]), black_box(th[1])), fast);
+                q = apply_rotation_vector(
+                    q,
+                    one_plus_previous(black_box(th[0]), black_box(th[1])),
+                    fast,
+                );
                 q
             })
         });
@@ -93,7 +99,8 @@ macro_rules! bench_type {
         g.bench_function("coning3/nalgebra", |b| {
             b.iter(|| {
                 let t = black_box(nth);
-                let phi = t[0] + t[1] + t[2] + (t[0] * (9.0 / 20.0) + t[1] * (27.0 / 20.0)).cross(&t[2]);
+                let phi =
+                    t[0] + t[1] + t[2] + (t[0] * (9.0 / 20.0) + t[1] * (27.0 / 20.0)).cross(&t[2]);
                 nq = nq * UnitQuaternion::from_scaled_axis(phi);
                 nq.renormalize_fast();
                 nq
@@ -128,7 +135,11 @@ macro_rules! bench_type {
                 }
             })
         });
-        let (mut na, mut nb, mut np) = (Vector3::<T>::zeros(), Vector3::<T>::zeros(), Vector3::<T>::zeros());
+        let (mut na, mut nb, mut np) = (
+            Vector3::<T>::zeros(),
+            Vector3::<T>::zeros(),
+            Vector3::<T>::zeros(),
+        );
         g.bench_function("two_speed_push/nalgebra", |b| {
             b.iter(|| {
                 let d = black_box(nth[2]);
@@ -161,7 +172,9 @@ macro_rules! bench_type {
         };
         let s3 = (3.0 as T).sqrt();
         let (n1, n2, nm) = (lag(2.5 - s3 / 6.0), lag(2.5 + s3 / 6.0), lag(2.5));
-        let interp = |win: &[Vector3<T>; 4], l: &[T; 4]| win[0] * l[0] + win[1] * l[1] + win[2] * l[2] + win[3] * l[3];
+        let interp = |win: &[Vector3<T>; 4], l: &[T; 4]| {
+            win[0] * l[0] + win[1] * l[1] + win[2] * l[2] + win[3] * l[3]
+        };
         assert!((interp(&nwin, &n1) - Vector3::new(g1.x, g1.y, g1.z)).norm() < 1e-4);
         assert!((interp(&nwin, &nm) - Vector3::new(wm.x, wm.y, wm.z)).norm() < 1e-4);
         g.bench_function("magnus4/nalgebra", |b| {
@@ -188,7 +201,9 @@ macro_rules! bench_type {
                 let (w1, w2) = (interp(win, &n1), interp(win, &n2));
                 let h = black_box(dt);
                 let (a, c) = (h * (0.25 + s3 / 6.0), h * (0.25 - s3 / 6.0));
-                nq = nq * UnitQuaternion::from_scaled_axis(w1 * a + w2 * c) * UnitQuaternion::from_scaled_axis(w1 * c + w2 * a);
+                nq = nq
+                    * UnitQuaternion::from_scaled_axis(w1 * a + w2 * c)
+                    * UnitQuaternion::from_scaled_axis(w1 * c + w2 * a);
                 nq.renormalize_fast();
                 nq
             })

@@ -12,7 +12,7 @@
 //! | a rate held constant over the step | [`exponential`] | exact step `q ⊗ exp(ω Δt)` | exact |
 //! | integrated increments `Δθ` | [`coning`] | one exponential per increment | drift `α²Ω(Ωh)²/12` |
 //! | | | one sample + previous (`Δθₖ₋₁ × Δθₖ / 12`), also as the two-speed [`coning::ConingAccumulator`] | `α²Ω(Ωh)⁴/60` |
-//! | | | 2-, 3-, 4-sample rules | `α²Ω(ΩT)⁴/960`, `α²Ω(ΩT)⁶/204120`, better still |
+//! | | | 2-, 3-, 4-sample rules | `α²Ω(ΩT)⁴/960`, `α²Ω(ΩT)⁶/204120`, `α²Ω(ΩT)⁸/82575360` |
 //! | equally spaced rate samples `ω(k h)` | [`rate_samples`] | Magnus-4, commutator-free CF4, RK4 + renormalisation | order 4 |
 //!
 //! (`α` half-cone angle, `Ω` coning frequency, `h` sample interval, `T` attitude update interval;

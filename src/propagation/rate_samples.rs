@@ -29,6 +29,13 @@
 //! start, where the first three intervals wait for sample 3 and use samples `0 … 3`. A record of
 //! only three samples uses the quadratic interpolant (still order 3 locally), one of two samples
 //! the linear one (order 2).
+//!
+//! The interpolation, not the integrator, dominates the error: on the coning test motion the
+//! three methods fed samples agree to within 4% of each other and are about 35× less accurate
+//! than the same steps fed the exact rates at the nodes (measured in
+//! `host-tests/tests/propagation_rates.rs`). If a sensor can deliver rates at two points per
+//! interval (or the step can span two sample intervals), feed [`magnus4_step`] / [`cf4_step`]
+//! directly.
 
 use heapless::Vec as HVec;
 
