@@ -47,7 +47,7 @@ macro_rules! bench_type {
         let mut nq = UnitQuaternion::<T>::identity();
         g.bench_function("exp_step/nalgebra", |b| {
             b.iter(|| {
-                nq = nq * UnitQuaternion::from_scaled_axis(black_box(nw) * black_box(dt));
+                nq *= UnitQuaternion::from_scaled_axis(black_box(nw) * black_box(dt));
                 nq.renormalize_fast();
                 nq
             })
@@ -67,7 +67,7 @@ macro_rules! bench_type {
         g.bench_function("coning1/nalgebra", |b| {
             b.iter(|| {
                 let (p, c) = (black_box(nth[0]), black_box(nth[1]));
-                nq = nq * UnitQuaternion::from_scaled_axis(c + p.cross(&c) * (1.0 / 12.0));
+                nq *= UnitQuaternion::from_scaled_axis(c + p.cross(&c) * (1.0 / 12.0));
                 nq.renormalize_fast();
                 nq
             })
@@ -83,7 +83,7 @@ macro_rules! bench_type {
         g.bench_function("coning2/nalgebra", |b| {
             b.iter(|| {
                 let (a, c) = (black_box(nth[0]), black_box(nth[1]));
-                nq = nq * UnitQuaternion::from_scaled_axis(a + c + a.cross(&c) * (2.0 / 3.0));
+                nq *= UnitQuaternion::from_scaled_axis(a + c + a.cross(&c) * (2.0 / 3.0));
                 nq.renormalize_fast();
                 nq
             })
@@ -101,7 +101,7 @@ macro_rules! bench_type {
                 let t = black_box(nth);
                 let phi =
                     t[0] + t[1] + t[2] + (t[0] * (9.0 / 20.0) + t[1] * (27.0 / 20.0)).cross(&t[2]);
-                nq = nq * UnitQuaternion::from_scaled_axis(phi);
+                nq *= UnitQuaternion::from_scaled_axis(phi);
                 nq.renormalize_fast();
                 nq
             })
@@ -119,7 +119,7 @@ macro_rules! bench_type {
                 let t = black_box(nth);
                 let c = t[0] * (54.0 / 105.0) + t[1] * (92.0 / 105.0) + t[2] * (214.0 / 105.0);
                 let phi = t[0] + t[1] + t[2] + t[3] + c.cross(&t[3]);
-                nq = nq * UnitQuaternion::from_scaled_axis(phi);
+                nq *= UnitQuaternion::from_scaled_axis(phi);
                 nq.renormalize_fast();
                 nq
             })
@@ -183,7 +183,7 @@ macro_rules! bench_type {
                 let (w1, w2) = (interp(win, &n1), interp(win, &n2));
                 let h = black_box(dt);
                 let phi = (w1 + w2) * (h * 0.5) + w1.cross(&w2) * (h * h * s3 / 12.0);
-                nq = nq * UnitQuaternion::from_scaled_axis(phi);
+                nq *= UnitQuaternion::from_scaled_axis(phi);
                 nq.renormalize_fast();
                 nq
             })
