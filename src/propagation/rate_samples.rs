@@ -35,7 +35,8 @@
 //! than the same steps fed the exact rates at the nodes (measured in
 //! `host-tests/tests/propagation_rates.rs`). If a sensor can deliver rates at two points per
 //! interval (or the step can span two sample intervals), feed [`magnus4_step`] / [`cf4_step`]
-//! directly.
+//! directly. A centred window (`k−1 … k+2` for `[tₖ, tₖ₊₁]`) was measured only 1.65× more
+//! accurate than the backward one on the same motion, not worth its one-sample latency.
 
 use heapless::Vec as HVec;
 
