@@ -40,6 +40,7 @@ use crate::propagation::Normalization;
 use crate::{Error, Real, UnitQuat, Vec3};
 
 /// An increment (coning) rule: how the rotation vector of one attitude update is formed.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ConingRule {
     /// One exponential per increment, no coning correction: `φ = θ`.
@@ -303,5 +304,32 @@ impl<T: Real> ConingAccumulator<T> {
         self.beta = Vec3::ZERO;
         self.count = 0;
         phi
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl<T: Real + defmt::Format> defmt::Format for IncrementIntegrator<T> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(
+            f,
+            "IncrementIntegrator(q={}, rule={}, norm={}, pending={})",
+            self.q,
+            self.rule,
+            self.norm,
+            self.group.len()
+        )
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl<T: Real + defmt::Format> defmt::Format for ConingAccumulator<T> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(
+            f,
+            "ConingAccumulator(alpha={}, beta={}, count={})",
+            self.alpha,
+            self.beta,
+            self.count
+        )
     }
 }

@@ -7,6 +7,7 @@
 use crate::{Quat, Real, UnitQuat};
 
 /// How an integrator restores `|q| = 1` after each attitude update.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Normalization {
     /// `q / |q|` ([`UnitQuat::renormalize`]): exact to rounding for any norm; costs a square

@@ -187,6 +187,7 @@ pub fn rk4_step<T: Real>(
 }
 
 /// Which rate-sample integrator a [`RateIntegrator`] runs.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum RateMethod {
     /// [`magnus4_step`]: one exponential and one cross product per step.
@@ -340,5 +341,20 @@ impl<T: Real> RateIntegrator<T> {
             _ => {}
         }
         out
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl<T: Real + defmt::Format> defmt::Format for RateIntegrator<T> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(
+            f,
+            "RateIntegrator(q={}, method={}, norm={}, dt={}, samples={})",
+            self.q,
+            self.method,
+            self.norm,
+            self.dt,
+            self.count
+        )
     }
 }
