@@ -1,8 +1,9 @@
 //! # gyrostat
 //!
 //! Attitude kinematics and rigid-body (gyrostat) dynamics for flight software and simulation:
-//! `#![no_std]`, no allocation, no panicking paths, generic over f32 and f64 (and Q-format fixed
-//! point for FPU-less MCUs).
+//! `#![no_std]`, no allocation, no panicking paths, generic over f32 and f64 through a narrow
+//! scalar trait designed so that a Q-format fixed-point type for FPU-less MCUs can implement it
+//! (that type is not implemented yet).
 //!
 //! The physics follows W. G. Harter, *Unit 6: rigid and semi-rigid body rotation*; doc comments
 //! cite its equation numbers, like `(6.6.4)`.

@@ -42,8 +42,8 @@ mod sealed {
     impl Sealed for f64 {}
 }
 
-/// The scalar type of every gyrostat algorithm: f32, f64 (and, behind the `fixed` feature, a
-/// Q-format fixed-point type).
+/// The scalar type of every gyrostat algorithm: implemented for f32 and f64. The trait is kept
+/// narrow so that a Q-format fixed-point type (not implemented yet) can implement it honestly.
 ///
 /// Sealed: only gyrostat implements it, so that the library can rely on every method being exact
 /// or documented-accurate for every implementer.
