@@ -159,6 +159,84 @@ mod firmware {
         count!(table, "exp_small_angle_f32", || UnitQuat::exp_unchecked(
             black_box(phi)
         ));
+        {
+            use gyrostat::propagation::coning::{
+                coning2_update, four_sample, one_plus_previous, three_sample,
+            };
+            use gyrostat::propagation::exponential::{
+                apply_rotation_vector, step_constant_rate_unchecked,
+            };
+            use gyrostat::propagation::rate_samples::{
+                cf4_step, gauss_rates, magnus4_step, midpoint_rate, rk4_step,
+            };
+            use gyrostat::propagation::{ConingAccumulator, Normalization};
+            let t1 = Vec3::new(1.0e-3f32, -2.0e-3, 0.5e-3);
+            let t2 = Vec3::new(1.2e-3f32, -1.9e-3, 0.6e-3);
+            let t3 = Vec3::new(1.4e-3f32, -1.7e-3, 0.7e-3);
+            let t4 = Vec3::new(1.5e-3f32, -1.4e-3, 0.8e-3);
+            let win = [
+                t1.scale(1000.0),
+                t2.scale(1000.0),
+                t3.scale(1000.0),
+                t4.scale(1000.0),
+            ];
+            let w = Vec3::new(0.3f32, -0.2, 0.5);
+            let dt = 1e-3f32;
+            let fast = Normalization::Fast;
+            count!(table, "prop_coning2_update_f32", || coning2_update(
+                black_box(a),
+                black_box(t1),
+                black_box(t2)
+            ));
+            count!(table, "prop_exp_step_fast_f32", || fast.apply(
+                step_constant_rate_unchecked(black_box(a), black_box(w), black_box(dt))
+            ));
+            count!(table, "prop_coning1_fast_f32", || apply_rotation_vector(
+                black_box(a),
+                one_plus_previous(black_box(t1), black_box(t2)),
+                fast
+            ));
+            count!(table, "prop_coning3_fast_f32", || apply_rotation_vector(
+                black_box(a),
+                three_sample(black_box(t1), black_box(t2), black_box(t3)),
+                fast
+            ));
+            count!(table, "prop_coning4_fast_f32", || apply_rotation_vector(
+                black_box(a),
+                four_sample(black_box(t1), black_box(t2), black_box(t3), black_box(t4)),
+                fast
+            ));
+            let mut acc = ConingAccumulator::<f32>::new();
+            count!(table, "prop_two_speed_push_f32", || {
+                let mut x = black_box(acc);
+                x.push_unchecked(black_box(t3));
+                x
+            });
+            acc.push_unchecked(t1);
+            count!(table, "prop_two_speed_take_update_f32", || {
+                let mut x = black_box(acc);
+                apply_rotation_vector(black_box(a), x.take(), fast)
+            });
+            count!(table, "prop_magnus4_fast_f32", || {
+                let (w1, w2) = gauss_rates(black_box(&win), 2);
+                fast.apply(magnus4_step(black_box(a), w1, w2, black_box(dt)))
+            });
+            count!(table, "prop_cf4_fast_f32", || {
+                let (w1, w2) = gauss_rates(black_box(&win), 2);
+                fast.apply(cf4_step(black_box(a), w1, w2, black_box(dt)))
+            });
+            count!(table, "prop_rk4_fast_f32", || {
+                let x = black_box(&win);
+                let m = midpoint_rate(x, 2);
+                fast.apply_quat(rk4_step(
+                    *black_box(a).as_quat(),
+                    x[2],
+                    m,
+                    x[3],
+                    black_box(dt),
+                ))
+            });
+        }
 
         hprintln!(
             "calibration reps={} overhead_ticks={} ticks_per_200000_instructions={}",

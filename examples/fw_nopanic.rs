@@ -60,6 +60,54 @@ mod firmware {
         sink(m.try_inverse());
         sink(m * v);
         sink(v.try_normalize());
+        {
+            use gyrostat::propagation::coning::{coning2_update, rotation_vector_for};
+            use gyrostat::propagation::exponential::{apply_rotation_vector, step_constant_rate};
+            use gyrostat::propagation::kinematics::{
+                body_rate_between, lab_rate_between, quat_rate_body,
+            };
+            use gyrostat::propagation::normalization::norm_deviation;
+            use gyrostat::propagation::{
+                ConingAccumulator, ConingRule, IncrementIntegrator, Normalization, RateIntegrator,
+                RateMethod,
+            };
+            let d = black_box(Vec3::new(1e-3f32, -2e-3, 5e-4));
+            let dt = black_box(1e-3f32);
+            let norm = black_box(Normalization::Fast);
+            sink(coning2_update(q, d, d));
+            sink(rotation_vector_for(d, black_box(&[d, d, d, d, d][..])));
+            sink(step_constant_rate(q, v, dt));
+            sink(apply_rotation_vector(q, d, norm));
+            sink(body_rate_between(q, q, dt));
+            sink(lab_rate_between(q, q, dt));
+            sink(quat_rate_body(raw, v));
+            sink(norm_deviation(q));
+            for rule in [
+                ConingRule::Exp,
+                ConingRule::OnePlusPrevious,
+                ConingRule::TwoSample,
+                ConingRule::ThreeSample,
+                ConingRule::FourSample,
+            ] {
+                let mut integ = IncrementIntegrator::new(q, black_box(rule), norm);
+                for _ in 0..black_box(7) {
+                    sink(integ.push(d));
+                    sink(integ.provisional_attitude());
+                }
+                sink(integ.flush());
+            }
+            let mut acc = ConingAccumulator::new();
+            sink(acc.push(d));
+            sink(acc.take());
+            for m in [RateMethod::Magnus4, RateMethod::Cf4, RateMethod::Rk4] {
+                if let Ok(mut integ) = RateIntegrator::new(q, black_box(m), norm, dt) {
+                    for _ in 0..black_box(6) {
+                        sink(integ.push(v));
+                    }
+                    sink(integ.finish());
+                }
+            }
+        }
         // f64 (soft float on every Cortex-M) goes through the same paths.
         let q64 =
             UnitQuat::try_from_axis_angle(black_box(Vec3::new(1.0f64, 2.0, 3.0)), black_box(0.5));
