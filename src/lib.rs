@@ -73,3 +73,6 @@ pub use error::Error;
 pub use linalg::{Complex, Mat3, Vec3};
 pub use real::Real;
 pub use rotation::{Quat, Su2, UnitQuat};
+pub use rotation::{
+    AxisAngle, Dcm, Euler, EulerSequence, GimbalPolicy, Gibbs, Mrp, PolarAxisAngle, RotationVector,
+};
