@@ -72,7 +72,7 @@ pub mod rotation;
 pub use error::Error;
 pub use linalg::{Complex, Mat3, Vec3};
 pub use real::Real;
-pub use rotation::{Quat, Su2, UnitQuat};
 pub use rotation::{
-    AxisAngle, Dcm, Euler, EulerSequence, GimbalPolicy, Gibbs, Mrp, PolarAxisAngle, RotationVector,
+    AxisAngle, Dcm, Euler, EulerSequence, Gibbs, GimbalPolicy, Mrp, PolarAxisAngle, RotationVector,
 };
+pub use rotation::{Quat, Su2, UnitQuat};

@@ -320,20 +320,23 @@ pub struct EulerSolution<T> {
 }
 
 /// Distance of the middle angle from its pole (radians) at or below which an extraction is
-/// reported as gimbal-locked: `T::EPSILON` (1.2e-7 for f32, 2.2e-16 for f64).
+/// reported as gimbal-locked: `2·T::EPSILON` (2.4e-7 for f32, 4.4e-16 for f64).
 ///
 /// Why this value: moving the split of the outer angles by `δ` while the middle angle is `d` away
-/// from the pole changes the rotation by at most `2·sin(d/2)·2·sin(δ/2) ≤ 2d`. At `d ≤ ε` that is
-/// `≤ 2ε`, the size of the rounding already in a unit quaternion's components: the split is
-/// genuinely undetermined at working precision, and re-choosing it by a [`GimbalPolicy`] keeps the
-/// accuracy contract. A larger threshold would trade accuracy for the choice; callers who want a
-/// wider "near gimbal lock" warning read [`EulerSolution::distance_to_pole`].
+/// from the pole changes the rotation by at most `2·sin(d/2)·2·|sin(δ/2)| ≤ 2d`. At `d ≤ 2ε` that
+/// is `≤ 4ε`, a few roundings of a unit quaternion's components: the split is undetermined at
+/// working precision, and re-choosing it by a [`GimbalPolicy`] keeps the accuracy contract. The
+/// factor 2 (rather than 1) is what it takes for angles set exactly at the pole (`±π/2`, `0`, `π`
+/// as constants of the type) to be flagged: rounding in the constant and the quaternion puts the
+/// computed distance at up to about `1.0·ε` to `1.1·ε` (measured over all 24 conventions). A
+/// larger threshold would trade accuracy for the choice; callers who want a wider "near gimbal
+/// lock" warning read [`EulerSolution::distance_to_pole`].
 pub fn gimbal_lock_threshold<T: Real>() -> T {
-    T::EPSILON
+    T::TWO * T::EPSILON
 }
 
 /// See [`gimbal_lock_threshold`]; the f64 value, for documentation links and f64 callers.
-pub const GIMBAL_LOCK_THRESHOLD: f64 = f64::EPSILON;
+pub const GIMBAL_LOCK_THRESHOLD: f64 = 2.0 * f64::EPSILON;
 
 /// Wraps an angle in `[−3π, 3π]` into `(−π, π]`.
 #[inline]
@@ -421,7 +424,9 @@ impl<T: Real> UnitQuat<T> {
     /// [`GimbalPolicy::ZeroThird`]. See [`UnitQuat::to_euler`].
     #[inline]
     pub fn to_euler_angles(self, sequence: EulerSequence) -> [T; 3] {
-        self.to_euler(sequence, GimbalPolicy::ZeroThird).euler.angles
+        self.to_euler(sequence, GimbalPolicy::ZeroThird)
+            .euler
+            .angles
     }
 
     /// Euler angles of this attitude in `sequence` (any of the 24 conventions), by the direct
