@@ -70,7 +70,15 @@ impl<T: Real> UnitQuat<T> {
     /// upstream. A non-finite `φ` gives a non-finite result.
     #[inline]
     pub fn exp_unchecked(phi: Vec3<T>) -> Self {
-        let (c, s) = half_angle_cos_sinc(phi.norm_squared());
+        let n2 = phi.norm_squared();
+        if !n2.is_finite() {
+            // |φ|² overflowed (|φ| ≳ 1e19 in f32, 1e154 in f64): take the angle with hypot and
+            // scale by 1/|φ| instead (no tiny-angle issue at this size).
+            let theta = phi.norm();
+            let (s, c) = (theta * T::HALF).sin_cos();
+            return Self::new_unchecked(Quat::from_parts(c, phi.scale(T::ONE / theta).scale(s)));
+        }
+        let (c, s) = half_angle_cos_sinc(n2);
         Self::new_unchecked(Quat::from_parts(c, phi.scale(s)))
     }
 
