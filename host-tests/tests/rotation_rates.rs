@@ -123,7 +123,11 @@ fn inverse_rates_are_singular_at_gimbal_lock() {
             for p in poles {
                 for d in [0.0, 0.5 * thr, -0.5 * thr] {
                     let e = Euler::new(seq, [0.3, p + d, -0.2].map(T::from_f64));
-                    assert_eq!(e.try_body_to_rates_matrix(), Err(Error::Singular), "{seq_s}");
+                    assert_eq!(
+                        e.try_body_to_rates_matrix(),
+                        Err(Error::Singular),
+                        "{seq_s}"
+                    );
                     assert_eq!(
                         e.try_rates_from_lab(Vec3::new(T::ONE, T::ONE, T::ONE)),
                         Err(Error::Singular)
