@@ -94,7 +94,9 @@ macro_rules! suite {
         g.bench_function("nalgebra", |b| {
             b.iter(|| {
                 for e in black_box(&eul) {
-                    black_box(nalgebra::UnitQuaternion::from_euler_angles(e[2], e[1], e[0]));
+                    black_box(nalgebra::UnitQuaternion::from_euler_angles(
+                        e[2], e[1], e[0],
+                    ));
                 }
             })
         });
@@ -132,7 +134,8 @@ macro_rules! suite {
         g.finish();
 
         let gy_m: Vec<Dcm<$t>> = gy.iter().map(|q| Dcm::from(*q)).collect();
-        let na_m: Vec<nalgebra::Rotation3<$t>> = na.iter().map(|q| q.to_rotation_matrix()).collect();
+        let na_m: Vec<nalgebra::Rotation3<$t>> =
+            na.iter().map(|q| q.to_rotation_matrix()).collect();
         let gl_m: Vec<$gm> = gl.iter().map(|q| <$gm>::from_quat(*q)).collect();
         let mut g = c.benchmark_group(concat!("matrix_to_quat_", $name));
         g.bench_function("gyrostat", |b| {

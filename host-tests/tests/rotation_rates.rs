@@ -1,5 +1,6 @@
 //! Euler-rate kinematics for all 24 conventions: against central differences of the reference
 //! Euler matrices, the seed's closed forms (6.7.5c–f) for ZYZ, and the typed singular error.
+#![allow(clippy::needless_range_loop)] // 3×3 index loops read like the formulas
 
 use gyrostat::rotation::{Euler, EulerSequence, euler_rate_min_det};
 use gyrostat::{Error, Mat3, Real, Vec3};
