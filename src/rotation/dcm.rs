@@ -153,8 +153,9 @@ impl<T: Real> Dcm<T> {
             Quat::new(r10 - r01, r02 + r20, r12 + r21, z4)
         };
         // Each branch is 4·c·(w, x, y, z) with c the chosen component, c ≥ 1/2: normalising
-        // divides by 4c, never a small number.
-        UnitQuat::new_unchecked(q.scale(one / q.norm()))
+        // divides by |q| ≈ 4c ≥ 2, never a small number. Entries are ≤ 4, so the squared norm
+        // cannot overflow and one sqrt replaces a scaling hypot.
+        UnitQuat::new_unchecked(q.scale(one / q.norm_squared().sqrt()))
     }
 }
 
