@@ -64,8 +64,19 @@ fn help_documents_the_interface() {
     let (out, _, ok) = run(&["--help"], "");
     assert!(ok);
     for word in [
-        "--from", "--to", "--f32", "--degrees", "quat", "matrix", "rotvec", "mrp", "axis-angle",
-        "euler:SEQ", "intrinsic", "extrinsic", "error: line N",
+        "--from",
+        "--to",
+        "--f32",
+        "--degrees",
+        "quat",
+        "matrix",
+        "rotvec",
+        "mrp",
+        "axis-angle",
+        "euler:SEQ",
+        "intrinsic",
+        "extrinsic",
+        "error: line N",
     ] {
         assert!(out.contains(word), "help lacks {word}");
     }
@@ -112,13 +123,23 @@ fn euler_rows_against_reference() {
     }
     // Gimbal lock flagged, degrees, f32.
     let (out, _, ok) = run(
-        &["--from", "euler:ZYX", "--to", "euler:ZYX", "--degrees", "--f32"],
+        &[
+            "--from",
+            "euler:ZYX",
+            "--to",
+            "euler:ZYX",
+            "--degrees",
+            "--f32",
+        ],
         "30,90,10\n30,45,10\n",
     );
     assert!(ok);
     let rows: Vec<Vec<f64>> = out.lines().map(nums).collect();
     assert_eq!(rows[0][3], 1.0);
-    assert!((rows[0][0] - 20.0).abs() < 1e-4 && rows[0][2] == 0.0, "{out}");
+    assert!(
+        (rows[0][0] - 20.0).abs() < 1e-4 && rows[0][2] == 0.0,
+        "{out}"
+    );
     assert_eq!(rows[1][3], 0.0);
     assert!((rows[1][0] - 30.0).abs() < 1e-4 && (rows[1][2] - 10.0).abs() < 1e-4);
 }

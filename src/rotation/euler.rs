@@ -303,7 +303,8 @@ pub enum GimbalPolicy<T> {
     /// Third angle `0`, first angle carries the combination (scipy's choice).
     ZeroThird,
     /// The split closest (Euclidean, with angles taken modulo 2π) to a previous solution
-    /// `[first, second, third]`, for continuity of telemetry and control loops.
+    /// `[first, second, third]`, for continuity of telemetry and control loops. A non-finite
+    /// previous angle makes it behave as [`GimbalPolicy::ZeroThird`].
     ClosestTo([T; 3]),
 }
 
@@ -519,6 +520,11 @@ impl<T: Real> UnitQuat<T> {
                     third = wrap(s * combined);
                 }
                 GimbalPolicy::ZeroThird => {
+                    first = combined;
+                    third = T::ZERO;
+                }
+                GimbalPolicy::ClosestTo([pa, _, pc]) if !(pa.is_finite() && pc.is_finite()) => {
+                    // A non-finite previous solution carries no information: as ZeroThird.
                     first = combined;
                     third = T::ZERO;
                 }
