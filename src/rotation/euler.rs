@@ -578,3 +578,19 @@ fn lock_sign<T: Real>(sequence: EulerSequence, pole: Pole) -> T {
     };
     if s > 0 { T::ONE } else { -T::ONE }
 }
+
+impl<T: Real> From<Euler<T>> for UnitQuat<T> {
+    /// [`Euler::to_unit_quat`] (spinor sign of the elementary product kept).
+    #[inline]
+    fn from(e: Euler<T>) -> Self {
+        e.to_unit_quat()
+    }
+}
+
+impl<T: Real> From<Euler<T>> for super::Dcm<T> {
+    /// The Euler matrix, through the quaternion.
+    #[inline]
+    fn from(e: Euler<T>) -> Self {
+        super::Dcm::from(e.to_unit_quat())
+    }
+}
