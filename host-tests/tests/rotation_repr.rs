@@ -535,3 +535,15 @@ fn no_nan_for_extreme_inputs() {
         );
     }
 }
+
+/// Orthonormalisation of a badly conditioned (but det > 0) matrix converges thanks to the scaled
+/// iteration, and yields the polar factor (here: the identity for a positive diagonal matrix).
+#[test]
+fn orthonormalise_ill_conditioned() {
+    let m = Mat3::from_diagonal(Vec3::new(1e-10f64, 1.0, 3e5));
+    let d = Dcm::from_matrix_orthonormalized(m).unwrap();
+    assert!((d.into_matrix() - Mat3::IDENTITY).max_abs() < 1e-14);
+    let m = Mat3::from_diagonal(Vec3::new(1e-5f32, 1.0, 30.0));
+    let d = Dcm::from_matrix_orthonormalized(m).unwrap();
+    assert!((d.into_matrix() - Mat3::IDENTITY).max_abs() < 1e-6);
+}

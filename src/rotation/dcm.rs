@@ -18,8 +18,9 @@ use crate::{Error, Mat3, Quat, Real, UnitQuat, Vec3};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dcm<T>(Mat3<T>);
 
-/// Largest Newton steps of the polar iteration in [`Dcm::from_matrix_orthonormalized`]; the
-/// iteration converges quadratically, so a matrix within 0.5 of a rotation converges in ≤ 6.
+/// Largest Newton steps of the polar iteration in [`Dcm::from_matrix_orthonormalized`]. With
+/// Higham's norm scaling the iteration converges in under 10 steps for condition numbers up to
+/// 1e16 (Higham, *Functions of Matrices*, §8.6); 30 leaves a wide margin.
 const POLAR_MAX_STEPS: usize = 30;
 
 impl<T: Real> Default for Dcm<T> {
@@ -58,13 +59,14 @@ impl<T: Real> Dcm<T> {
     }
 
     /// The nearest rotation matrix to a noisy `m` (in the Frobenius norm): the orthogonal polar
-    /// factor, by the Newton iteration `X ← (X + X⁻ᵀ)/2` (Higham, *Functions of Matrices*, §8.3),
+    /// factor, by the scaled Newton iteration `X ← (γX + (γX)⁻ᵀ)/2` (Higham, *Functions of
+    /// Matrices*, §8.3, §8.6),
     /// which converges quadratically and is symmetric in the three axes (unlike Gram–Schmidt).
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite entry; [`Error::NotRotation`] when `det m ≤ 0` (a
-    /// reflection or rank-deficient matrix has no nearest rotation in this sense) or `m` is
-    /// singular.
+    /// reflection or rank-deficient matrix has no nearest rotation in this sense), when `m` is
+    /// numerically singular, or if the iteration has not converged within its step budget.
     pub fn from_matrix_orthonormalized(m: Mat3<T>) -> Result<Self, Error> {
         if !m.is_finite() {
             return Err(Error::NonFinite);
@@ -80,14 +82,23 @@ impl<T: Real> Dcm<T> {
         }
         // Stop once a step changes no entry by more than 8ε (converged to rounding).
         let tol = T::from_f64(8.0) * T::EPSILON;
+        let frob = |m: &Mat3<T>| m.m.iter().flatten().fold(T::ZERO, |a, &e| a + e * e).sqrt();
+        let mut converged = false;
         for _ in 0..POLAR_MAX_STEPS {
-            let inv_t = x.try_inverse().map_err(|_| Error::NotRotation)?.transpose();
-            let next = (x + inv_t).scale(T::HALF);
+            let inv = x.try_inverse().map_err(|_| Error::NotRotation)?;
+            // Higham's Frobenius-norm scaling γ = (‖X⁻¹‖/‖X‖)^½ makes the iteration converge in
+            // a handful of steps even for badly conditioned input; γ → 1 near convergence.
+            let gamma = (frob(&inv) / frob(&x)).sqrt();
+            let next = (x.scale(gamma) + inv.transpose().scale(T::ONE / gamma)).scale(T::HALF);
             let change = (next - x).max_abs();
             x = next;
             if change <= tol {
+                converged = true;
                 break;
             }
+        }
+        if !converged || !x.is_finite() {
+            return Err(Error::NotRotation);
         }
         Ok(Self(x))
     }
