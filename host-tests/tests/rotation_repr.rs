@@ -488,6 +488,7 @@ proptest! {
     fn euler_contract_near_poles(
         a in -3.2f64..3.2, c in -3.2f64..3.2, s in 0usize..24, upper in any::<bool>(),
         exp in -12i32..-1, side in any::<bool>(), exact in any::<bool>(),
+        pa in -10.0f64..10.0, pc in -10.0f64..10.0, pol in 0usize..3,
     ) {
         let seq = EulerSequence::ALL[s];
         let seq_s = seq.to_string();
@@ -500,11 +501,18 @@ proptest! {
         let d = if exact { 0.0 } else { 10f64.powi(exp) * if side { 1.0 } else { -1.0 } };
         let q64v = Euler::new(seq, [a, pole + d, c]).to_unit_quat();
         for f32_mode in [false, true] {
+            fn policy<T: Real>(pol: usize, pa: f64, pc: f64) -> GimbalPolicy<T> {
+                match pol {
+                    0 => GimbalPolicy::ZeroFirst,
+                    1 => GimbalPolicy::ZeroThird,
+                    _ => GimbalPolicy::ClosestTo([T::from_f64(pa), T::ZERO, T::from_f64(pc)]),
+                }
+            }
             let (ang, q_in): ([f64; 3], [f64; 4]) = if f32_mode {
                 let q: UnitQuat<f32> = UnitQuat::new_unchecked(Quat::from_array(q64v.to_array().map(|x| x as f32)));
-                (q.to_euler_angles(seq).map(|x| x as f64), q64(q))
+                (q.to_euler(seq, policy(pol, pa, pc)).euler.angles.map(|x| x as f64), q64(q))
             } else {
-                (q64v.to_euler_angles(seq), q64(q64v))
+                (q64v.to_euler(seq, policy(pol, pa, pc)).euler.angles, q64(q64v))
             };
             let e = rot_dist(&quat_matrix(q_in), &euler_matrix(&seq_s, ang));
             let tol = if f32_mode { 1e-6 } else { 1e-14 };

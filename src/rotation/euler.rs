@@ -530,9 +530,12 @@ impl<T: Real> UnitQuat<T> {
                 }
                 GimbalPolicy::ClosestTo([pa, _, pc]) => {
                     // Minimise (first − pa)² + (third − pc)² on first + s·third = combined (mod 2π).
-                    let lambda = wrap_any(combined - pa - s * pc) * T::HALF;
-                    first = wrap_any(pa + lambda);
-                    third = wrap_any(pc + s * lambda);
+                    // Previous angles are wrapped first (their size would otherwise add rounding),
+                    // and third is derived from first so the constraint holds to one rounding.
+                    let (pa, pc) = (wrap_any(pa), wrap_any(pc));
+                    let lambda = wrap(combined - pa - s * pc) * T::HALF;
+                    first = wrap(pa + lambda);
+                    third = wrap(s * (combined - first));
                 }
             }
             singularity = Some(GimbalLock {
