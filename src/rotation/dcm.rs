@@ -15,6 +15,15 @@ use crate::{Error, Mat3, Quat, Real, UnitQuat, Vec3};
 /// `‖RᵀR − 1‖_max ≤` the tolerance given to [`Dcm::try_from_matrix`] and `det R > 0`; or the
 /// matrix was orthonormalised by [`Dcm::from_matrix_orthonormalized`]; or the caller promised it
 /// ([`Dcm::from_matrix_unchecked`]).
+///
+/// ```
+/// use gyrostat::{Dcm, Error, Mat3};
+/// let noisy = Mat3::from_rows([1.001, 0.002, 0.0], [-0.001, 0.999, 0.0], [0.0, 0.0, 1.0f64]);
+/// assert_eq!(Dcm::try_from_matrix(noisy, 1e-6), Err(Error::NotRotation));
+/// let r = Dcm::from_matrix_orthonormalized(noisy)?.into_matrix();
+/// assert!((r.transpose() * r - Mat3::IDENTITY).max_abs() < 1e-15);
+/// # Ok::<(), gyrostat::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dcm<T>(Mat3<T>);
 

@@ -6,6 +6,15 @@ use crate::{Error, Quat, Real, UnitQuat, Vec3};
 ///
 /// Infinite at Θ = 180°: [`Gibbs::try_from_unit_quat`] returns [`Error::Singular`] there, within
 /// [`Gibbs::min_w`]. The same rotation for `q` and `−q` (`v/w` is sign-invariant).
+///
+/// ```
+/// use gyrostat::{Error, Gibbs, UnitQuat, Vec3};
+/// let half_turn = UnitQuat::try_from_axis_angle(Vec3::Z, core::f64::consts::PI)?;
+/// assert_eq!(Gibbs::try_from_unit_quat(half_turn), Err(Error::Singular));
+/// let q = UnitQuat::try_from_axis_angle(Vec3::Z, core::f64::consts::FRAC_PI_2)?;
+/// assert!((Gibbs::try_from_unit_quat(q)?.vector().z - 1.0).abs() < 1e-15); // tan(45°)
+/// # Ok::<(), gyrostat::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gibbs<T>(Vec3<T>);
 

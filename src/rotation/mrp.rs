@@ -13,6 +13,18 @@ use crate::{Error, Quat, Real, UnitQuat, Vec3};
 ///
 /// At exactly 180° both `σ` and `−σ` have `|σ| = 1`; the one returned follows the sign choice of
 /// [`UnitQuat::canonical`].
+///
+/// ```
+/// use gyrostat::{Mrp, UnitQuat, Vec3};
+/// // 270° about z is the same rotation as −90°: the returned set has |σ| = tan(22.5°) ≤ 1.
+/// let q = UnitQuat::try_from_axis_angle(Vec3::Z, 1.5 * core::f64::consts::PI)?;
+/// let s = Mrp::from_unit_quat(q);
+/// assert!((s.vector().z + (core::f64::consts::PI / 8.0).tan()).abs() < 1e-15);
+/// // Its shadow is the long way round, |σˢ| = 1/|σ| > 1, the same rotation.
+/// let sh = s.try_shadow()?;
+/// assert!(sh.to_unit_quat().angle_to(q) < 1e-15);
+/// # Ok::<(), gyrostat::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mrp<T>(Vec3<T>);
 
