@@ -535,6 +535,14 @@ fn no_nan_for_extreme_inputs() {
         RotationVector::try_new(Vec3::new(f64::NAN, 0.0, 0.0)),
         Err(Error::NonFinite)
     );
+    assert_eq!(
+        RotationVector::try_new(Vec3::new(f64::MAX, f64::MAX, 0.0)),
+        Err(Error::InvalidArgument)
+    );
+    assert_eq!(
+        UnitQuat::exp(Vec3::new(f32::MAX, 0.0, -f32::MAX)),
+        Err(Error::InvalidArgument)
+    );
     for s in all_sequences() {
         let seq = EulerSequence::parse(&s).unwrap();
         assert_eq!(

@@ -51,7 +51,8 @@ impl<T: Real> UnitQuat<T> {
     /// (6.6.6c)). Small angles use a series (see the module docs): no division by a tiny angle.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] if a component of `φ` is NaN or infinite.
+    /// [`Error::NonFinite`] if a component of `φ` is NaN or infinite; [`Error::InvalidArgument`]
+    /// if `|φ|` overflows (components near the type's maximum), where no angle is representable.
     ///
     /// ```
     /// use gyrostat::{UnitQuat, Vec3};
@@ -63,7 +64,12 @@ impl<T: Real> UnitQuat<T> {
     /// ```
     #[inline]
     pub fn exp(phi: Vec3<T>) -> Result<Self, Error> {
-        Ok(Self::exp_unchecked(phi.try_finite()?))
+        let phi = phi.try_finite()?;
+        if !phi.norm_squared().is_finite() && !phi.norm().is_finite() {
+            // |φ| itself overflows: the angle (mod 4π) is not representable.
+            return Err(Error::InvalidArgument);
+        }
+        Ok(Self::exp_unchecked(phi))
     }
 
     /// [`UnitQuat::exp`] without the finiteness check, for a hot loop whose input was validated

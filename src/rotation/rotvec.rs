@@ -21,10 +21,15 @@ impl<T: Real> RotationVector<T> {
     /// Wraps a rotation vector (radians).
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite component.
+    /// [`Error::NonFinite`] for a non-finite component; [`Error::InvalidArgument`] if `|v|`
+    /// overflows (components near the type's maximum: no angle is representable).
     #[inline]
     pub fn try_new(v: Vec3<T>) -> Result<Self, Error> {
-        Ok(Self(v.try_finite()?))
+        let v = v.try_finite()?;
+        if !v.norm_squared().is_finite() && !v.norm().is_finite() {
+            return Err(Error::InvalidArgument);
+        }
+        Ok(Self(v))
     }
 
     /// The vector.
