@@ -266,63 +266,75 @@ fn rot_dist(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> f64 {
     s.atan2(c)
 }
 
-/// Not a timing: the worst f32 quat → ZYX Euler → rotation error of each crate, for pitch at
+/// Not a timing: the worst quat → ZYX Euler → rotation error of each crate, for pitch at
 /// distances 0 and 1e-7 … 1e-2 from ±90° (both sides) and at generic pitches, over a grid of yaw
-/// and roll; inputs are the same f32 quaternions for all three. Printed once per bench run.
-fn accuracy_report(_: &mut Criterion) {
-    let mut worst = [[0.0f64; 3]; 2]; // [near pole, generic][gyrostat, nalgebra, glam]
-    let half_pi = core::f64::consts::FRAC_PI_2;
-    let mut pitches = vec![];
-    for p in [-half_pi, half_pi] {
-        pitches.push((p, 0));
-        for e in 2..=7 {
-            let d = 10f64.powi(-e);
-            pitches.push((p + d, 0));
-            pitches.push((p - d, 0));
+/// and roll; inputs are the same quaternions (rounded to the type) for all three. Printed once
+/// per bench run, for f32 and f64.
+macro_rules! accuracy {
+    ($t:ty, $gq:ty, $name:literal) => {{
+        let mut worst = [[0.0f64; 3]; 2]; // [near pole, generic][gyrostat, nalgebra, glam]
+        let half_pi = core::f64::consts::FRAC_PI_2;
+        let mut pitches = vec![];
+        for p in [-half_pi, half_pi] {
+            pitches.push((p, 0));
+            for e in 2..=7 {
+                let d = 10f64.powi(-e);
+                pitches.push((p + d, 0));
+                pitches.push((p - d, 0));
+            }
         }
-    }
-    for p in [-1.2, -0.4, 0.0, 0.7, 1.3] {
-        pitches.push((p, 1));
-    }
-    for &(pitch, kind) in &pitches {
-        for yaw in [-3.0, -1.7, -0.2, 0.0, 0.9, 2.4, 3.1] {
-            for roll in [-2.9, -1.0, 0.0, 0.3, 1.9, 3.0] {
-                let qd = Euler::new(EulerSequence::ZYX, [yaw, pitch, roll]).to_unit_quat();
-                let q32 = qd.to_array().map(|c| c as f32);
-                let r_in = quat_matrix(q32.map(f64::from));
-                let gy = UnitQuat::new_unchecked(Quat::from_array(q32))
-                    .to_euler_angles(EulerSequence::ZYX);
-                let na = nalgebra::UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(
-                    q32[0], q32[1], q32[2], q32[3],
-                ))
-                .euler_angles();
-                let gl = glam::Quat::from_xyzw(q32[1], q32[2], q32[3], q32[0])
-                    .to_euler(glam::EulerRot::ZYX);
-                let outs = [
-                    [gy[0], gy[1], gy[2]],
-                    [na.2, na.1, na.0],
-                    [gl.0, gl.1, gl.2],
-                ];
-                for (k, e) in outs.iter().enumerate() {
-                    let err = if e.iter().all(|x| x.is_finite()) {
-                        rot_dist(&r_in, &zyx_matrix(e.map(f64::from)))
-                    } else {
-                        f64::INFINITY
-                    };
-                    worst[kind][k] = worst[kind][k].max(err);
+        for p in [-1.2, -0.4, 0.0, 0.7, 1.3] {
+            pitches.push((p, 1));
+        }
+        for &(pitch, kind) in &pitches {
+            for yaw in [-3.0, -1.7, -0.2, 0.0, 0.9, 2.4, 3.1] {
+                for roll in [-2.9, -1.0, 0.0, 0.3, 1.9, 3.0] {
+                    let qd = Euler::new(EulerSequence::ZYX, [yaw, pitch, roll]).to_unit_quat();
+                    let qt = qd.to_array().map(|c| c as $t);
+                    let r_in = quat_matrix(qt.map(|c| c as f64));
+                    let gy = UnitQuat::new_unchecked(Quat::from_array(qt))
+                        .to_euler_angles(EulerSequence::ZYX);
+                    let na = nalgebra::UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(
+                        qt[0], qt[1], qt[2], qt[3],
+                    ))
+                    .euler_angles();
+                    let gl =
+                        <$gq>::from_xyzw(qt[1], qt[2], qt[3], qt[0]).to_euler(glam::EulerRot::ZYX);
+                    let outs = [
+                        [gy[0], gy[1], gy[2]],
+                        [na.2, na.1, na.0],
+                        [gl.0, gl.1, gl.2],
+                    ];
+                    for (k, e) in outs.iter().enumerate() {
+                        let err = if e.iter().all(|x| x.is_finite()) {
+                            rot_dist(&r_in, &zyx_matrix(e.map(|x| x as f64)))
+                        } else {
+                            f64::INFINITY
+                        };
+                        worst[kind][k] = worst[kind][k].max(err);
+                    }
                 }
             }
         }
-    }
-    println!("\nf32 quat -> ZYX Euler -> rotation, worst geodesic error (rad):");
-    println!(
-        "  near pitch ±90° (0, 1e-7..1e-2): gyrostat {:.2e}, nalgebra {:.2e}, glam {:.2e}",
-        worst[0][0], worst[0][1], worst[0][2]
-    );
-    println!(
-        "  generic pitch:                   gyrostat {:.2e}, nalgebra {:.2e}, glam {:.2e}\n",
-        worst[1][0], worst[1][1], worst[1][2]
-    );
+        println!(concat!(
+            "\n",
+            $name,
+            " quat -> ZYX Euler -> rotation, worst geodesic error (rad):"
+        ));
+        println!(
+            "  near pitch ±90° (0, 1e-7..1e-2): gyrostat {:.2e}, nalgebra {:.2e}, glam {:.2e}",
+            worst[0][0], worst[0][1], worst[0][2]
+        );
+        println!(
+            "  generic pitch:                   gyrostat {:.2e}, nalgebra {:.2e}, glam {:.2e}\n",
+            worst[1][0], worst[1][1], worst[1][2]
+        );
+    }};
+}
+
+fn accuracy_report(_: &mut Criterion) {
+    accuracy!(f32, glam::Quat, "f32");
+    accuracy!(f64, glam::DQuat, "f64");
 }
 
 criterion_group!(benches, accuracy_report, f32_suite, f64_suite);
