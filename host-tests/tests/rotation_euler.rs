@@ -142,20 +142,26 @@ fn quat_to_euler_contract_f32() {
     println!("worst f32 quat→Euler→rotation error: {w:e}");
 }
 
-/// In f64, an Euler triple set exactly at the pole (b = 0 or π for proper sequences, ±π/2 for
-/// Tait–Bryan, as f64 constants) is reported as gimbal lock in every convention.
+/// An Euler triple set exactly at the pole (b = 0 or π for proper sequences, ±π/2 for
+/// Tait–Bryan, as constants of the type) and converted in that type is reported as gimbal lock
+/// in every convention, f32 and f64.
 #[test]
-fn exact_pole_is_flagged_f64() {
+fn exact_pole_is_flagged() {
+    exact_pole::<f32>();
+    exact_pole::<f64>();
+}
+
+fn exact_pole<T: Real>() {
     for seq_s in all_sequences() {
         let seq = EulerSequence::parse(&seq_s).unwrap();
         for pole in poles(&seq_s) {
             for &(a, c) in &OUTER {
-                let q = Euler::new(seq, [a, pole, c]).to_unit_quat();
+                let q = Euler::new(seq, [a, pole, c].map(T::from_f64)).to_unit_quat();
                 let sol = q.to_euler(seq, GimbalPolicy::ZeroThird);
                 assert!(
                     sol.singularity.is_some(),
                     "{seq_s} pole {pole} ({a}, {c}): distance {:e}",
-                    sol.distance_to_pole
+                    sol.distance_to_pole.to_f64()
                 );
             }
         }
