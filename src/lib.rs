@@ -79,4 +79,7 @@ pub use error::Error;
 struct ReadmeDoctests;
 pub use linalg::{Complex, Mat3, Vec3};
 pub use real::Real;
+pub use rotation::{
+    AxisAngle, Dcm, Euler, EulerSequence, Gibbs, GimbalPolicy, Mrp, PolarAxisAngle, RotationVector,
+};
 pub use rotation::{Quat, Su2, UnitQuat};

@@ -51,7 +51,8 @@ impl<T: Real> UnitQuat<T> {
     /// (6.6.6c)). Small angles use a series (see the module docs): no division by a tiny angle.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] if a component of `φ` is NaN or infinite.
+    /// [`Error::NonFinite`] if a component of `φ` is NaN or infinite; [`Error::InvalidArgument`]
+    /// if `|φ|` overflows (components near the type's maximum), where no angle is representable.
     ///
     /// ```
     /// use gyrostat::{UnitQuat, Vec3};
@@ -63,14 +64,27 @@ impl<T: Real> UnitQuat<T> {
     /// ```
     #[inline]
     pub fn exp(phi: Vec3<T>) -> Result<Self, Error> {
-        Ok(Self::exp_unchecked(phi.try_finite()?))
+        let phi = phi.try_finite()?;
+        if !phi.norm_squared().is_finite() && !phi.norm().is_finite() {
+            // |φ| itself overflows: the angle (mod 4π) is not representable.
+            return Err(Error::InvalidArgument);
+        }
+        Ok(Self::exp_unchecked(phi))
     }
 
     /// [`UnitQuat::exp`] without the finiteness check, for a hot loop whose input was validated
     /// upstream. A non-finite `φ` gives a non-finite result.
     #[inline]
     pub fn exp_unchecked(phi: Vec3<T>) -> Self {
-        let (c, s) = half_angle_cos_sinc(phi.norm_squared());
+        let n2 = phi.norm_squared();
+        if !n2.is_finite() {
+            // |φ|² overflowed (|φ| ≳ 1e19 in f32, 1e154 in f64): take the angle with hypot and
+            // scale by 1/|φ| instead (no tiny-angle issue at this size).
+            let theta = phi.norm();
+            let (s, c) = (theta * T::HALF).sin_cos();
+            return Self::new_unchecked(Quat::from_parts(c, phi.scale(T::ONE / theta).scale(s)));
+        }
+        let (c, s) = half_angle_cos_sinc(n2);
         Self::new_unchecked(Quat::from_parts(c, phi.scale(s)))
     }
 
