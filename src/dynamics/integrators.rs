@@ -320,22 +320,27 @@ impl<T: Real, const N: usize> Engine<'_, T, N> {
         };
         let rate = T::TWO * ai * (ji - si) + k * ji * ji * ji;
         let (s2, c2) = (rate * h * T::HALF).sin_cos();
-        // cos θ, sin θ from the half angle: c = c₂² − s₂², s = 2 s₂ c₂.
-        let c = c2 * c2 - s2 * s2;
+        // The plane rotation by −θ is applied as J + (s·J⊥′ − v·J⊥) with v = 1 − cos θ = 2s₂²
+        // and s = sin θ = 2s₂c₂ (s₂, c₂ of the half angle). Forming cos θ itself would round a
+        // number next to 1 the same way at every sub-step (slowly varying θ), scaling |J| by
+        // the same (1 ± ε) again and again: a linear drift of |J| (measured 2.6e-3 over 10⁵ f32
+        // steps). The small corrections v·J, s·J keep full relative precision instead, and the
+        // rounding of the final sums is unbiased (measured: 4e-14 relative f64, see tests).
+        let v = T::TWO * s2 * s2;
         let sn = T::TWO * s2 * c2;
         let Quat { w, x, y, z } = q;
         match axis {
             Axis::X => (
                 Quat::new(w * c2 - x * s2, w * s2 + x * c2, y * c2 + z * s2, z * c2 - y * s2),
-                Vec3::new(j.x, c * j.y + sn * j.z, c * j.z - sn * j.y),
+                Vec3::new(j.x, j.y + (sn * j.z - v * j.y), j.z - (sn * j.y + v * j.z)),
             ),
             Axis::Y => (
                 Quat::new(w * c2 - y * s2, x * c2 - z * s2, w * s2 + y * c2, z * c2 + x * s2),
-                Vec3::new(c * j.x - sn * j.z, j.y, sn * j.x + c * j.z),
+                Vec3::new(j.x - (sn * j.z + v * j.x), j.y, j.z + (sn * j.x - v * j.z)),
             ),
             Axis::Z => (
                 Quat::new(w * c2 - z * s2, x * c2 + y * s2, y * c2 - x * s2, w * s2 + z * c2),
-                Vec3::new(c * j.x + sn * j.y, c * j.y - sn * j.x, j.z),
+                Vec3::new(j.x + (sn * j.y - v * j.x), j.y - (sn * j.x + v * j.y), j.z),
             ),
         }
     }
