@@ -155,7 +155,9 @@ impl RefModel {
             e += (j[i] - self.spin[i]).powi(2) / (2.0 * self.moments[i]) + self.t4 * j[i].powi(4);
         }
         e + self.t22
-            * (j[0].powi(2) * j[1].powi(2) + j[0].powi(2) * j[2].powi(2) + j[1].powi(2) * j[2].powi(2))
+            * (j[0].powi(2) * j[1].powi(2)
+                + j[0].powi(2) * j[2].powi(2)
+                + j[1].powi(2) * j[2].powi(2))
     }
 
     /// The gradient `ω = ∂H/∂J`, component by component.
@@ -204,9 +206,7 @@ pub fn sym_eigenvalues(a: &M3) -> V3 {
     }
     let p2 = (a[0][0] - q).powi(2) + (a[1][1] - q).powi(2) + (a[2][2] - q).powi(2) + 2.0 * p1;
     let p = (p2 / 6.0).sqrt();
-    let b = [0, 1, 2].map(|i| {
-        [0, 1, 2].map(|j| (a[i][j] - if i == j { q } else { 0.0 }) / p)
-    });
+    let b = [0, 1, 2].map(|i| [0, 1, 2].map(|j| (a[i][j] - if i == j { q } else { 0.0 }) / p));
     let r = (det(&b) / 2.0).clamp(-1.0, 1.0);
     let phi = r.acos() / 3.0;
     let e1 = q + 2.0 * p * phi.cos();

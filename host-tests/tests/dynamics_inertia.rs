@@ -97,12 +97,21 @@ fn validation_errors_are_typed() {
         let v = |a: f64, b: f64, c: f64| Vec3::new(T::from_f64(a), T::from_f64(b), T::from_f64(c));
         let np = Err(Error::NonPhysicalInertia);
         // Triangle inequality I_a ≤ I_b + I_c violated.
-        assert_eq!(Inertia::try_from_principal(v(8.0, 4.0, 3.0)).map(|_| ()), np);
+        assert_eq!(
+            Inertia::try_from_principal(v(8.0, 4.0, 3.0)).map(|_| ()),
+            np
+        );
         // Flat lamina: equality is physical.
         assert!(Inertia::try_from_principal(v(1.0, 2.0, 3.0)).is_ok());
         // Thin rod (zero moment) and negative moment: not positive definite.
-        assert_eq!(Inertia::try_from_principal(v(1.0, 1.0, 0.0)).map(|_| ()), np);
-        assert_eq!(Inertia::try_from_principal(v(-1.0, 1.0, 1.0)).map(|_| ()), np);
+        assert_eq!(
+            Inertia::try_from_principal(v(1.0, 1.0, 0.0)).map(|_| ()),
+            np
+        );
+        assert_eq!(
+            Inertia::try_from_principal(v(-1.0, 1.0, 1.0)).map(|_| ()),
+            np
+        );
         // Indefinite with positive diagonal (off-diagonal too large).
         let r = Inertia::try_from_components(v(1.0, 1.0, 1.0), v(0.9, 0.9, 0.9));
         assert_eq!(r.map(|_| ()), np);
@@ -120,14 +129,21 @@ fn validation_errors_are_typed() {
             Err(Error::NonFinite)
         );
         assert_eq!(
-            Inertia::try_from_components(v(1.0, 1.0, 1.0), Vec3::new(T::ZERO, T::from_f64(f64::INFINITY), T::ZERO)).map(|_| ()),
+            Inertia::try_from_components(
+                v(1.0, 1.0, 1.0),
+                Vec3::new(T::ZERO, T::from_f64(f64::INFINITY), T::ZERO)
+            )
+            .map(|_| ()),
             Err(Error::NonFinite)
         );
         // Radius of gyration: bad masses.
         let i = Inertia::try_from_principal(v(2.0, 3.0, 4.0)).unwrap();
         assert_eq!(i.radii_of_gyration(T::ZERO), Err(Error::InvalidArgument));
         assert_eq!(i.radii_of_gyration(nan), Err(Error::NonFinite));
-        assert_eq!(i.radius_of_gyration_about(Vec3::ZERO, T::ONE), Err(Error::ZeroNorm));
+        assert_eq!(
+            i.radius_of_gyration_about(Vec3::ZERO, T::ONE),
+            Err(Error::ZeroNorm)
+        );
     }
     run::<f32>();
     run::<f64>();
@@ -147,7 +163,9 @@ fn radius_of_gyration_of_a_box() {
     assert!((k.x - ((b * b + c * c) / 12.0f64).sqrt()).abs() < 1e-15);
     assert!((k.z - ((a * a + b * b) / 12.0f64).sqrt()).abs() < 1e-15);
     // About the body diagonal direction (1,1,0)/√2: k² = (I₁ + I₂)/(2M).
-    let kd = i.radius_of_gyration_about(Vec3::new(1.0, 1.0, 0.0), m).unwrap();
+    let kd = i
+        .radius_of_gyration_about(Vec3::new(1.0, 1.0, 0.0), m)
+        .unwrap();
     assert!((kd * kd - (moments.x + moments.y) / (2.0 * m)).abs() < 1e-15);
 }
 

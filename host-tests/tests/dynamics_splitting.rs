@@ -4,7 +4,9 @@
 
 use gyrostat::dynamics::{BodyHamiltonian, Inertia, Integrator, Quartic, State, lab_momentum};
 use gyrostat::{Real, UnitQuat, Vec3};
-use host_tests::ref_dynamics::{RefModel, lie_poisson_rk4, linear_fit, log_log_slope, quat_to_matrix};
+use host_tests::ref_dynamics::{
+    RefModel, lie_poisson_rk4, linear_fit, log_log_slope, quat_to_matrix,
+};
 use host_tests::reference::{IDENTITY, M3, mat_dist, rodrigues};
 
 fn v<T: Real>(a: [f64; 3]) -> Vec3<T> {
@@ -23,7 +25,13 @@ fn model<T: Real>(m: &RefModel) -> BodyHamiltonian<T> {
     BodyHamiltonian::try_new(i, v(m.spin), quartic).unwrap()
 }
 
-fn run<T: Real>(h: &BodyHamiltonian<T>, integ: Integrator, j0: [f64; 3], dt: f64, n: usize) -> State<T> {
+fn run<T: Real>(
+    h: &BodyHamiltonian<T>,
+    integ: Integrator,
+    j0: [f64; 3],
+    dt: f64,
+    n: usize,
+) -> State<T> {
     let mut s = State {
         attitude: UnitQuat::IDENTITY,
         momentum: v(j0),
@@ -37,16 +45,40 @@ fn run<T: Real>(h: &BodyHamiltonian<T>, integ: Integrator, j0: [f64; 3], dt: f64
 fn err_vs_ref<T: Real>(s: &State<T>, r: &M3, j: [f64; 3]) -> f64 {
     let q = s.attitude.to_array().map(|c| c.to_f64());
     let m = s.momentum;
-    let dj = [m.x.to_f64() - j[0], m.y.to_f64() - j[1], m.z.to_f64() - j[2]];
+    let dj = [
+        m.x.to_f64() - j[0],
+        m.y.to_f64() - j[1],
+        m.z.to_f64() - j[2],
+    ];
     mat_dist(&quat_to_matrix(q), r).max(dj.iter().fold(0.0f64, |a, b| a.max(b.abs())))
 }
 
 /// The asymmetric rotor of Fig. 6.8.1, `(I₁, I₂, I₃) = (6, 4, 3)`.
-const RIGID: RefModel = RefModel { moments: [6.0, 4.0, 3.0], spin: [0.0; 3], t4: 0.0, t22: 0.0 };
+const RIGID: RefModel = RefModel {
+    moments: [6.0, 4.0, 3.0],
+    spin: [0.0; 3],
+    t4: 0.0,
+    t22: 0.0,
+};
 /// An asymmetric gyro-rotor (6.9.2b).
-const GYRO: RefModel = RefModel { moments: [2.0, 3.0, 4.0], spin: [0.3, -0.2, 0.5], t4: 0.0, t22: 0.0 };
-const OCTA: RefModel = RefModel { moments: [2.0, 3.0, 4.0], spin: [0.0; 3], t4: 0.05, t22: 0.0 };
-const CUBIC: RefModel = RefModel { moments: [2.0, 3.0, 4.0], spin: [0.0; 3], t4: 0.0, t22: 0.08 };
+const GYRO: RefModel = RefModel {
+    moments: [2.0, 3.0, 4.0],
+    spin: [0.3, -0.2, 0.5],
+    t4: 0.0,
+    t22: 0.0,
+};
+const OCTA: RefModel = RefModel {
+    moments: [2.0, 3.0, 4.0],
+    spin: [0.0; 3],
+    t4: 0.05,
+    t22: 0.0,
+};
+const CUBIC: RefModel = RefModel {
+    moments: [2.0, 3.0, 4.0],
+    spin: [0.0; 3],
+    t4: 0.0,
+    t22: 0.08,
+};
 const J0: [f64; 3] = [0.9, 0.5, -0.7];
 
 /// Measures the global error at T = 4 for dt = 0.1·2⁻ᵏ and fits the order.
@@ -71,7 +103,12 @@ fn measured_order(m: &RefModel, integ: Integrator, dts: &[f64]) -> (f64, Vec<f64
 #[test]
 fn measured_orders() {
     let coarse = [0.2, 0.1, 0.05, 0.025];
-    for (name, m) in [("rigid", RIGID), ("gyro", GYRO), ("octahedral", OCTA), ("cubic", CUBIC)] {
+    for (name, m) in [
+        ("rigid", RIGID),
+        ("gyro", GYRO),
+        ("octahedral", OCTA),
+        ("cubic", CUBIC),
+    ] {
         for (integ, p) in [
             (Integrator::Strang, 2.0),
             (Integrator::Yoshida4, 4.0),
@@ -87,7 +124,10 @@ fn measured_orders() {
     // Suzuki's composition has the smaller error constant at equal step (it costs 5/3 more).
     let (_, ey) = measured_order(&RIGID, Integrator::Yoshida4, &[0.05]);
     let (_, es) = measured_order(&RIGID, Integrator::Suzuki4, &[0.05]);
-    println!("error at dt = 0.05: Yoshida {:.3e}, Suzuki {:.3e}", ey[0], es[0]);
+    println!(
+        "error at dt = 0.05: Yoshida {:.3e}, Suzuki {:.3e}",
+        ey[0], es[0]
+    );
     assert!(es[0] < ey[0] / 3.0);
 }
 
@@ -102,7 +142,10 @@ fn casimir_conserved_over_1e5_steps() {
         for m in [RIGID, GYRO, OCTA, CUBIC] {
             for integ in [Integrator::Strang, Integrator::Yoshida4] {
                 let h = model::<T>(&m);
-                let s0 = State { attitude: UnitQuat::IDENTITY, momentum: v::<T>(J0) };
+                let s0 = State {
+                    attitude: UnitQuat::IDENTITY,
+                    momentum: v::<T>(J0),
+                };
                 let n0 = s0.momentum.norm().to_f64();
                 let l0 = lab_momentum(s0.attitude, s0.momentum);
                 let mut s = s0;
@@ -114,7 +157,11 @@ fn casimir_conserved_over_1e5_steps() {
                     }
                 }
                 let dl = (lab_momentum(s.attitude, s.momentum) - l0).norm().to_f64() / n0;
-                println!("{:?} {integ:?} {}: |J| drift {worst:.2e}, lab drift {dl:.2e}", m.moments, core::any::type_name::<T>());
+                println!(
+                    "{:?} {integ:?} {}: |J| drift {worst:.2e}, lab drift {dl:.2e}",
+                    m.moments,
+                    core::any::type_name::<T>()
+                );
                 assert!(worst <= tol, "|J| drift {worst}");
                 assert!(dl <= 20.0 * tol, "lab momentum drift {dl}");
             }
@@ -127,7 +174,10 @@ fn casimir_conserved_over_1e5_steps() {
 /// Max |ΔE/E| in each of `w` consecutive windows of a run of `n` steps.
 fn energy_windows(m: &RefModel, integ: Integrator, dt: f64, n: usize, w: usize) -> Vec<f64> {
     let h = model::<f64>(m);
-    let mut s = State { attitude: UnitQuat::IDENTITY, momentum: v::<f64>(J0) };
+    let mut s = State {
+        attitude: UnitQuat::IDENTITY,
+        momentum: v::<f64>(J0),
+    };
     let e0 = h.energy(s.momentum);
     let mut out = vec![0.0f64; w];
     for k in 0..n {
@@ -146,17 +196,26 @@ fn energy_windows(m: &RefModel, integ: Integrator, dt: f64, n: usize, w: usize) 
 #[test]
 fn energy_bounded_for_splitting_growing_for_rk4() {
     let (dt, n, w) = (0.1, 1_000_000, 20);
-    let t: Vec<f64> = (0..w).map(|i| (i as f64 + 0.5) / w as f64 * n as f64 * dt).collect();
+    let t: Vec<f64> = (0..w)
+        .map(|i| (i as f64 + 0.5) / w as f64 * n as f64 * dt)
+        .collect();
     for integ in [Integrator::Strang, Integrator::Yoshida4, Integrator::Rk4] {
         let ew = energy_windows(&RIGID, integ, dt, n, w);
         let (slope, _) = linear_fit(&t, &ew);
         let growth = slope * n as f64 * dt;
         let level = ew.iter().cloned().fold(0.0, f64::max);
-        println!("{integ:?}: first window {:.3e}, last {:.3e}, fitted growth over run {growth:.3e}", ew[0], ew[w - 1]);
+        println!(
+            "{integ:?}: first window {:.3e}, last {:.3e}, fitted growth over run {growth:.3e}",
+            ew[0],
+            ew[w - 1]
+        );
         if integ == Integrator::Rk4 {
             assert!(growth > 5.0 * ew[0], "RK4 energy should drift");
         } else {
-            assert!(growth.abs() < 0.1 * level, "{integ:?} energy should not drift");
+            assert!(
+                growth.abs() < 0.1 * level,
+                "{integ:?} energy should not drift"
+            );
         }
     }
 }
@@ -171,12 +230,17 @@ fn spherical_gyro_rotor_precesses_at_one_rate() {
         let (i, s) = (2.0, [0.3, -0.4, 1.2]);
         let sn = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
         let rate = sn / i;
-        let m = RefModel { moments: [i; 3], spin: s, t4: 0.0, t22: 0.0 };
+        let m = RefModel {
+            moments: [i; 3],
+            spin: s,
+            t4: 0.0,
+            t22: 0.0,
+        };
         let h = model::<T>(&m);
         let dirs = [
-            [0.3, -0.4, 1.2],  // along +S
+            [0.3, -0.4, 1.2],    // along +S
             [-0.29, 0.41, -1.2], // near −S
-            [1.0, 0.0, -0.25], // perpendicular-ish
+            [1.0, 0.0, -0.25],   // perpendicular-ish
             [0.0, 1.0, 0.5],
             [-0.7, -0.7, 0.1],
         ];
@@ -186,7 +250,11 @@ fn spherical_gyro_rotor_precesses_at_one_rate() {
             let j0 = d.map(|c| 2.0 * c);
             let st = run(&h, Integrator::Yoshida4, j0, dt, n);
             let want = host_tests::reference::mat_vec(&rodrigues(s, rate * t), &j0);
-            let got = [st.momentum.x.to_f64(), st.momentum.y.to_f64(), st.momentum.z.to_f64()];
+            let got = [
+                st.momentum.x.to_f64(),
+                st.momentum.y.to_f64(),
+                st.momentum.z.to_f64(),
+            ];
             let e = (0..3).map(|k| (got[k] - want[k]).abs()).fold(0.0, f64::max);
             println!("{} {d:?}: {e:.2e}", core::any::type_name::<T>());
             assert!(e < tol, "direction {d:?}: {e}");
@@ -199,7 +267,8 @@ fn spherical_gyro_rotor_precesses_at_one_rate() {
             let (p0, p1) = (perp(j0), perp(got));
             if host_tests::ref_dynamics::norm(p0) > 0.1 {
                 let c = host_tests::ref_dynamics::cross(p0, p1);
-                let ang = host_tests::ref_dynamics::dot(c, sh).atan2(host_tests::ref_dynamics::dot(p0, p1));
+                let ang = host_tests::ref_dynamics::dot(c, sh)
+                    .atan2(host_tests::ref_dynamics::dot(p0, p1));
                 // Unwrap: rate·t = 0.64·20 = 12.8 rad → two full turns plus remainder.
                 let turns = ((rate * t - ang) / (2.0 * std::f64::consts::PI)).round();
                 let measured = (ang + turns * 2.0 * std::f64::consts::PI) / t;
@@ -223,8 +292,16 @@ fn f32_and_f64_against_reference() {
     let (dt, n) = (0.01, 400);
     for m in [RIGID, GYRO, OCTA, CUBIC] {
         let (r_ref, j_ref) = lie_poisson_rk4(&m, &IDENTITY, J0, dt * n as f64, 20_000);
-        let e64 = err_vs_ref(&run(&model::<f64>(&m), Integrator::Yoshida4, J0, dt, n), &r_ref, j_ref);
-        let e32 = err_vs_ref(&run(&model::<f32>(&m), Integrator::Yoshida4, J0, dt, n), &r_ref, j_ref);
+        let e64 = err_vs_ref(
+            &run(&model::<f64>(&m), Integrator::Yoshida4, J0, dt, n),
+            &r_ref,
+            j_ref,
+        );
+        let e32 = err_vs_ref(
+            &run(&model::<f32>(&m), Integrator::Yoshida4, J0, dt, n),
+            &r_ref,
+            j_ref,
+        );
         println!("{:?}: f64 {e64:.2e}, f32 {e32:.2e}", m.moments);
         assert!(e64 < 1e-9);
         assert!(e32 < 5e-5);

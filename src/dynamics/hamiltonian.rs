@@ -54,11 +54,7 @@ impl<T: Real> BodyHamiltonian<T> {
             inertia,
             spin: Vec3::ZERO,
             quartic: Quartic::None,
-            half_inverse: Vec3::new(
-                T::HALF / m.x,
-                T::HALF / m.y,
-                T::HALF / m.z,
-            ),
+            half_inverse: Vec3::new(T::HALF / m.x, T::HALF / m.y, T::HALF / m.z),
         }
     }
 
@@ -154,7 +150,11 @@ pub(crate) fn quartic_gradient<T: Real>(q: Quartic<T>, j: Vec3<T>) -> Vec3<T> {
         }
         Quartic::Cubic(t22) => {
             let k = T::TWO * t22;
-            Vec3::new(k * j.x * (y2 + z2), k * j.y * (x2 + z2), k * j.z * (x2 + y2))
+            Vec3::new(
+                k * j.x * (y2 + z2),
+                k * j.y * (x2 + z2),
+                k * j.z * (x2 + y2),
+            )
         }
     }
 }

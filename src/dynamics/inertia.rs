@@ -413,9 +413,6 @@ mod tests {
             Err(Error::NonPhysicalInertia)
         );
         let nan = Vec3::new(f64::NAN, 1.0, 1.0);
-        assert_eq!(
-            Inertia::try_from_principal(nan),
-            Err(Error::NonFinite)
-        );
+        assert_eq!(Inertia::try_from_principal(nan), Err(Error::NonFinite));
     }
 }
