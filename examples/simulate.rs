@@ -249,7 +249,7 @@ fn parse(args: &[String]) -> Result<Config, String> {
         (None, None) => return Err("missing --omega or --momentum".into()),
     };
     let dt = dt.ok_or("missing --dt")?;
-    if !(dt > 0.0) {
+    if dt <= 0.0 {
         return Err(format!("--dt must be > 0, got {dt}"));
     }
     let every = every.unwrap_or(1);
@@ -322,14 +322,11 @@ fn run_csv<T: Real + Display>(cfg: &Config) -> Result<(), String> {
         Initial::Omega(w) => model.inertia().mul_vec(v3(w)) + model.spin(),
         Initial::Momentum(j) => v3(j),
     };
-    if cfg.quartic.is_some() {
-        if let Initial::Omega(_) = cfg.initial {
-            return Err(
-                "with --quartic, omega = dH/dJ is not linear in J: give --momentum instead of \
-                 --omega"
-                    .into(),
-            );
-        }
+    if cfg.quartic.is_some() && matches!(cfg.initial, Initial::Omega(_)) {
+        return Err(
+            "with --quartic, omega = dH/dJ is not linear in J: give --momentum instead of --omega"
+                .into(),
+        );
     }
     let stdout = io::stdout();
     let mut out = BufWriter::new(stdout.lock());
@@ -408,9 +405,11 @@ mod exact {
 
     impl<T: Real> Exact<T> {
         pub fn try_new(_i: &Inertia<T>, _q0: UnitQuat<T>, _j0: Vec3<T>) -> Result<Self, String> {
-            Err("--integrator exact: the closed-form solver is not in this build yet \
+            Err(
+                "--integrator exact: the closed-form solver is not in this build yet \
                  (use rk4, strang, yoshida4 or suzuki4)"
-                .into())
+                    .into(),
+            )
         }
 
         pub fn state_at(&self, _t: T) -> State<T> {
@@ -450,7 +449,7 @@ fn flip_interval_closed_form(moments: [f64; 3], l2: f64, e: f64) -> Option<f64> 
     }
     let lambda2 = (c - b) * (l2 - 2.0 * e * a) / (a * b * c);
     let k2 = (b - a) * (2.0 * e * c - l2) / ((c - b) * (l2 - 2.0 * e * a));
-    if !(lambda2 > 0.0) || !(0.0..1.0).contains(&k2) {
+    if lambda2.is_nan() || lambda2 <= 0.0 || !(0.0..1.0).contains(&k2) {
         return None;
     }
     Some(2.0 * complete_k(k2) / lambda2.sqrt())
@@ -504,12 +503,17 @@ fn simulate_default<T: Real>(integ: Integrator, dt: f64, steps: usize, every: us
             .norm_drift
             .max((s.momentum.norm().to_f64() - n0).abs() / n0);
         let l = lab_momentum(s.attitude, s.momentum);
-        let dl = [l.x.to_f64() - l0[0], l.y.to_f64() - l0[1], l.z.to_f64() - l0[2]];
+        let dl = [
+            l.x.to_f64() - l0[0],
+            l.y.to_f64() - l0[1],
+            l.z.to_f64() - l0[2],
+        ];
         run.lab_drift = run
             .lab_drift
             .max((dl[0] * dl[0] + dl[1] * dl[1] + dl[2] * dl[2]).sqrt() / n0);
         if k % every == 0 {
-            run.attitudes.push(s.attitude.to_array().map(|c| c.to_f64()));
+            run.attitudes
+                .push(s.attitude.to_array().map(|c| c.to_f64()));
         }
     }
     run

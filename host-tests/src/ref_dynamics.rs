@@ -12,6 +12,8 @@
 //!   the roots of the characteristic cubic (Smith 1961) and eigenvectors from cross products of
 //!   the rows of `A − λ·1`, not Jacobi rotations.
 
+#![allow(clippy::needless_range_loop)] // explicit indices mirror the formulas
+
 use crate::reference::{M3, V3, det, mat_mul, mat_vec, transpose};
 
 /// Cross product.

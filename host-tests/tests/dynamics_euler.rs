@@ -259,8 +259,8 @@ fn wheel_speed_command_is_reached() {
             &WheelCommand::Speed(target),
         )
         .unwrap();
-    for k in 0..4 {
-        assert!((s1.wheel_speeds[k] - target[k]).abs() < 1e-12);
+    for (got, want) in s1.wheel_speeds.iter().zip(target) {
+        assert!((got - want).abs() < 1e-12);
     }
     // Total J unchanged (internal torque), so the body spins opposite to the wheel momentum.
     let hw = g.rotor_momentum(&s1.wheel_speeds);

@@ -116,7 +116,7 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         if !dt.is_finite() {
             return Err(Error::NonFinite);
         }
-        if !(dt > T::ZERO) {
+        if dt <= T::ZERO {
             return Err(Error::InvalidArgument);
         }
         let torque = torque.try_finite()?;

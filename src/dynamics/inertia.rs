@@ -128,7 +128,7 @@ impl<T: Real> Inertia<T> {
         let trace = moments.x + moments.y + moments.z;
         let tol = T::from_f64(EIGEN_TOLERANCE_EPS) * T::EPSILON * trace.abs();
         let min = moments.x.min(moments.y).min(moments.z);
-        if !(min > tol) {
+        if min <= tol {
             return Err(Error::NonPhysicalInertia);
         }
         let (a, b, c) = (moments.x, moments.y, moments.z);
@@ -233,7 +233,7 @@ fn inverse_mass<T: Real>(mass: T) -> Result<T, Error> {
     if !mass.is_finite() {
         return Err(Error::NonFinite);
     }
-    if !(mass > T::ZERO) {
+    if mass <= T::ZERO {
         return Err(Error::InvalidArgument);
     }
     Ok(T::ONE / mass)
@@ -262,7 +262,7 @@ pub fn symmetric_eigen<T: Real>(a: &Mat3<T>) -> (Vec3<T>, Mat3<T>) {
     for _ in 0..JACOBI_MAX_SWEEPS {
         let off = s.o01.abs() + s.o02.abs() + s.o12.abs();
         let diag = s.d.x.abs() + s.d.y.abs() + s.d.z.abs();
-        if !(off > T::EPSILON * T::EPSILON * diag) {
+        if off <= T::EPSILON * T::EPSILON * diag {
             break;
         }
         // Pair (0, 1), third index 2.

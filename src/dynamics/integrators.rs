@@ -104,7 +104,7 @@ impl<T: Real> Wheel<T> {
             return Err(Error::NonFinite);
         }
         let axis = axis.try_normalize()?;
-        if !(inertia > T::ZERO) {
+        if inertia <= T::ZERO {
             return Err(Error::InvalidArgument);
         }
         Ok(Self {
@@ -195,7 +195,7 @@ impl<T: Real, const N: usize> Engine<'_, T, N> {
         if !dt.is_finite() || !t.is_finite() {
             return Err(Error::NonFinite);
         }
-        if !(dt > T::ZERO) {
+        if dt <= T::ZERO {
             return Err(Error::InvalidArgument);
         }
         let x = Ext {
