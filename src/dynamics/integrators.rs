@@ -218,7 +218,9 @@ impl<T: Real, const N: usize> Engine<'_, T, N> {
                 self.compose(x, &[p, p, mid, p, p], forced, &mut input)
             }
         };
-        let q = UnitQuat::new_unchecked(x.q).renormalize();
+        // Renormalise with one sqrt (the norm is within a truncation error of 1, far from
+        // overflow, so the hypot-based `UnitQuat::renormalize` is not needed here).
+        let q = UnitQuat::new_unchecked(x.q.scale(T::ONE / x.q.norm_squared().sqrt()));
         let finite =
             q.as_quat().is_finite() && x.j.is_finite() && x.w.iter().all(|v| v.is_finite());
         if !finite {
