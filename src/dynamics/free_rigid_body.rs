@@ -299,7 +299,10 @@ impl<T: Real> FreeRigidBody<T> {
         let e2 = axis_vec::<T>(a2);
         let e3 = axis_vec::<T>(a3);
         let (i1, i2, i3) = (get(i, a1), get(i, a2), get(i, a3));
-        let (jj1, jj2, jj3) = (get(j0_body, a1), get(j0_body, a2), get(j0_body, a3));
+        // The relabelled frame (e_{a₁}, h·e_{a₂}, e_{a₃}) is right-handed: h = ±1.
+        let h = sign(e1.cross(e2).dot(e3));
+        // Components in that frame, where J̇ = J × ω keeps the cyclic form of (6.8.5d).
+        let (jj1, jj2, jj3) = (get(j0_body, a1), h * get(j0_body, a2), get(j0_body, a3));
         // Same-signed ratios in both labelings.
         let r21 = (i3 - i2) / (i3 - i1); // ∈ (0, 1)
         let r31 = (i2 - i1) / (i3 - i1); // ∈ (0, 1)
@@ -332,7 +335,22 @@ impl<T: Real> FreeRigidBody<T> {
             let u0 = ((T::ONE + sphi.abs()) / cphi).ln().copysign(sphi);
             (u0, T::ZERO)
         } else {
-            (f_reduced(phi0, m), complete_k_unchecked(m, m1))
+            let kc = complete_k_unchecked(m, m1);
+            // u₀ = F(φ₀|m). Near |φ₀| = π/2 with m → 1 (J near the separatrix, crossing the
+            // intermediate axis region) F is ill-conditioned in φ (slope 1/dn); there use
+            // F(φ₀) = K − F(φ'), tan φ' = cot φ₀ / √m₁ (A&S 17.4.13; sn(K − u) = cn u/dn u),
+            // whose slope is dn(φ₀)/√m₁. Pick the smaller slope: direct iff dn²(φ₀) ≥ √m₁.
+            let h = sn_scaled.hypot(cn_scaled);
+            let (sphi, cphi) = (sn_scaled / h, cn_scaled / h);
+            let dn0_sq = cphi * cphi + m1 * sphi * sphi;
+            let sqrt_m1 = m1.sqrt();
+            let u0 = if dn0_sq >= sqrt_m1 {
+                f_reduced(phi0, m)
+            } else {
+                let phi_c = cphi.atan2(sqrt_m1 * sphi.abs());
+                (kc - f_reduced(phi_c, m)).copysign(sphi)
+            };
+            (u0, kc)
         };
         // Attitude data.
         let n = if separatrix {
@@ -355,7 +373,6 @@ impl<T: Real> FreeRigidBody<T> {
         };
         let e_b = e2;
         let e_c2 = e3.scale(s3);
-        let _ = e1;
         let (theta0, chi0) = gauge_angles(j0_body.scale(T::ONE / j_norm), e_b, e_c2);
         let g0 = q0
             * UnitQuat::from_unit_axis_angle(e_b, chi0)
@@ -367,7 +384,7 @@ impl<T: Real> FreeRigidBody<T> {
         };
         this.motion = Motion::Asymmetric(Asymmetric {
             idx: [a1, a2, a3],
-            amp: [s1 * amp1, s1 * amp2, s3 * amp3],
+            amp: [s1 * amp1, h * s1 * amp2, s3 * amp3],
             m,
             m1,
             lambda,
