@@ -397,63 +397,39 @@ fn run_csv<T: Real + Display>(cfg: &Config) -> Result<(), String> {
 
 mod exact {
     use super::*;
+    use gyrostat::dynamics::free_rigid_body::FreeRigidBody;
 
-    /// The closed-form torque-free rigid body, in the body frame of the tensor.
+    /// The closed-form torque-free rigid body (the library's `FreeRigidBody`), set up in the
+    /// principal frame of the tensor: `J_p = P* J P`, `q_p = q ⊗ P`, and mapped back.
     pub struct Exact<T> {
-        _p: core::marker::PhantomData<T>,
+        body: FreeRigidBody<T>,
+        p: UnitQuat<T>,
     }
 
     impl<T: Real> Exact<T> {
-        pub fn try_new(_i: &Inertia<T>, _q0: UnitQuat<T>, _j0: Vec3<T>) -> Result<Self, String> {
-            Err(
-                "--integrator exact: the closed-form solver is not in this build yet \
-                 (use rk4, strang, yoshida4 or suzuki4)"
-                    .into(),
-            )
+        pub fn try_new(i: &Inertia<T>, q0: UnitQuat<T>, j0: Vec3<T>) -> Result<Self, String> {
+            let p = i.principal_rotation();
+            let body = FreeRigidBody::try_new(i.principal_moments(), p.inverse_rotate(j0), q0 * p)
+                .map_err(|e| format!("--integrator exact: {e}"))?;
+            Ok(Self { body, p })
         }
 
-        pub fn state_at(&self, _t: T) -> State<T> {
-            unreachable!("never constructed")
+        pub fn state_at(&self, t: T) -> State<T> {
+            let (q, j) = self.body.state_at(t);
+            State {
+                attitude: q * self.p.inverse(),
+                momentum: self.p.rotate(j),
+            }
+        }
+
+        pub fn flip_interval(&self) -> Option<T> {
+            self.body.flip_interval()
         }
     }
 }
 
 // ---------------------------------------------------------------------------------------------
 // Default scenario
-
-/// Complete elliptic integral K(m) = π / (2·AGM(1, √(1−m))), 0 ≤ m < 1 (private to the
-/// example: the closed form it prints is computed independently of the integrators).
-fn complete_k(m: f64) -> f64 {
-    let (mut a, mut b) = (1.0f64, (1.0 - m).sqrt());
-    for _ in 0..64 {
-        if (a - b).abs() <= 1e-16 * a {
-            break;
-        }
-        let (an, bn) = ((a + b) / 2.0, (a * b).sqrt());
-        a = an;
-        b = bn;
-    }
-    std::f64::consts::PI / (2.0 * a)
-}
-
-/// The flip interval 2K(m)/λ of the torque-free rigid body (Landau & Lifshitz §37): the time
-/// between successive sign changes of the body momentum component on the intermediate axis.
-/// Moments sorted `a < b < c`; `l2 = |J|²`, `e` = energy.
-fn flip_interval_closed_form(moments: [f64; 3], l2: f64, e: f64) -> Option<f64> {
-    let mut m = moments;
-    m.sort_by(f64::total_cmp);
-    let [mut a, b, mut c] = m;
-    // Landau's formulas take L² > 2E·I_b; otherwise swap the roles of the outer axes.
-    if l2 < 2.0 * e * b {
-        std::mem::swap(&mut a, &mut c);
-    }
-    let lambda2 = (c - b) * (l2 - 2.0 * e * a) / (a * b * c);
-    let k2 = (b - a) * (2.0 * e * c - l2) / ((c - b) * (l2 - 2.0 * e * a));
-    if lambda2.is_nan() || lambda2 <= 0.0 || !(0.0..1.0).contains(&k2) {
-        return None;
-    }
-    Some(2.0 * complete_k(k2) / lambda2.sqrt())
-}
 
 /// The default initial body rate: mostly about the intermediate axis, off the separatrix (with
 /// these moments the separatrix is |J₁| = |J₃|, the seed's γ_B = 45° of (6.8.10)).
@@ -538,18 +514,20 @@ fn default_scenario() -> Result<(), String> {
     let integ = Integrator::Yoshida4;
     let r32 = simulate_default::<f32>(integ, dt, steps, every);
     let r64 = simulate_default::<f64>(integ, dt, steps, every);
-    // A finer f64 run (dt/10) as the attitude reference.
-    let fine = simulate_default::<f64>(integ, dt / 10.0, steps * 10, every * 10);
+    // The closed-form solution (Jacobi elliptic functions, Landau–Lifshitz §37) is the
+    // reference for the flip interval 2K(m)/λ and for the attitude.
     let moments = [6.0, 4.0, 3.0];
-    let omega0 = DEFAULT_OMEGA0;
-    let j0 = [0, 1, 2].map(|i| moments[i] * omega0[i]);
-    let l2: f64 = j0.iter().map(|c| c * c).sum();
-    let e: f64 = (0..3).map(|i| j0[i] * j0[i] / (2.0 * moments[i])).sum();
-    let closed = flip_interval_closed_form(moments, l2, e);
-    let err_vs_fine = |r: &Run| {
+    let inertia = Inertia::try_from_principal(v3::<f64>(moments)).map_err(|e| e.to_string())?;
+    let j0 = inertia.mul_vec(v3(DEFAULT_OMEGA0));
+    let exact = exact::Exact::try_new(&inertia, UnitQuat::IDENTITY, j0)?;
+    let closed = exact.flip_interval();
+    let exact_attitudes: Vec<[f64; 4]> = (1..=steps / every)
+        .map(|k| exact.state_at((k * every) as f64 * dt).attitude.to_array())
+        .collect();
+    let err_vs_exact = |r: &Run| {
         r.attitudes
             .iter()
-            .zip(&fine.attitudes)
+            .zip(&exact_attitudes)
             .map(|(a, b)| angle_between(a, b))
             .fold(0.0f64, f64::max)
             .to_degrees()
@@ -596,9 +574,9 @@ fn default_scenario() -> Result<(), String> {
         r32.lab_drift, r64.lab_drift
     );
     println!(
-        "  attitude error (deg)    {:<15.2e} {:<15.2e} (max over the run, vs f64 at dt/10)",
-        err_vs_fine(&r32),
-        err_vs_fine(&r64)
+        "  attitude error (deg)    {:<15.2e} {:<15.2e} (max over the run, vs the closed form)",
+        err_vs_exact(&r32),
+        err_vs_exact(&r64)
     );
     println!("  f32 vs f64 attitude     {f32_vs_f64:.2e} deg (max over the run)");
     if let (Some(c), Some(m)) = (closed, mean_interval(&r64.flips)) {

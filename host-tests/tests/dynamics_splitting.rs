@@ -314,7 +314,9 @@ fn f32_and_f64_against_reference() {
 #[test]
 fn energy_bounded_for_gyro_and_quartic_models() {
     let (dt, n, w) = (0.05, 200_000, 10);
-    let t: Vec<f64> = (0..w).map(|i| (i as f64 + 0.5) / w as f64 * n as f64 * dt).collect();
+    let t: Vec<f64> = (0..w)
+        .map(|i| (i as f64 + 0.5) / w as f64 * n as f64 * dt)
+        .collect();
     for m in [GYRO, OCTA, CUBIC] {
         let ew = energy_windows(&m, Integrator::Strang, dt, n, w);
         let (slope, _) = linear_fit(&t, &ew);
