@@ -9,7 +9,7 @@ use std::io::{self, BufWriter, Write};
 use std::process::ExitCode;
 
 use gyrostat::dynamics::{BodyHamiltonian, Inertia, Integrator, Quartic, State, lab_momentum};
-use gyrostat::{Quat, Real, UnitQuat, Vec3};
+use gyrostat::{Mat3, Quat, Real, UnitQuat, Vec3};
 
 const HELP: &str = "\
 simulate: rigid-body / gyrostat attitude dynamics (gyrostat crate)
@@ -37,6 +37,7 @@ OPTIONS:
                                 moments obeying I_a <= I_b + I_c
     --omega w1,w2,w3            initial body rate (rad/s, body frame)
     --momentum J1,J2,J3         initial total body angular momentum J = I w + S instead
+                                (with --quartic, --omega is solved for J with dH/dJ = w)
     --spin S1,S2,S3             constant body-fixed rotor momentum S (gyro-rotor, seed 6.9.2)
     --quartic octahedral:T4     add T4 (J1^4 + J2^4 + J3^4) to the Hamiltonian (seed 6.8.20a)
     --quartic cubic:T22         add T22 (J1^2 J2^2 + J1^2 J3^2 + J2^2 J3^2) (seed 6.8.20b);
@@ -319,15 +320,9 @@ fn run_csv<T: Real + Display>(cfg: &Config) -> Result<(), String> {
     let q0 = UnitQuat::try_new(Quat::from_array(cfg.q0.map(T::from_f64)))
         .map_err(|e| format!("--q0: {e}"))?;
     let j0 = match cfg.initial {
-        Initial::Omega(w) => model.inertia().mul_vec(v3(w)) + model.spin(),
+        Initial::Omega(w) => momentum_from_omega(&model, v3(w))?,
         Initial::Momentum(j) => v3(j),
     };
-    if cfg.quartic.is_some() && matches!(cfg.initial, Initial::Omega(_)) {
-        return Err(
-            "with --quartic, omega = dH/dJ is not linear in J: give --momentum instead of --omega"
-                .into(),
-        );
-    }
     let stdout = io::stdout();
     let mut out = BufWriter::new(stdout.lock());
     let mut state = State {
@@ -389,6 +384,49 @@ fn run_csv<T: Real + Display>(cfg: &Config) -> Result<(), String> {
         // A closed pipe (`simulate ... | head`) is not an error of the simulation.
         Err(e) if e.kind() == io::ErrorKind::BrokenPipe => Ok(()),
         Err(e) => Err(io_err(e)),
+    }
+}
+
+/// The momentum J with ∇H(J) = ω. Linear (J = Iω + S) without a quartic term; with one, Newton's
+/// method from the linear guess, with the Hessian I⁻¹ + ∇²quartic.
+fn momentum_from_omega<T: Real>(
+    model: &BodyHamiltonian<T>,
+    omega: Vec3<T>,
+) -> Result<Vec3<T>, String> {
+    let mut j = model.inertia().mul_vec(omega) + model.spin();
+    let (octa, t) = match model.quartic() {
+        Quartic::None => return Ok(j),
+        Quartic::Octahedral(t) => (true, t),
+        Quartic::Cubic(t) => (false, t),
+    };
+    for _ in 0..50 {
+        let f = model.omega(j) - omega;
+        let (x, y, z) = (j.x, j.y, j.z);
+        let hq = if octa {
+            let k = T::from_f64(12.0) * t;
+            Mat3::from_diagonal(Vec3::new(k * x * x, k * y * y, k * z * z))
+        } else {
+            let (two, four) = (T::TWO * t, T::from_f64(4.0) * t);
+            Mat3::from_rows(
+                [two * (y * y + z * z), four * x * y, four * x * z],
+                [four * x * y, two * (x * x + z * z), four * y * z],
+                [four * x * z, four * y * z, two * (x * x + y * y)],
+            )
+        };
+        let jac = model.inertia().inverse() + hq;
+        let step = jac.try_inverse().map_err(|e| {
+            format!("--omega with --quartic: no momentum found ({e}); give --momentum")
+        })? * f;
+        j -= step;
+        if step.norm().to_f64() <= 1e-14 * (1.0 + j.norm().to_f64()) {
+            return Ok(j);
+        }
+    }
+    let f = (model.omega(j) - omega).norm().to_f64();
+    if f <= 1e-6 * (1.0 + omega.norm().to_f64()) {
+        Ok(j)
+    } else {
+        Err("--omega with --quartic: Newton's method did not converge; give --momentum".into())
     }
 }
 
