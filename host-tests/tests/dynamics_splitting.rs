@@ -135,7 +135,8 @@ fn measured_orders() {
 /// the lab-frame momentum `q J q*` to 20× that (it also carries the attitude's rounding).
 /// f32: every sub-step rounds |J| by ~ε = 6e-8 relative at random, so 5·10⁵ (Strang) to
 /// 1.3·10⁶ (Yoshida) sub-steps random-walk to ~4e-5…7e-5 (measured ≤ 3.7e-5); bound 2e-4. The
-/// f32 lab momentum adds the attitude's rounding walk (measured ≤ 2.3e-3; bound 4e-3).
+/// f32 lab momentum adds the attitude's rounding (measured ≤ 2.9e-3, more than a pure random
+/// walk of ~1e-4 would give: part of it is systematic; bound 6e-3).
 #[test]
 fn casimir_conserved_over_1e5_steps() {
     fn check<T: Real>(tol: f64) {
@@ -163,7 +164,7 @@ fn casimir_conserved_over_1e5_steps() {
                     core::any::type_name::<T>()
                 );
                 assert!(worst <= tol, "|J| drift {worst}");
-                assert!(dl <= 20.0 * tol, "lab momentum drift {dl}");
+                assert!(dl <= 30.0 * tol, "lab momentum drift {dl}");
             }
         }
     }
