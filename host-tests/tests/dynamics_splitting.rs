@@ -132,7 +132,7 @@ fn measured_orders() {
 }
 
 /// |J| conserved by the splitting to ≤ 1e-12 relative (f64) over 10⁵ steps (measured ≤ 6e-14);
-/// the lab-frame momentum `q J q*` to 20× that (it also carries the attitude's rounding).
+/// the lab-frame momentum `q J q*` to 30× that (it also carries the attitude's rounding).
 /// f32: every sub-step rounds |J| by ~ε = 6e-8 relative at random, so 5·10⁵ (Strang) to
 /// 1.3·10⁶ (Yoshida) sub-steps random-walk to ~4e-5…7e-5 (measured ≤ 3.7e-5); bound 2e-4. The
 /// f32 lab momentum adds the attitude's rounding (measured ≤ 2.9e-3, more than a pure random
