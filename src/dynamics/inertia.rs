@@ -415,4 +415,19 @@ mod tests {
         let nan = Vec3::new(f64::NAN, 1.0, 1.0);
         assert_eq!(Inertia::try_from_principal(nan), Err(Error::NonFinite));
     }
+
+    #[test]
+    fn shepperd_all_branches() {
+        // Near-π turns about each axis select the x, y, z branches; a small turn the w branch.
+        for (axis, angle) in [
+            (Vec3::new(1.0f64, 0.1, -0.2), 3.1),
+            (Vec3::new(0.1, 1.0, 0.2), 3.0),
+            (Vec3::new(-0.2, 0.1, 1.0), 3.13),
+            (Vec3::new(0.3, -0.5, 0.8), 0.4),
+        ] {
+            let q = UnitQuat::try_from_axis_angle(axis, angle).unwrap();
+            let back = quat_from_rotation_matrix(&q.to_rotation_matrix());
+            assert!(back.dot(q).abs() > 1.0 - 1e-15, "{axis:?} {angle}");
+        }
+    }
 }
