@@ -94,7 +94,7 @@ fn periodic_peaked(g: &dyn Fn(f64) -> f64, phi: f64, w: f64) -> f64 {
     while lo < phi {
         let hi = ((k + 1) as f64 * FRAC_PI_2).min(phi);
         // Segment k spans [kπ/2, (k+1)π/2]; the peak is at its odd-multiple end.
-        let peak_at_b = k % 2 == 0;
+        let peak_at_b = k.is_multiple_of(2);
         sum += graded(g, lo, hi, peak_at_b, w, &gl);
         lo = hi;
         k += 1;

@@ -6,6 +6,9 @@
 //! recurrence (≈ N steps of 1 ulp); f64 the same with ε = 2.2e-16. The bounds below are the
 //! measured worst cases (printed with `--nocapture`) rounded up, and are what the module docs state.
 
+// Reference values are quoted with all the digits of their source.
+#![allow(clippy::excessive_precision)]
+
 use gyrostat::Error;
 use gyrostat::Real;
 use gyrostat::dynamics::elliptic::{

@@ -90,7 +90,7 @@ pub fn constant_energy_radius<T: Real>(
 /// The seed's example `(I₁, I₂, I₃) = (6, 4, 3)` gives `γ_B = 45°` (Fig. 6.8.1); Fig. 6.8.2 gives
 /// `I₂ = 5.0 → 63.4°` and `3.2 → 20.7°`, which this formula reproduces; its caption's
 /// `I₂ = 5.6 → 75.5°` is not: (6.8.10) gives `tan²γ_B = 13`, `γ_B = 74.50°` (75.5° would need
-/// `I₂ ≈ 5.64`). The test `analysis_seed` records this.
+/// `I₂ ≈ 5.646`). The test `analysis_seed` records this.
 ///
 /// # Errors
 /// [`Error::NonFinite`]; [`Error::NonPhysicalInertia`]; [`Error::InvalidArgument`] unless `I₂`

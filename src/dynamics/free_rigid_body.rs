@@ -218,24 +218,30 @@ impl<T: Real> FreeRigidBody<T> {
             return Err(Error::NonPhysicalInertia);
         }
         let j_norm = j0_body.norm();
-        if !(j_norm > T::ZERO) || !j_norm.is_finite() {
-            return Err(if j_norm.is_finite() {
-                Error::ZeroNorm
-            } else {
-                Error::NonFinite
-            });
+        if !j_norm.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        if j_norm <= T::ZERO {
+            return Err(Error::ZeroNorm);
         }
         let omega = Vec3::new(j0_body.x / i.x, j0_body.y / i.y, j0_body.z / i.z);
         let energy = T::HALF * j0_body.dot(omega);
+        if !energy.is_finite() || !omega.is_finite() {
+            return Err(Error::NonFinite);
+        }
 
-        // Sort the axes by moment: lo, mid, hi.
-        let mut order = [0usize, 1, 2];
-        order.sort_unstable_by(|a, b| {
-            get(i, *a)
-                .partial_cmp(&get(i, *b))
-                .unwrap_or(core::cmp::Ordering::Equal)
-        });
-        let [lo, mid, hi] = order;
+        // Sort the axes by moment: lo, mid, hi (a 3-element network; no slice sort, whose
+        // total-order check has a panic path).
+        let (mut lo, mut mid, mut hi) = (0usize, 1usize, 2usize);
+        if get(i, mid) < get(i, lo) {
+            core::mem::swap(&mut lo, &mut mid);
+        }
+        if get(i, hi) < get(i, mid) {
+            core::mem::swap(&mut mid, &mut hi);
+        }
+        if get(i, mid) < get(i, lo) {
+            core::mem::swap(&mut lo, &mut mid);
+        }
         let (i_lo, i_mid, i_hi) = (get(i, lo), get(i, mid), get(i, hi));
         let eq_tol = T::from_f64(EQUAL_MOMENTS_TOLERANCE) * T::EPSILON;
         let lo_eq_mid = i_mid - i_lo <= eq_tol * i_mid;
@@ -500,10 +506,24 @@ impl<T: Real> FreeRigidBody<T> {
         )
     }
 
+    /// [`FreeRigidBody::state_at`] with a check of `t`.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite `t`.
+    pub fn try_state_at(&self, t: T) -> Result<(UnitQuat<T>, Vec3<T>), Error> {
+        if !t.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        Ok(self.state_at(t))
+    }
+
     /// The state at time `t`: attitude (body → lab) and body angular momentum `J`.
     ///
-    /// Closed form for every `t` (negative too); cost independent of `t`. Accuracy of the
-    /// attitude degrades like `ε·|ψ(t)|` (the angle about `J` is evaluated, not accumulated).
+    /// Closed form for every finite `t` (negative too); cost independent of `t`. Accuracy of
+    /// the attitude degrades like `ε·|ψ(t)|` (the angle about `J` is evaluated, not
+    /// accumulated) and, in f32, near the saddle (see the module docs). `t` must be finite
+    /// (a NaN or infinite `t` gives NaN components, never a panic); use
+    /// [`FreeRigidBody::try_state_at`] to have it checked.
     pub fn state_at(&self, t: T) -> (UnitQuat<T>, Vec3<T>) {
         match &self.motion {
             Motion::Steady { rate } => {

@@ -9,11 +9,13 @@ use crate::{Error, Mat3, Real, Vec3};
 
 /// `m[(r·r)1 − r rᵀ]`, the inertia of one point mass about the origin (6.5.4).
 fn point_inertia<T: Real>(m: T, r: Vec3<T>) -> Mat3<T> {
-    let rr = r.dot(r);
+    // Off-diagonals computed once so the result is exactly symmetric.
+    let (xy, xz, yz) = (-m * r.x * r.y, -m * r.x * r.z, -m * r.y * r.z);
+    let (xx, yy, zz) = (r.x * r.x, r.y * r.y, r.z * r.z);
     Mat3::from_rows(
-        [m * (rr - r.x * r.x), -m * r.x * r.y, -m * r.x * r.z],
-        [-m * r.y * r.x, m * (rr - r.y * r.y), -m * r.y * r.z],
-        [-m * r.z * r.x, -m * r.z * r.y, m * (rr - r.z * r.z)],
+        [m * (yy + zz), xy, xz],
+        [xy, m * (xx + zz), yz],
+        [xz, yz, m * (xx + yy)],
     )
 }
 
