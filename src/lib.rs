@@ -64,6 +64,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod dynamics;
 mod error;
 pub mod interop;
 pub mod linalg;

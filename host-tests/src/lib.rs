@@ -9,9 +9,12 @@
 //! - [`ref_rotation`]: Euler-angle matrices and representation conversions (issue: rotations).
 //! - [`ref_propagation`]: closed-form coning motion and kinematics (issue: propagation).
 //! - [`ref_dynamics`]: rigid-body reference integrators and closed forms (issue: dynamics).
+//! - [`ref_exact`]: quadrature elliptic integrals, Newton-inverted Jacobi functions and a tiny-step
+//!   RK4 free rigid body (issue 5: exact free rigid body).
 //! - [`tolerance`]: the per-type tolerances shared by the comparison tests.
 
 pub mod ref_dynamics;
+pub mod ref_exact;
 pub mod ref_propagation;
 pub mod ref_rotation;
 pub mod reference;

@@ -1,0 +1,80 @@
+//! Cost of one step of each dynamics integrator (f32 and f64): rigid body with a diagonal and
+//! with a full tensor, and a gyrostat with 4 reaction wheels and an external torque.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use gyrostat::dynamics::{
+    BodyHamiltonian, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
+};
+use gyrostat::{Mat3, Real, UnitQuat, Vec3};
+use std::hint::black_box;
+
+const INTEGRATORS: [(&str, Integrator); 4] = [
+    ("rk4", Integrator::Rk4),
+    ("strang", Integrator::Strang),
+    ("yoshida4", Integrator::Yoshida4),
+    ("suzuki4", Integrator::Suzuki4),
+];
+
+fn v<T: Real>(a: [f64; 3]) -> Vec3<T> {
+    Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]))
+}
+
+fn bench_type<T: Real>(c: &mut Criterion, ty: &str) {
+    let diag =
+        BodyHamiltonian::rigid(Inertia::try_from_principal(v::<T>([6.0, 4.0, 3.0])).unwrap());
+    let full = BodyHamiltonian::rigid(
+        Inertia::try_from_tensor(Mat3::from_rows(
+            [3.0, -0.4, 0.25].map(T::from_f64),
+            [-0.4, 4.0, 0.3].map(T::from_f64),
+            [0.25, 0.3, 5.0].map(T::from_f64),
+        ))
+        .unwrap(),
+    );
+    let s0 = State {
+        attitude: UnitQuat::IDENTITY,
+        momentum: v::<T>([0.3, 4.0, 0.05]),
+    };
+    let dt = T::from_f64(0.01);
+    let mut g = c.benchmark_group(format!("dynamics_step_{ty}"));
+    for (name, integ) in INTEGRATORS {
+        g.bench_function(format!("rigid_diag/{name}"), |b| {
+            let mut s = s0;
+            b.iter(|| {
+                s = diag.step(integ, black_box(&s), dt).unwrap();
+            })
+        });
+        g.bench_function(format!("rigid_full/{name}"), |b| {
+            let mut s = s0;
+            b.iter(|| {
+                s = full.step(integ, black_box(&s), dt).unwrap();
+            })
+        });
+    }
+    let a = 1.0 / 3.0f64.sqrt();
+    let wheels = [
+        Wheel::try_new(v::<T>([1.0, 0.0, 0.0]), T::from_f64(0.02)).unwrap(),
+        Wheel::try_new(v::<T>([0.0, 1.0, 0.0]), T::from_f64(0.02)).unwrap(),
+        Wheel::try_new(v::<T>([0.0, 0.0, 1.0]), T::from_f64(0.02)).unwrap(),
+        Wheel::try_new(v::<T>([a, a, a]), T::from_f64(0.02)).unwrap(),
+    ];
+    let gyro = Gyrostat::new(full, wheels);
+    let cmd = WheelCommand::Torque([0.001, -0.002, 0.0005, 0.0].map(T::from_f64));
+    let tau = v::<T>([0.01, 0.0, -0.005]);
+    for (name, integ) in INTEGRATORS {
+        g.bench_function(format!("gyrostat4_torque/{name}"), |b| {
+            let mut s = gyro.state_from_omega(UnitQuat::IDENTITY, v([0.1, 0.5, 0.2]), [T::ZERO; 4]);
+            b.iter(|| {
+                s = gyro.step(integ, black_box(&s), dt, tau, &cmd).unwrap();
+            })
+        });
+    }
+    g.finish();
+}
+
+fn benches(c: &mut Criterion) {
+    bench_type::<f32>(c, "f32");
+    bench_type::<f64>(c, "f64");
+}
+
+criterion_group!(dynamics, benches);
+criterion_main!(dynamics);

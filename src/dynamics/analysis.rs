@@ -1,0 +1,279 @@
+//! The seed's closed-form analysis of free rotors (Harter, Unit 6, §6.7–6.9): rotational energy
+//! surfaces, the separatrix, small-oscillation and divergence rates, symmetric-top rates, and the
+//! multipole coefficients of a gyro-rotor Hamiltonian.
+//!
+//! # Conventions
+//! The seed's BOD-frame direction of `J` at polar angle `β` and azimuth `γ` is
+//! `Ĵ = (−cos γ sin β, sin γ sin β, cos β)` (the `⟨z|` row of `R(αβγ)`, (6.7.40)); moments are
+//! indexed like the body axes `(I₁, I₂, I₃)` in any order unless a function says otherwise.
+//! Rigid-rotor constants are `A = 1/(2I₁)`, `B = 1/(2I₂)`, `C = 1/(2I₃)` (6.9.2). Angles are in
+//! radians.
+
+use crate::{Error, Real, Vec3};
+
+fn check_moments<T: Real>(i: Vec3<T>) -> Result<(), Error> {
+    if !i.is_finite() {
+        return Err(Error::NonFinite);
+    }
+    if i.x <= T::ZERO || i.y <= T::ZERO || i.z <= T::ZERO {
+        return Err(Error::NonPhysicalInertia);
+    }
+    if i.x > i.y + i.z || i.y > i.x + i.z || i.z > i.x + i.y {
+        return Err(Error::NonPhysicalInertia);
+    }
+    Ok(())
+}
+
+fn check_finite<T: Real>(xs: &[T]) -> Result<(), Error> {
+    if xs.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::NonFinite)
+    }
+}
+
+/// The seed's BOD-frame unit direction `Ĵ(β, γ) = (−cos γ sin β, sin γ sin β, cos β)` (6.7.40).
+pub fn direction<T: Real>(beta: T, gamma: T) -> Vec3<T> {
+    let (sb, cb) = beta.sin_cos();
+    let (sg, cg) = gamma.sin_cos();
+    Vec3::new(-cg * sb, sg * sb, cb)
+}
+
+/// `Σ Ĵᵢ²/(2Iᵢ)` for the direction `(β, γ)`.
+fn energy_per_j2<T: Real>(i: Vec3<T>, beta: T, gamma: T) -> T {
+    let d = direction(beta, gamma);
+    T::HALF * (d.x * d.x / i.x + d.y * d.y / i.y + d.z * d.z / i.z)
+}
+
+/// The rotational energy surface (RES) radius
+/// `E(J, β, γ) = J² cos²γ sin²β/(2I₁) + J² sin²γ sin²β/(2I₂) + J² cos²β/(2I₃)` (6.8.7): the
+/// energy of momentum magnitude `j` pointing along `Ĵ(β, γ)` in the body frame.
+///
+/// # Errors
+/// [`Error::NonFinite`], [`Error::NonPhysicalInertia`] (moments not positive or violating the
+/// triangle inequality).
+pub fn rotational_energy<T: Real>(moments: Vec3<T>, j: T, beta: T, gamma: T) -> Result<T, Error> {
+    check_moments(moments)?;
+    check_finite(&[j, beta, gamma])?;
+    Ok(j * j * energy_per_j2(moments, beta, gamma))
+}
+
+/// The constant-energy surface (CES) radius
+/// `J(E, β, γ) = √(E / (cos²γ sin²β/(2I₁) + sin²γ sin²β/(2I₂) + cos²β/(2I₃)))` (6.8.8): the
+/// momentum magnitude that has energy `energy` along `Ĵ(β, γ)`.
+///
+/// # Errors
+/// As [`rotational_energy`], plus [`Error::InvalidArgument`] for `energy < 0`.
+pub fn constant_energy_radius<T: Real>(
+    moments: Vec3<T>,
+    energy: T,
+    beta: T,
+    gamma: T,
+) -> Result<T, Error> {
+    check_moments(moments)?;
+    check_finite(&[energy, beta, gamma])?;
+    if energy < T::ZERO {
+        return Err(Error::InvalidArgument);
+    }
+    // The denominator is ≥ 1/(2 I_max) > 0.
+    Ok((energy / energy_per_j2(moments, beta, gamma)).sqrt())
+}
+
+/// The separatrix azimuth `γ_B` (6.8.10): the separatrix of the rigid rotor (the constant-`J`
+/// contour `E = J²/(2I₂)` through the saddle points on the intermediate `±J₂` axes) is a pair of
+/// great circles through the `I₂` axis, in the planes at azimuth `±γ_B` about that axis measured
+/// from the `I₃` axis towards the `I₁` axis:
+///
+/// `tan γ_B = √((I₁/I₃)(I₂ − I₃)/(I₁ − I₂))`, evaluated as
+/// `γ_B = atan2(√(I₁|I₂ − I₃|), √(I₃|I₁ − I₂|)) ∈ (0, π/2)`.
+///
+/// The seed's example `(I₁, I₂, I₃) = (6, 4, 3)` gives `γ_B = 45°` (Fig. 6.8.1); Fig. 6.8.2 gives
+/// `I₂ = 5.0 → 63.4°` and `3.2 → 20.7°`, which this formula reproduces; its caption's
+/// `I₂ = 5.6 → 75.5°` is not: (6.8.10) gives `tan²γ_B = 13`, `γ_B = 74.50°` (75.5° would need
+/// `I₂ ≈ 5.646`). The test `analysis_seed` records this.
+///
+/// # Errors
+/// [`Error::NonFinite`]; [`Error::NonPhysicalInertia`]; [`Error::InvalidArgument`] unless `I₂`
+/// lies strictly between `I₁` and `I₃` (no separatrix for a symmetric top, and `I₂` must be the
+/// intermediate moment).
+pub fn separatrix_angle<T: Real>(moments: Vec3<T>) -> Result<T, Error> {
+    check_moments(moments)?;
+    let (i1, i2, i3) = (moments.x, moments.y, moments.z);
+    let between = (i1 > i2 && i2 > i3) || (i1 < i2 && i2 < i3);
+    if !between {
+        return Err(Error::InvalidArgument);
+    }
+    let num = (i1 * (i2 - i3).abs()).sqrt();
+    let den = (i3 * (i1 - i2).abs()).sqrt();
+    Ok(num.atan2(den))
+}
+
+/// The kind of small motion of `J` near a principal axis, (6.8.6a–c).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SmallMotionKind {
+    /// Stable axis (major or minor): `J` circles it harmonically, `e^{±iΩt}` (6.8.6a, b).
+    Oscillation,
+    /// Unstable intermediate axis: `J` leaves and approaches it exponentially, `e^{±Ξt}` (6.8.6c).
+    Divergence,
+    /// The axis belongs to a degenerate pair (symmetric top): neutral, rate 0.
+    Neutral,
+}
+
+/// The rate of small motion of `J` about one principal axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SmallMotion<T> {
+    /// `Ω` (rad/s) for [`SmallMotionKind::Oscillation`], `Ξ` (1/s) for
+    /// [`SmallMotionKind::Divergence`], 0 for [`SmallMotionKind::Neutral`].
+    pub rate: T,
+    /// Stable, unstable or neutral.
+    pub kind: SmallMotionKind,
+}
+
+/// Small-oscillation and divergence rates of `J` (magnitude `j`) near the principal axis
+/// `axis` (0, 1, 2), (6.8.6a–c): with `a` that axis and `b, c` the others,
+///
+/// `rate = (J/I_a) √(|(I_b − I_a)(I_c − I_a)| / (I_b I_c))`,
+///
+/// an oscillation frequency `Ω` when `I_a` is the largest or smallest moment (6.8.6a: about the
+/// minimum-inertia axis, `Ω^z = (J/I₃)√((I₁−I₃)(I₂−I₃)/(I₁I₂))`; 6.8.6b: about the maximum),
+/// the divergence rate `Ξ` when it is the intermediate one (6.8.6c:
+/// `Ξ^y = (J/I₂)√((I₁−I₂)(I₂−I₃)/(I₁I₃))`). The oscillation frequency is the `m → 0` limit of
+/// the exact `|λ|` of [`super::free_rigid_body`].
+///
+/// # Errors
+/// [`Error::NonFinite`], [`Error::NonPhysicalInertia`], [`Error::InvalidArgument`] for
+/// `axis > 2`.
+pub fn small_motion<T: Real>(moments: Vec3<T>, j: T, axis: usize) -> Result<SmallMotion<T>, Error> {
+    check_moments(moments)?;
+    check_finite(&[j])?;
+    let (ia, ib, ic) = match axis {
+        0 => (moments.x, moments.y, moments.z),
+        1 => (moments.y, moments.z, moments.x),
+        2 => (moments.z, moments.x, moments.y),
+        _ => return Err(Error::InvalidArgument),
+    };
+    let prod = (ib - ia) * (ic - ia);
+    let rate = j.abs() / ia * (prod.abs() / (ib * ic)).sqrt();
+    let kind = if prod > T::ZERO {
+        SmallMotionKind::Oscillation
+    } else if prod < T::ZERO {
+        SmallMotionKind::Divergence
+    } else {
+        SmallMotionKind::Neutral
+    };
+    Ok(SmallMotion { rate, kind })
+}
+
+/// Rates of the free symmetric top (seed §6.7.d, (6.7.39)–(6.7.43)), for lab momentum `J` on
+/// the lab `z` axis and the body symmetry axis tilted by `β` from it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SymmetricTopRates<T> {
+    /// LAB precession ("wobble") rate `α̇ = J/I_II` (6.7.43a).
+    pub lab_precession: T,
+    /// BOD precession rate `γ̇ = (1/I₃ − 1/I_II) J cos β = ((I_II − I₃)/I_II) ω₃` (6.7.39),
+    /// (6.7.43d): the rate at which the body sees `J` (and the lab `z` axis) turn about its
+    /// symmetry axis — clockwise, i.e. `J_body` turns by `−γ̇ t`.
+    pub body_precession: T,
+    /// Axial body rate `ω₃ = J cos β / I₃` (6.7.43c).
+    pub axial_rate: T,
+    /// Body-frame angular velocity at `γ = 0`: `(−α̇ sin β, 0, α̇ cos β + γ̇)` (6.7.42b).
+    pub omega_body: Vec3<T>,
+    /// Lab-frame angular velocity at `α = 0`: `(γ̇ sin β, 0, α̇ + γ̇ cos β)` (6.7.42a).
+    pub omega_lab: Vec3<T>,
+}
+
+/// Symmetric-top rates (6.7.39)–(6.7.43) for transverse moment `I_II = I₁ = I₂`, axial moment
+/// `I₃`, momentum magnitude `j` and tilt `β` of the symmetry axis from `J`.
+///
+/// # Errors
+/// [`Error::NonFinite`]; [`Error::NonPhysicalInertia`] unless `I_II, I₃ > 0` and
+/// `I₃ ≤ 2 I_II` (triangle inequality).
+pub fn symmetric_top_rates<T: Real>(
+    i_transverse: T,
+    i_axial: T,
+    j: T,
+    beta: T,
+) -> Result<SymmetricTopRates<T>, Error> {
+    check_moments(Vec3::new(i_transverse, i_transverse, i_axial))?;
+    check_finite(&[j, beta])?;
+    let (sb, cb) = beta.sin_cos();
+    let alpha_dot = j / i_transverse;
+    let gamma_dot = (T::ONE / i_axial - T::ONE / i_transverse) * j * cb;
+    let omega3 = j * cb / i_axial;
+    Ok(SymmetricTopRates {
+        lab_precession: alpha_dot,
+        body_precession: gamma_dot,
+        axial_rate: omega3,
+        omega_body: Vec3::new(-alpha_dot * sb, T::ZERO, alpha_dot * cb + gamma_dot),
+        omega_lab: Vec3::new(gamma_dot * sb, T::ZERO, alpha_dot + gamma_dot * cb),
+    })
+}
+
+/// Multipole coefficients of the body-fixed gyro-rotor Hamiltonian
+/// `H = A(J_x − S_x)² + B(J_y − S_y)² + C(J_z − S_z)²` (6.9.2b), expanded as
+/// `H = constant + M₀ T₀ + Σ D_d T_d + Q_zz T_zz + Q_{x²−y²} T_{x²−y²}` (6.9.2c), (6.9.4).
+///
+/// Tensor normalisation (see [`GyroMultipoles::evaluate`]): `T₀ = J²/3` (6.9.3a),
+/// `T_d = J_d` (6.9.3b), `T_{x²−y²} = J_x² − J_y²` (6.9.3c), and `T_zz = 2J_z² − J_x² − J_y²`.
+/// The seed prints `T_zz` with an extra factor ½ in (6.9.3c) while giving
+/// `Q_zz = (2C − A − B)/6` in (6.9.4c); with the ½ the expansion would not reproduce `H`, so this
+/// module keeps the seed's coefficient and drops the ½ (the test checks the expansion against
+/// `H` directly).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GyroMultipoles<T> {
+    /// `A S_x² + B S_y² + C S_z²`: the `J`-independent part (the seed's "const.1").
+    pub constant: T,
+    /// Monopole `M₀ = A + B + C` (6.9.4a; the seed adds `3H'_S`, a constant rotor energy, which
+    /// is kept out of this coefficient).
+    pub monopole: T,
+    /// Dipoles `D = (−2A S_x, −2B S_y, −2C S_z)` (6.9.4b).
+    pub dipole: Vec3<T>,
+    /// Quadrupole `Q_zz = (2C − A − B)/6` (6.9.4c).
+    pub q_zz: T,
+    /// Quadrupole `Q_{x²−y²} = (A − B)/2` (6.9.4c).
+    pub q_x2_y2: T,
+}
+
+impl<T: Real> GyroMultipoles<T> {
+    /// The Hamiltonian rebuilt from the multipoles at body momentum `j`:
+    /// `constant + M₀ J²/3 + D·J + Q_zz (2J_z² − J_x² − J_y²) + Q_{x²−y²}(J_x² − J_y²)`.
+    pub fn evaluate(&self, j: Vec3<T>) -> T {
+        let (x2, y2, z2) = (j.x * j.x, j.y * j.y, j.z * j.z);
+        let three = T::from_f64(3.0);
+        self.constant
+            + self.monopole * (x2 + y2 + z2) / three
+            + self.dipole.dot(j)
+            + self.q_zz * (T::TWO * z2 - x2 - y2)
+            + self.q_x2_y2 * (x2 - y2)
+    }
+}
+
+/// The gyro-rotor multipole coefficients (6.9.4) for principal moments `(I₁, I₂, I₃)` and
+/// body-fixed rotor spin `S` (`A = 1/(2I₁)`, … (6.9.2)).
+///
+/// # Errors
+/// [`Error::NonFinite`], [`Error::NonPhysicalInertia`].
+pub fn gyro_multipoles<T: Real>(
+    moments: Vec3<T>,
+    spin: Vec3<T>,
+) -> Result<GyroMultipoles<T>, Error> {
+    check_moments(moments)?;
+    if !spin.is_finite() {
+        return Err(Error::NonFinite);
+    }
+    let a = T::HALF / moments.x;
+    let b = T::HALF / moments.y;
+    let c = T::HALF / moments.z;
+    let six = T::from_f64(6.0);
+    Ok(GyroMultipoles {
+        constant: a * spin.x * spin.x + b * spin.y * spin.y + c * spin.z * spin.z,
+        monopole: a + b + c,
+        dipole: Vec3::new(
+            -T::TWO * a * spin.x,
+            -T::TWO * b * spin.y,
+            -T::TWO * c * spin.z,
+        ),
+        q_zz: (T::TWO * c - a - b) / six,
+        q_x2_y2: (a - b) * T::HALF,
+    })
+}

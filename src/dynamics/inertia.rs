@@ -1,0 +1,433 @@
+//! The validated inertia tensor and its principal axes.
+//!
+//! [`Inertia`] holds a full symmetric body-frame tensor `I` (seed (6.5.4)–(6.5.5)), its inverse,
+//! and its principal moments and axes from a symmetric 3×3 eigen-decomposition
+//! ([`symmetric_eigen`], cyclic Jacobi with a fixed sweep cap). The rotation into the principal
+//! frame is kept as a [`UnitQuat`] so that the Lie–Poisson integrators, which need a diagonal
+//! tensor, can work in the principal frame of any body.
+//!
+//! A tensor is accepted only if it is physical: finite, symmetric, positive definite, and its
+//! principal moments obey the triangle inequality `I_a ≤ I_b + I_c` (a consequence of
+//! `I_a = Σ m (r_b² + r_c²)`, with equality for a flat lamina).
+
+use crate::{Error, Mat3, Quat, Real, UnitQuat, Vec3};
+
+/// Sweeps of the cyclic Jacobi method before it stops regardless of convergence.
+///
+/// Jacobi converges quadratically once the off-diagonal part is small; for a 3×3 matrix 4–6
+/// sweeps reach the rounding floor in f64 (fewer in f32). Twelve is a safe cap that bounds the
+/// worst-case cost (12 × 3 plane rotations) for firmware, and is never reached in the tests.
+pub const JACOBI_MAX_SWEEPS: usize = 12;
+
+/// Symmetry tolerance of [`Inertia::try_from_tensor`], in units of machine epsilon times the
+/// largest absolute entry: `|I_ij − I_ji| ≤ 64 ε · max|I|`.
+///
+/// A tensor computed in floating point (for example by rotating a diagonal one,
+/// `R·diag·Rᵀ`, about 20 roundings per entry) is symmetric to a few ulp of its largest entry;
+/// 64 ulp accepts that with margin and rejects a genuinely asymmetric matrix (a typo, a
+/// transposed off-diagonal sign). The accepted tensor is symmetrised by averaging.
+pub const SYMMETRY_TOLERANCE_EPS: f64 = 64.0;
+
+/// Rounding allowance, in units of machine epsilon times the trace, of the positive-definiteness
+/// and triangle-inequality checks: `λ_min > 32 ε · tr I` and `λ_a ≤ λ_b + λ_c + 32 ε · tr I`.
+///
+/// The Jacobi eigenvalues carry an absolute error of a few `ε · ‖I‖`; below this margin the sign
+/// of `λ_min` (or of `λ_b + λ_c − λ_a`) is not known. The triangle allowance accepts a flat
+/// lamina (`I_3 = I_1 + I_2` exactly); the definiteness margin rejects a thin rod (`I_3 = 0`),
+/// whose `I⁻¹` does not exist.
+pub const EIGEN_TOLERANCE_EPS: f64 = 32.0;
+
+/// A physical rigid-body inertia tensor in the body frame, with its inverse and principal axes.
+///
+/// # Invariant
+/// Finite, symmetric, positive definite, principal moments satisfying `I_a ≤ I_b + I_c`; built
+/// only by the checked constructors.
+///
+/// # Principal frame
+/// [`Inertia::principal_moments`] `(λ₁, λ₂, λ₃)` and [`Inertia::principal_rotation`] `P` satisfy
+/// `I = R(P) · diag(λ) · R(P)ᵀ`: `P` maps principal-frame vectors to body-frame vectors
+/// (`v_body = P ⊗ v_principal ⊗ P*`), so an attitude `q` (body → lab) becomes `q ⊗ P` in the
+/// principal frame. The moments are in the order the decomposition produces them, which for a
+/// diagonal tensor is the body-axis order with `P` the identity exactly (no reordering).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inertia<T> {
+    tensor: Mat3<T>,
+    inverse: Mat3<T>,
+    moments: Vec3<T>,
+    axes: Mat3<T>,
+    rotation: UnitQuat<T>,
+    diagonal: bool,
+}
+
+impl<T: Real> Inertia<T> {
+    /// The inertia of a body whose principal axes are its body axes: `diag(I₁, I₂, I₃)`.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite moment; [`Error::NonPhysicalInertia`] for a moment
+    /// that is not positive or a triple that violates `I_a ≤ I_b + I_c`.
+    ///
+    /// ```
+    /// use gyrostat::{Error, Vec3, dynamics::inertia::Inertia};
+    /// let i = Inertia::try_from_principal(Vec3::new(6.0f64, 4.0, 3.0))?;
+    /// assert_eq!(i.principal_moments(), Vec3::new(6.0, 4.0, 3.0));
+    /// // A "body" with I₁ > I₂ + I₃ cannot be built from masses.
+    /// assert_eq!(
+    ///     Inertia::try_from_principal(Vec3::new(8.0f64, 4.0, 3.0)),
+    ///     Err(Error::NonPhysicalInertia)
+    /// );
+    /// # Ok::<(), Error>(())
+    /// ```
+    pub fn try_from_principal(moments: Vec3<T>) -> Result<Self, Error> {
+        Self::try_from_tensor(Mat3::from_diagonal(moments))
+    }
+
+    /// The inertia from its six independent components: the diagonal `(I₁₁, I₂₂, I₃₃)` and the
+    /// off-diagonal products `(I₁₂, I₁₃, I₂₃)` (entries of the tensor itself, so a point mass
+    /// contributes `I₁₂ = −m x y` by (6.5.5)).
+    ///
+    /// # Errors
+    /// As [`Inertia::try_from_tensor`].
+    pub fn try_from_components(diagonal: Vec3<T>, off_diagonal: Vec3<T>) -> Result<Self, Error> {
+        let (d, o) = (diagonal, off_diagonal);
+        Self::try_from_tensor(Mat3::from_rows(
+            [d.x, o.x, o.y],
+            [o.x, d.y, o.z],
+            [o.y, o.z, d.z],
+        ))
+    }
+
+    /// Validates a full body-frame tensor (seed (6.5.5b)) and computes its principal frame.
+    ///
+    /// # Errors
+    /// - [`Error::NonFinite`]: an entry is NaN or infinite;
+    /// - [`Error::NonPhysicalInertia`]: not symmetric within [`SYMMETRY_TOLERANCE_EPS`], not
+    ///   positive definite, or principal moments violating `I_a ≤ I_b + I_c` (both within
+    ///   [`EIGEN_TOLERANCE_EPS`]).
+    pub fn try_from_tensor(tensor: Mat3<T>) -> Result<Self, Error> {
+        if !tensor.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        let m = tensor.m;
+        let scale = tensor.max_abs();
+        let sym_tol = T::from_f64(SYMMETRY_TOLERANCE_EPS) * T::EPSILON * scale;
+        if (m[0][1] - m[1][0]).abs() > sym_tol
+            || (m[0][2] - m[2][0]).abs() > sym_tol
+            || (m[1][2] - m[2][1]).abs() > sym_tol
+        {
+            return Err(Error::NonPhysicalInertia);
+        }
+        let o01 = (m[0][1] + m[1][0]) * T::HALF;
+        let o02 = (m[0][2] + m[2][0]) * T::HALF;
+        let o12 = (m[1][2] + m[2][1]) * T::HALF;
+        let sym = Mat3::from_rows(
+            [m[0][0], o01, o02],
+            [o01, m[1][1], o12],
+            [o02, o12, m[2][2]],
+        );
+        let (moments, axes) = symmetric_eigen(&sym);
+        let trace = moments.x + moments.y + moments.z;
+        let tol = T::from_f64(EIGEN_TOLERANCE_EPS) * T::EPSILON * trace.abs();
+        let min = moments.x.min(moments.y).min(moments.z);
+        if min <= tol {
+            return Err(Error::NonPhysicalInertia);
+        }
+        let (a, b, c) = (moments.x, moments.y, moments.z);
+        if a > b + c + tol || b > a + c + tol || c > a + b + tol {
+            return Err(Error::NonPhysicalInertia);
+        }
+        let inv = Vec3::new(T::ONE / a, T::ONE / b, T::ONE / c);
+        let inverse = axes * Mat3::from_diagonal(inv) * axes.transpose();
+        let diagonal = o01 == T::ZERO && o02 == T::ZERO && o12 == T::ZERO;
+        Ok(Self {
+            tensor: sym,
+            inverse,
+            moments,
+            axes,
+            rotation: quat_from_rotation_matrix(&axes),
+            diagonal,
+        })
+    }
+
+    /// The (symmetrised) body-frame tensor `I`.
+    #[inline]
+    pub fn tensor(&self) -> Mat3<T> {
+        self.tensor
+    }
+
+    /// The inverse tensor `I⁻¹ = R(P)·diag(1/λ)·R(P)ᵀ`.
+    #[inline]
+    pub fn inverse(&self) -> Mat3<T> {
+        self.inverse
+    }
+
+    /// The principal moments `(λ₁, λ₂, λ₃)` (see the type docs for their order).
+    #[inline]
+    pub fn principal_moments(&self) -> Vec3<T> {
+        self.moments
+    }
+
+    /// The principal axes as the columns of a proper rotation matrix, in body coordinates.
+    #[inline]
+    pub fn principal_axes(&self) -> Mat3<T> {
+        self.axes
+    }
+
+    /// The rotation `P` from the principal frame to the body frame (`v_body = P ⊗ v_p ⊗ P*`).
+    #[inline]
+    pub fn principal_rotation(&self) -> UnitQuat<T> {
+        self.rotation
+    }
+
+    /// `true` when the tensor was exactly diagonal: principal frame = body frame, `P = 1`.
+    #[inline]
+    pub fn is_diagonal(&self) -> bool {
+        self.diagonal
+    }
+
+    /// Angular momentum of a rigid rotation, `L = I·ω` (6.5.3).
+    #[inline]
+    pub fn mul_vec(&self, omega: Vec3<T>) -> Vec3<T> {
+        self.tensor * omega
+    }
+
+    /// Angular velocity from angular momentum, `ω = I⁻¹·J` (6.5.14a).
+    #[inline]
+    pub fn solve(&self, momentum: Vec3<T>) -> Vec3<T> {
+        self.inverse * momentum
+    }
+
+    /// Rotational kinetic energy `½ J·I⁻¹·J` (6.5.11).
+    #[inline]
+    pub fn energy_from_momentum(&self, momentum: Vec3<T>) -> T {
+        T::HALF * momentum.dot(self.solve(momentum))
+    }
+
+    /// Principal radii of gyration `kᵢ = √(λᵢ / M)` for a body of mass `mass`.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite mass, [`Error::InvalidArgument`] for `mass ≤ 0`.
+    pub fn radii_of_gyration(&self, mass: T) -> Result<Vec3<T>, Error> {
+        let inv_m = inverse_mass(mass)?;
+        let m = self.moments;
+        Ok(Vec3::new(
+            (m.x * inv_m).sqrt(),
+            (m.y * inv_m).sqrt(),
+            (m.z * inv_m).sqrt(),
+        ))
+    }
+
+    /// Radius of gyration about a body-frame axis through the reference point:
+    /// `k = √(n̂·I·n̂ / M)`.
+    ///
+    /// # Errors
+    /// As [`Inertia::radii_of_gyration`], plus the errors of normalising `axis`
+    /// ([`Error::ZeroNorm`], [`Error::NonFinite`]).
+    pub fn radius_of_gyration_about(&self, axis: Vec3<T>, mass: T) -> Result<T, Error> {
+        let inv_m = inverse_mass(mass)?;
+        let n = axis.try_normalize()?;
+        Ok((n.dot(self.tensor * n) * inv_m).sqrt())
+    }
+}
+
+fn inverse_mass<T: Real>(mass: T) -> Result<T, Error> {
+    if !mass.is_finite() {
+        return Err(Error::NonFinite);
+    }
+    if mass <= T::ZERO {
+        return Err(Error::InvalidArgument);
+    }
+    Ok(T::ONE / mass)
+}
+
+/// Eigen-decomposition of a symmetric 3×3 matrix by the cyclic Jacobi method.
+///
+/// Returns `(λ, V)` with `A ≈ V·diag(λ)·Vᵀ`, `V` a proper rotation (its columns the unit
+/// eigenvectors, the third negated if needed so that `det V = +1`). Only the upper triangle of
+/// `a` is read. No reordering: a diagonal input returns its diagonal and `V = 1` exactly.
+///
+/// Each plane rotation uses the stable small-angle form `t = sgn θ / (|θ| + √(θ² + 1))`,
+/// `θ = (a_qq − a_pp)/(2 a_pq)` (Rutishauser; Golub & Van Loan §8.5), with `√(θ²+1)` as a
+/// `hypot` so that a tiny `a_pq` cannot overflow it. Sweeps stop when the off-diagonal part is
+/// below `ε²` of the diagonal, or after [`JACOBI_MAX_SWEEPS`]. Eigenvalue error ≈ a few
+/// `ε·‖A‖`. Never panics; a non-finite input gives a non-finite output.
+pub fn symmetric_eigen<T: Real>(a: &Mat3<T>) -> (Vec3<T>, Mat3<T>) {
+    let m = a.m;
+    let mut s = Sym {
+        d: Vec3::new(m[0][0], m[1][1], m[2][2]),
+        o01: m[0][1],
+        o02: m[0][2],
+        o12: m[1][2],
+    };
+    let mut v = [Vec3::X, Vec3::Y, Vec3::Z];
+    for _ in 0..JACOBI_MAX_SWEEPS {
+        let off = s.o01.abs() + s.o02.abs() + s.o12.abs();
+        let diag = s.d.x.abs() + s.d.y.abs() + s.d.z.abs();
+        if off <= T::EPSILON * T::EPSILON * diag {
+            break;
+        }
+        // Pair (0, 1), third index 2.
+        if let Some((c, sn, t)) = jacobi_angle(s.d.x, s.d.y, s.o01) {
+            s.d.x -= t * s.o01;
+            s.d.y += t * s.o01;
+            s.o01 = T::ZERO;
+            let (r_p, r_q) = (s.o02, s.o12);
+            s.o02 = c * r_p - sn * r_q;
+            s.o12 = sn * r_p + c * r_q;
+            let [vp, vq, vr] = v;
+            v = [vp * c - vq * sn, vp * sn + vq * c, vr];
+        }
+        // Pair (0, 2), third index 1.
+        if let Some((c, sn, t)) = jacobi_angle(s.d.x, s.d.z, s.o02) {
+            s.d.x -= t * s.o02;
+            s.d.z += t * s.o02;
+            s.o02 = T::ZERO;
+            let (r_p, r_q) = (s.o01, s.o12);
+            s.o01 = c * r_p - sn * r_q;
+            s.o12 = sn * r_p + c * r_q;
+            let [vp, vr, vq] = v;
+            v = [vp * c - vq * sn, vr, vp * sn + vq * c];
+        }
+        // Pair (1, 2), third index 0.
+        if let Some((c, sn, t)) = jacobi_angle(s.d.y, s.d.z, s.o12) {
+            s.d.y -= t * s.o12;
+            s.d.z += t * s.o12;
+            s.o12 = T::ZERO;
+            let (r_p, r_q) = (s.o01, s.o02);
+            s.o01 = c * r_p - sn * r_q;
+            s.o02 = sn * r_p + c * r_q;
+            let [vr, vp, vq] = v;
+            v = [vr, vp * c - vq * sn, vp * sn + vq * c];
+        }
+    }
+    let [v0, v1, mut v2] = v;
+    if v0.cross(v1).dot(v2) < T::ZERO {
+        v2 = -v2;
+    }
+    (s.d, Mat3::from_cols(v0, v1, v2))
+}
+
+/// The working symmetric matrix of [`symmetric_eigen`], by named entries (no indexing).
+struct Sym<T> {
+    d: Vec3<T>,
+    o01: T,
+    o02: T,
+    o12: T,
+}
+
+/// `(c, s, t)` of the Jacobi rotation that zeroes `a_pq`, or `None` if it is already zero.
+#[inline]
+fn jacobi_angle<T: Real>(app: T, aqq: T, apq: T) -> Option<(T, T, T)> {
+    if apq == T::ZERO {
+        return None;
+    }
+    let theta = (aqq - app) / (T::TWO * apq);
+    let t = T::ONE.copysign(theta) / (theta.abs() + theta.hypot(T::ONE));
+    let c = T::ONE / t.hypot(T::ONE);
+    Some((c, t * c, t))
+}
+
+/// The unit quaternion of a proper rotation matrix (Shepperd's method: the largest of the four
+/// squared components is taken from the diagonal, the others from off-diagonal sums, so that no
+/// small number is divided by). Sign chosen with `w ≥ 0`.
+pub(crate) fn quat_from_rotation_matrix<T: Real>(r: &Mat3<T>) -> UnitQuat<T> {
+    let m = r.m;
+    let tr = m[0][0] + m[1][1] + m[2][2];
+    let one = T::ONE;
+    let quarter = T::HALF * T::HALF;
+    let q = if tr >= m[0][0] && tr >= m[1][1] && tr >= m[2][2] {
+        let s = (one + tr).sqrt() * T::TWO; // 4w
+        Quat::new(
+            quarter * s,
+            (m[2][1] - m[1][2]) / s,
+            (m[0][2] - m[2][0]) / s,
+            (m[1][0] - m[0][1]) / s,
+        )
+    } else if m[0][0] >= m[1][1] && m[0][0] >= m[2][2] {
+        let s = (one + m[0][0] - m[1][1] - m[2][2]).sqrt() * T::TWO; // 4x
+        Quat::new(
+            (m[2][1] - m[1][2]) / s,
+            quarter * s,
+            (m[0][1] + m[1][0]) / s,
+            (m[0][2] + m[2][0]) / s,
+        )
+    } else if m[1][1] >= m[2][2] {
+        let s = (one + m[1][1] - m[0][0] - m[2][2]).sqrt() * T::TWO; // 4y
+        Quat::new(
+            (m[0][2] - m[2][0]) / s,
+            (m[0][1] + m[1][0]) / s,
+            quarter * s,
+            (m[1][2] + m[2][1]) / s,
+        )
+    } else {
+        let s = (one + m[2][2] - m[0][0] - m[1][1]).sqrt() * T::TWO; // 4z
+        Quat::new(
+            (m[1][0] - m[0][1]) / s,
+            (m[0][2] + m[2][0]) / s,
+            (m[1][2] + m[2][1]) / s,
+            quarter * s,
+        )
+    };
+    let q = if q.w < T::ZERO { -q } else { q };
+    // The input is orthonormal to rounding, so |q| is 1 to rounding and the identity fallback is
+    // unreachable except for a non-finite matrix.
+    UnitQuat::try_new(q).unwrap_or(UnitQuat::IDENTITY)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn diagonal_is_identity_frame() {
+        let i = Inertia::try_from_principal(Vec3::new(6.0f64, 4.0, 3.0)).unwrap();
+        assert_eq!(i.principal_rotation(), UnitQuat::IDENTITY);
+        assert!(i.is_diagonal());
+        assert_eq!(i.solve(Vec3::new(6.0, 4.0, 3.0)), Vec3::new(1.0, 1.0, 1.0));
+    }
+
+    #[test]
+    fn reconstructs_rotated_tensor() {
+        let q = UnitQuat::try_from_axis_angle(Vec3::new(1.0f64, 2.0, -0.5), 0.9).unwrap();
+        let r = q.to_rotation_matrix();
+        let a = r * Mat3::from_diagonal(Vec3::new(2.0, 3.0, 4.0)) * r.transpose();
+        let i = Inertia::try_from_tensor(a).unwrap();
+        let v = i.principal_axes();
+        let back = v * Mat3::from_diagonal(i.principal_moments()) * v.transpose();
+        assert!((back - a).max_abs() < 1e-14);
+        let p = i.principal_rotation().to_rotation_matrix();
+        assert!((p - v).max_abs() < 1e-15);
+        assert!((i.inverse() * a - Mat3::IDENTITY).max_abs() < 1e-14);
+    }
+
+    #[test]
+    fn rejects_non_physical() {
+        let e = Err(Error::NonPhysicalInertia);
+        assert_eq!(Inertia::try_from_principal(Vec3::new(1.0f32, 1.0, 0.0)), e);
+        assert_eq!(Inertia::try_from_principal(Vec3::new(1.0f32, 1.0, -1.0)), e);
+        assert_eq!(Inertia::try_from_principal(Vec3::new(3.0f32, 1.0, 1.5)), e);
+        let flat = Inertia::try_from_principal(Vec3::new(1.0f32, 2.0, 3.0));
+        assert!(flat.is_ok());
+        let asym = Mat3::from_rows([2.0f64, 0.1, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 2.0]);
+        assert_eq!(
+            Inertia::try_from_tensor(asym),
+            Err(Error::NonPhysicalInertia)
+        );
+        let nan = Vec3::new(f64::NAN, 1.0, 1.0);
+        assert_eq!(Inertia::try_from_principal(nan), Err(Error::NonFinite));
+    }
+
+    #[test]
+    fn shepperd_all_branches() {
+        // Near-π turns about each axis select the x, y, z branches; a small turn the w branch.
+        for (axis, angle) in [
+            (Vec3::new(1.0f64, 0.1, -0.2), 3.1),
+            (Vec3::new(0.1, 1.0, 0.2), 3.0),
+            (Vec3::new(-0.2, 0.1, 1.0), 3.13),
+            (Vec3::new(0.3, -0.5, 0.8), 0.4),
+        ] {
+            let q = UnitQuat::try_from_axis_angle(axis, angle).unwrap();
+            let back = quat_from_rotation_matrix(&q.to_rotation_matrix());
+            assert!(back.dot(q).abs() > 1.0 - 1e-15, "{axis:?} {angle}");
+        }
+    }
+}
