@@ -56,20 +56,23 @@ mod firmware {
     /// Repetitions per measurement: QEMU's SysTick on some boards (microbit) jitters by about
     /// 2% of a short interval; averaging a long interval makes that negligible.
     const REPS: u32 = 64;
+    /// Repetitions for heavy operations (a dynamics step in soft float), so that 4 calls stay
+    /// below the 2^24-tick range of SysTick.
+    const REPS_HEAVY: u32 = 4;
 
-    /// Ticks of `REPS` calls of `f`.
+    /// Ticks of `reps` calls of `f`.
     #[inline(always)]
-    fn ticks_reps<R>(f: impl Fn() -> R) -> u32 {
+    fn ticks_reps<R>(reps: u32, f: impl Fn() -> R) -> u32 {
         ticks(|| {
-            for _ in 0..black_box(REPS) {
+            for _ in 0..black_box(reps) {
                 black_box(f());
             }
         })
     }
 
     struct Calibration {
-        /// Ticks of `REPS` empty iterations (loop and `black_box` overhead).
-        overhead: u32,
+        /// Ticks of `REPS` and of `REPS_HEAVY` empty iterations (loop and `black_box` overhead).
+        overhead: [u32; 2],
         /// Ticks per 200 000 instructions.
         per_200k: u32,
     }
@@ -79,7 +82,7 @@ mod firmware {
             // The first readings after SysTick starts are skewed by the timer's start-up in
             // QEMU; a warm-up run of a few thousand instructions settles it.
             spin(black_box(5000));
-            let overhead = ticks_reps(|| ());
+            let overhead = [ticks_reps(REPS, || ()), ticks_reps(REPS_HEAVY, || ())];
             let t0 = ticks(|| spin(black_box(1)));
             let t1 = ticks(|| spin(black_box(100_001)));
             // (t1 − t0) is exactly 200 000 instructions: 100 000 more `subs`/`bne` iterations.
@@ -89,10 +92,15 @@ mod firmware {
             }
         }
 
-        /// Instructions per call for the tick count of `REPS` calls, rounded to nearest.
-        fn instructions(&self, t: u32) -> u32 {
-            let t = t.saturating_sub(self.overhead) as u64;
-            let d = self.per_200k as u64 * REPS as u64;
+        /// Instructions per call for the tick count of `reps` calls, rounded to nearest.
+        fn instructions(&self, t: u32, reps: u32) -> u32 {
+            let overhead = if reps == REPS {
+                self.overhead[0]
+            } else {
+                self.overhead[1]
+            };
+            let t = t.saturating_sub(overhead) as u64;
+            let d = self.per_200k as u64 * reps as u64;
             ((t * 200_000 + d / 2) / d) as u32
         }
     }
@@ -103,23 +111,29 @@ mod firmware {
     /// Measures everything first and prints at the end: semihosting I/O between measurements
     /// perturbs QEMU's virtual clock on some boards.
     struct Table {
-        rows: [(&'static str, u32); CAP],
+        rows: [(&'static str, u32, u32); CAP],
         len: usize,
     }
 
     impl Table {
-        fn push(&mut self, name: &'static str, ticks: u32) {
+        fn push(&mut self, name: &'static str, ticks: u32, reps: u32) {
             if let Some(row) = self.rows.get_mut(self.len) {
-                *row = (name, ticks);
+                *row = (name, ticks, reps);
                 self.len += 1;
             }
         }
     }
 
+    /// `count!(table, "name", || expr)` measures `REPS` calls;
+    /// `count!(table, "name", heavy, || expr)` measures `REPS_HEAVY` calls.
     macro_rules! count {
+        ($table:expr, $name:expr, heavy, $f:expr) => {{
+            let t = ticks_reps(REPS_HEAVY, $f);
+            $table.push($name, t, REPS_HEAVY);
+        }};
         ($table:expr, $name:expr, $f:expr) => {{
-            let t = ticks_reps($f);
-            $table.push($name, t);
+            let t = ticks_reps(REPS, $f);
+            $table.push($name, t, REPS);
         }};
     }
 
@@ -136,7 +150,7 @@ mod firmware {
 
         let cal = Calibration::new();
         let mut table = Table {
-            rows: [("", 0); CAP],
+            rows: [("", 0, 0); CAP],
             len: 0,
         };
 
@@ -238,14 +252,115 @@ mod firmware {
             });
         }
 
+        {
+            use gyrostat::rotation::{Euler, EulerSequence, GimbalPolicy};
+            let e = [0.3f32, -0.5, 1.2];
+            let qe = Euler::new(EulerSequence::ZYX, e).to_unit_quat();
+            let lock = Euler::new(
+                EulerSequence::ZYX,
+                [0.3f32, core::f32::consts::FRAC_PI_2, 0.1],
+            )
+            .to_unit_quat();
+            let zyx = EulerSequence::ZYX;
+            let zyz = EulerSequence::ZYZ;
+            count!(table, "rot_euler_to_quat_zyx_f32", || Euler::new(
+                zyx,
+                black_box(e)
+            )
+            .to_unit_quat());
+            count!(table, "rot_quat_to_euler_zyx_f32", || black_box(qe)
+                .to_euler(zyx, GimbalPolicy::ZeroThird));
+            count!(table, "rot_quat_to_euler_zyz_f32", || black_box(qe)
+                .to_euler(zyz, GimbalPolicy::ZeroThird));
+            count!(table, "rot_quat_to_euler_zyx_at_lock_closest_f32", || {
+                black_box(lock).to_euler(zyx, GimbalPolicy::ClosestTo(black_box([0.2, 1.5, 0.0])))
+            });
+        }
+        {
+            use gyrostat::dynamics::free_rigid_body::FreeRigidBody;
+            use gyrostat::dynamics::{
+                BodyHamiltonian, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
+            };
+            let principal = Inertia::try_from_principal(Vec3::new(6.0f32, 4.0, 3.0));
+            let full = Inertia::try_from_components(
+                Vec3::new(3.0f32, 4.0, 5.0),
+                Vec3::new(-0.4, 0.25, 0.3),
+            );
+            let wheels = [
+                Wheel::try_new(Vec3::X, 0.02f32),
+                Wheel::try_new(Vec3::Y, 0.02),
+                Wheel::try_new(Vec3::Z, 0.02),
+                Wheel::try_new(Vec3::new(1.0, 1.0, 1.0), 0.02),
+            ];
+            let exact = FreeRigidBody::try_new(
+                Vec3::new(6.0f32, 4.0, 3.0),
+                Vec3::new(0.3, 4.0, 0.05),
+                UnitQuat::IDENTITY,
+            );
+            if let (Ok(principal), Ok(full), [Ok(w0), Ok(w1), Ok(w2), Ok(w3)], Ok(exact)) =
+                (principal, full, wheels, exact)
+            {
+                let body = BodyHamiltonian::rigid(principal);
+                let full_body = BodyHamiltonian::rigid(full);
+                let s = State {
+                    attitude: UnitQuat::IDENTITY,
+                    momentum: Vec3::new(0.3f32, 4.0, 0.05),
+                };
+                let h = 0.01f32;
+                count!(table, "dyn_rk4_step_f32", heavy, || body.step(
+                    Integrator::Rk4,
+                    black_box(&s),
+                    black_box(h)
+                ));
+                count!(table, "dyn_strang_step_f32", heavy, || body.step(
+                    Integrator::Strang,
+                    black_box(&s),
+                    black_box(h)
+                ));
+                count!(table, "dyn_yoshida4_step_f32", heavy, || body.step(
+                    Integrator::Yoshida4,
+                    black_box(&s),
+                    black_box(h)
+                ));
+                count!(table, "dyn_suzuki4_step_f32", heavy, || body.step(
+                    Integrator::Suzuki4,
+                    black_box(&s),
+                    black_box(h)
+                ));
+                count!(table, "dyn_strang_step_full_tensor_f32", heavy, || {
+                    full_body.step(Integrator::Strang, black_box(&s), black_box(h))
+                });
+                let g = Gyrostat::new(full_body, [w0, w1, w2, w3]);
+                let gs = g.state_from_omega(UnitQuat::IDENTITY, Vec3::new(0.1, 0.5, 0.2), [0.0; 4]);
+                let tau = Vec3::new(0.01f32, 0.0, -0.005);
+                let cmd = WheelCommand::Torque([0.001f32, -0.002, 0.0005, 0.0]);
+                count!(
+                    table,
+                    "dyn_gyrostat_4_wheels_strang_step_f32",
+                    heavy,
+                    || {
+                        g.step(
+                            Integrator::Strang,
+                            black_box(&gs),
+                            black_box(h),
+                            black_box(tau),
+                            &cmd,
+                        )
+                    }
+                );
+                count!(table, "dyn_exact_free_body_state_at_f32", heavy, || exact
+                    .state_at(black_box(7.5f32)));
+            }
+        }
+
         hprintln!(
             "calibration reps={} overhead_ticks={} ticks_per_200000_instructions={}",
             REPS,
-            cal.overhead,
+            cal.overhead[0],
             cal.per_200k
         );
-        for (name, t) in table.rows.iter().take(table.len) {
-            hprintln!("icount {} {}", name, cal.instructions(*t));
+        for (name, t, reps) in table.rows.iter().take(table.len) {
+            hprintln!("icount {} {}", name, cal.instructions(*t, *reps));
         }
         hprintln!("done");
         exit(debug::EXIT_SUCCESS)

@@ -108,6 +108,60 @@ mod firmware {
                 }
             }
         }
+        {
+            use gyrostat::rotation::{Euler, EulerSequence, GimbalPolicy};
+            for seq in EulerSequence::ALL {
+                let e = Euler::new(seq, black_box([0.3f32, -0.5, 1.2]));
+                let qe = e.to_unit_quat();
+                sink(e.try_to_unit_quat());
+                for policy in [
+                    GimbalPolicy::ZeroFirst,
+                    GimbalPolicy::ZeroThird,
+                    GimbalPolicy::ClosestTo(black_box([0.1, 0.2, 0.3])),
+                ] {
+                    sink(black_box(qe).to_euler(seq, policy));
+                }
+            }
+        }
+        {
+            use gyrostat::dynamics::free_rigid_body::FreeRigidBody;
+            use gyrostat::dynamics::{
+                BodyHamiltonian, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
+            };
+            let moments = black_box(Vec3::new(6.0f32, 4.0, 3.0));
+            let j0 = black_box(Vec3::new(0.3f32, 4.0, 0.05));
+            if let (Ok(inertia), Ok(w)) = (
+                Inertia::try_from_components(moments, black_box(Vec3::new(-0.4, 0.25, 0.3))),
+                Wheel::try_new(black_box(Vec3::Z), black_box(0.02f32)),
+            ) {
+                let body = BodyHamiltonian::rigid(inertia);
+                let s = State {
+                    attitude: q,
+                    momentum: j0,
+                };
+                for integ in [
+                    Integrator::Rk4,
+                    Integrator::Strang,
+                    Integrator::Yoshida4,
+                    Integrator::Suzuki4,
+                ] {
+                    sink(body.step(black_box(integ), &s, black_box(0.01)));
+                }
+                let g = Gyrostat::new(body, [w]);
+                let gs = g.state_from_omega(q, v, [0.0]);
+                sink(g.step(
+                    Integrator::Strang,
+                    &gs,
+                    black_box(0.01),
+                    v,
+                    &WheelCommand::Torque([black_box(0.001)]),
+                ));
+            }
+            if let Ok(exact) = FreeRigidBody::try_new(moments, j0, q) {
+                sink(exact.try_state_at(black_box(7.5)));
+                sink(exact.flip_interval());
+            }
+        }
         // f64 (soft float on every Cortex-M) goes through the same paths.
         let q64 =
             UnitQuat::try_from_axis_angle(black_box(Vec3::new(1.0f64, 2.0, 3.0)), black_box(0.5));
