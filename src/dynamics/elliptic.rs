@@ -75,8 +75,7 @@ const CARLSON_MAX_STEPS: usize = 64;
 
 /// The stopping threshold of Carlson's duplication: `½·ε^{1/6}` for the type's epsilon `ε`.
 ///
-/// The truncation error of the series after stopping is about `tol⁶` (Carlson 1995, eq. 2.2 and
-/// 2.11), so `(½ ε^{1/6})⁶ = ε/64`, below the type's rounding: 1.2e-3 for f64, 3.5e-2 for f32.
+/// The truncation error of the series after stopping is of order `tol⁶` (Carlson 1995), so `(½ ε^{1/6})⁶ = ε/64`, below the type's rounding: 1.2e-3 for f64, 3.5e-2 for f32.
 fn carlson_tolerance<T: Real>() -> T {
     (T::EPSILON.ln() * T::from_f64(1.0 / 6.0)).exp() * T::HALF
 }
@@ -291,7 +290,7 @@ pub(crate) fn amplitude_parts<T: Real>(u: T, m: T, m1: T) -> (T, T, T, T, T) {
 
 /// Carlson's symmetric integral of the first kind
 /// `R_F(x, y, z) = ½ ∫₀^∞ dt / √((t + x)(t + y)(t + z))` (DLMF 19.16.1), by duplication
-/// (Carlson 1995, Algorithm 1; DLMF 19.36.1 for the series).
+/// (Carlson 1995; DLMF 19.36.1 for the series).
 ///
 /// # Errors
 /// [`Error::NonFinite`] for non-finite input; [`Error::InvalidArgument`] if an argument is
@@ -365,7 +364,7 @@ fn rc_unchecked<T: Real>(mut x: T, mut y: T) -> T {
         x = (x + lambda) * quarter;
         y = (y + lambda) * quarter;
     }
-    // Carlson 1995 eq. (2.49): 1 + 3s²/10 + s³/7 + 3s⁴/8 + 9s⁵/22.
+    // Carlson 1995, series for R_C: 1 + 3s²/10 + s³/7 + 3s⁴/8 + 9s⁵/22.
     let c1 = T::from_f64(0.3);
     let c2 = T::from_f64(1.0 / 7.0);
     let c3 = T::from_f64(0.375);
@@ -375,7 +374,7 @@ fn rc_unchecked<T: Real>(mut x: T, mut y: T) -> T {
 
 /// Carlson's symmetric integral of the third kind
 /// `R_J(x, y, z, p) = (3/2) ∫₀^∞ dt / ((t + p) √((t + x)(t + y)(t + z)))` (DLMF 19.16.2) for
-/// `p > 0`, by duplication (Carlson 1995, Algorithm 3 with `R_C` for the correction sums).
+/// `p > 0`, by duplication (Carlson 1995, with `R_C` for the correction sums).
 ///
 /// # Errors
 /// [`Error::NonFinite`] for non-finite input; [`Error::InvalidArgument`] unless `x, y, z ≥ 0`

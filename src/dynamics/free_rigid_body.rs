@@ -18,7 +18,7 @@
 //!
 //! `A₁² = I₁(2EI₃ − J²)/(I₃ − I₁)`, `A₂² = I₂(2EI₃ − J²)/(I₃ − I₂)`,
 //! `A₃² = I₃(J² − 2EI₁)/(I₃ − I₁)`, `m = (I₂ − I₁)(2EI₃ − J²) / ((I₃ − I₂)(J² − 2EI₁))`,
-//! `|λ| = (A₃/I₃)·√((I₃ − I₂)(I₃ − I₁)/(I₁I₂))` (Landau–Lifshitz (37.10)–(37.12); indices are
+//! `|λ| = (A₃/I₃)·√((I₃ − I₂)(I₃ − I₁)/(I₁I₂))` (Landau–Lifshitz §37; indices are
 //! the relabelled ones). Every difference is evaluated from the components of `J` as a sum of
 //! same-signed terms, except `J² − 2E·I₂`, the distance to the separatrix.
 //!
@@ -30,16 +30,17 @@
 //! reaches `±e_b` off the separatrix and `ĵ·e_c₂ > 0` throughout, `θ, χ ∈ (0, π)` are continuous
 //! and the quaternion is continuous in `t`. The rotation angle `ψ` about the fixed lab momentum
 //! obeys `ψ̇ = (2E/|J| − |J| ĵ_b²/I_b) / (1 − ĵ_b²)` (the Euler-angle precession rate of
-//! Landau–Lifshitz (37.14)–(37.15) with the intermediate axis as pole), which with
+//! Landau–Lifshitz §37, with the intermediate axis as pole), which with
 //! `ĵ_b = (A₂/|J|) sn u` integrates in closed form:
 //!
 //! `ψ(t) = |J| t / I_b + (C/λ) [Π(n; am u | m) − Π(n; am u₀ | m)]`, `n = A₂²/J² < 1`,
 //! `C = 2E/|J| − |J|/I_b`,
 //!
 //! with `Π` the incomplete elliptic integral of the third kind, evaluated by Carlson's `R_F`,
-//! `R_J` ([`super::elliptic::incomplete_pi`]). This is the route Celledoni, Fassò, Säfström &
-//! Zanna (2008, SIAM J. Sci. Comput. 30(4), §3) take with Carlson's integrals; their alternative is
-//! the theta-function form (Jacobi's), not used here. Choosing the intermediate axis as pole
+//! `R_J` ([`super::elliptic::incomplete_pi`]). Celledoni, Fassò, Säfström & Zanna ("The exact
+//! computation of the free rigid body motion and its use in splitting methods", SIAM J. Sci.
+//! Comput. 30(4), 2008) discuss both closed forms of this angle, the elliptic integral of the
+//! third kind and Jacobi's theta functions; this module uses the former. Choosing the intermediate axis as pole
 //! keeps `n` in `[0, 1)`, with no cancellation near the stable axes (where spin-stabilised
 //! craft live).
 //!
@@ -362,7 +363,7 @@ impl<T: Real> FreeRigidBody<T> {
             let kc = complete_k_unchecked(m, m1);
             // u₀ = F(φ₀|m). Near |φ₀| = π/2 with m → 1 (J near the separatrix, crossing the
             // intermediate axis region) F is ill-conditioned in φ (slope 1/dn); there use
-            // F(φ₀) = K − F(φ'), tan φ' = cot φ₀ / √m₁ (A&S 17.4.13; sn(K − u) = cn u/dn u),
+            // F(φ₀) = K − F(φ'), tan φ' = cot φ₀ / √m₁ (from sn(K − u) = cn u/dn u, A&S §16.8),
             // whose slope is dn(φ₀)/√m₁. Pick the smaller slope: direct iff dn²(φ₀) ≥ √m₁.
             let h = sn_scaled.hypot(cn_scaled);
             let (sphi, cphi) = (sn_scaled / h, cn_scaled / h);
