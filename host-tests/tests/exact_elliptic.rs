@@ -237,3 +237,26 @@ fn carlson_special_values() {
     assert!((carlson_rj(0.0f64, 1.0, 2.0, 3.0).unwrap() - 0.776_886_237_785_82).abs() < 1e-13);
     assert!((carlson_rf(0.0f32, 1.0, 2.0).unwrap() as f64 - 1.311_028_777_146_1).abs() < 3e-7);
 }
+
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Identities and the addition-free symmetries for arbitrary (u, m): sn² + cn² = 1,
+        /// dn² + m sn² = 1, sn(−u) = −sn u, and the quarter-period shift sn(u + K) = cd u
+        /// (A&S 16.8.1), in f64.
+        #[test]
+        fn jacobi_laws(u in -60.0f64..60.0, m in 0.0f64..0.999_999) {
+            let (s, c, d) = sn_cn_dn(u, m).unwrap();
+            prop_assert!((s * s + c * c - 1.0).abs() < 1e-15);
+            prop_assert!((d * d + m * s * s - 1.0).abs() < 1e-15);
+            let (s2, c2, d2) = sn_cn_dn(-u, m).unwrap();
+            prop_assert!(s2 == -s && c2 == c && d2 == d);
+            let k = complete_k(m).unwrap();
+            let (sk, _, _) = sn_cn_dn(u + k, m).unwrap();
+            // Slope of sn ≤ 1, so the reduction rounding of |u| ≤ 60 + K bounds the difference.
+            prop_assert!((sk - c / d).abs() < 1e-13 * (1.0 + u.abs()) / (1.0 - m).sqrt().max(1e-3), "{sk} vs {}", c / d);
+        }
+    }
+}

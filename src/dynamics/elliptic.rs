@@ -75,8 +75,7 @@ const CARLSON_MAX_STEPS: usize = 64;
 
 /// The stopping threshold of Carlson's duplication: `½·ε^{1/6}` for the type's epsilon `ε`.
 ///
-/// The truncation error of the series after stopping is about `tol⁶` (Carlson 1995, eq. 2.2 and
-/// 2.11), so `(½ ε^{1/6})⁶ = ε/64`, below the type's rounding: 1.2e-3 for f64, 3.5e-2 for f32.
+/// The truncation error of the series after stopping is of order `tol⁶` (Carlson 1995), so `(½ ε^{1/6})⁶ = ε/64`, below the type's rounding: 1.2e-3 for f64, 3.5e-2 for f32.
 fn carlson_tolerance<T: Real>() -> T {
     (T::EPSILON.ln() * T::from_f64(1.0 / 6.0)).exp() * T::HALF
 }
@@ -291,7 +290,7 @@ pub(crate) fn amplitude_parts<T: Real>(u: T, m: T, m1: T) -> (T, T, T, T, T) {
 
 /// Carlson's symmetric integral of the first kind
 /// `R_F(x, y, z) = ½ ∫₀^∞ dt / √((t + x)(t + y)(t + z))` (DLMF 19.16.1), by duplication
-/// (Carlson 1995, Algorithm 1; DLMF 19.36.1 for the series).
+/// (Carlson 1995; DLMF 19.36.1 for the series).
 ///
 /// # Errors
 /// [`Error::NonFinite`] for non-finite input; [`Error::InvalidArgument`] if an argument is
@@ -365,7 +364,7 @@ fn rc_unchecked<T: Real>(mut x: T, mut y: T) -> T {
         x = (x + lambda) * quarter;
         y = (y + lambda) * quarter;
     }
-    // Carlson 1995 eq. (2.49): 1 + 3s²/10 + s³/7 + 3s⁴/8 + 9s⁵/22.
+    // Carlson 1995, series for R_C: 1 + 3s²/10 + s³/7 + 3s⁴/8 + 9s⁵/22.
     let c1 = T::from_f64(0.3);
     let c2 = T::from_f64(1.0 / 7.0);
     let c3 = T::from_f64(0.375);
@@ -375,7 +374,7 @@ fn rc_unchecked<T: Real>(mut x: T, mut y: T) -> T {
 
 /// Carlson's symmetric integral of the third kind
 /// `R_J(x, y, z, p) = (3/2) ∫₀^∞ dt / ((t + p) √((t + x)(t + y)(t + z)))` (DLMF 19.16.2) for
-/// `p > 0`, by duplication (Carlson 1995, Algorithm 3 with `R_C` for the correction sums).
+/// `p > 0`, by duplication (Carlson 1995, with `R_C` for the correction sums).
 ///
 /// # Errors
 /// [`Error::NonFinite`] for non-finite input; [`Error::InvalidArgument`] unless `x, y, z ≥ 0`
@@ -463,7 +462,7 @@ pub fn incomplete_f<T: Real>(phi: T, m: T) -> Result<T, Error> {
     let m1 = T::ONE - m;
     let (k, phi_r) = reduce_angle(phi);
     let kc = complete_k_unchecked(m, m1);
-    Ok(k * T::TWO * kc + f_reduced(phi_r, m))
+    Ok(k * T::TWO * kc + f_reduced(phi_r, m1))
 }
 
 /// `φ = kπ + φ_r` with `|φ_r| ≤ π/2`.
@@ -472,12 +471,13 @@ fn reduce_angle<T: Real>(phi: T) -> (T, T) {
     (k, phi - k * T::PI)
 }
 
-/// `F(φ|m)` for `|φ| ≤ π/2`, `m ∈ [0, 1)`.
-pub(crate) fn f_reduced<T: Real>(phi: T, m: T) -> T {
+/// `F(φ|m)` for `|φ| ≤ π/2`, given the complementary parameter `m₁ = 1 − m ∈ (0, 1]` (pass it
+/// accurately: near `m → 1` it sets `Δ²` and hence the result).
+pub(crate) fn f_reduced<T: Real>(phi: T, m1: T) -> T {
     let (s, c) = phi.sin_cos();
     // Δ² = 1 − m sin²φ = cos²φ + (1 − m) sin²φ: a sum of non-negative terms, no cancellation
-    // as m → 1 (1 − m is exact for m ≥ ½).
-    let y = c * c + (T::ONE - m) * s * s;
+    // as m → 1.
+    let y = c * c + m1 * s * s;
     s * rf_unchecked(c * c, y, T::ONE)
 }
 
@@ -500,36 +500,44 @@ pub fn incomplete_pi<T: Real>(n: T, phi: T, m: T) -> Result<T, Error> {
         return Err(Error::InvalidArgument);
     }
     let (k, phi_r) = reduce_angle(phi);
-    Ok(pi_parts(n, k, phi_r, m))
+    Ok(pi_parts(n, T::ONE - n, k, phi_r, T::ONE - m))
 }
 
-/// `Π(n; kπ + φ_r|m)` for `|φ_r| ≤ π/2`, `n < 1`, `m ∈ [0, 1)`; no checks.
-pub(crate) fn pi_parts<T: Real>(n: T, k: T, phi_r: T, m: T) -> T {
-    let partial = pi_reduced(n, phi_r, m);
+/// `Π(n; kπ + φ_r|m)` for `|φ_r| ≤ π/2`, `n < 1` (with `n₁ = 1 − n`), `m₁ = 1 − m ∈ (0, 1]`;
+/// no checks.
+fn pi_parts<T: Real>(n: T, n1: T, k: T, phi_r: T, m1: T) -> T {
+    let partial = pi_reduced(n, n1, phi_r, m1);
     if k == T::ZERO {
         partial
     } else {
-        partial + k * T::TWO * pi_reduced(n, T::FRAC_PI_2, m)
+        partial + k * T::TWO * pi_reduced(n, n1, T::FRAC_PI_2, m1)
     }
 }
 
-/// The complete `Π(n|m) = Π(n; π/2|m)`, `n < 1`, `m ∈ [0, 1)`; no checks.
-pub(crate) fn pi_complete_unchecked<T: Real>(n: T, m: T) -> T {
-    pi_reduced(n, T::FRAC_PI_2, m)
+/// The complete `Π(n|m) = Π(n; π/2|m)`, `n < 1` given with `n₁ = 1 − n` (pass it accurately
+/// when `n → 1`) and `m₁ = 1 − m ∈ (0, 1]` (likewise); no checks.
+pub(crate) fn pi_complete_unchecked<T: Real>(n: T, n1: T, m1: T) -> T {
+    pi_reduced(n, n1, T::FRAC_PI_2, m1)
 }
 
-/// `Π(n; kπ + φ_r|m)` given the complete integral `Π(n|m)`; no checks.
-pub(crate) fn pi_with_complete<T: Real>(n: T, k: T, phi_r: T, m: T, complete: T) -> T {
-    pi_reduced(n, phi_r, m) + k * T::TWO * complete
+/// `Π(n; kπ + φ_r|m)` given the complete integral `Π(n|m)` and `n₁ = 1 − n`; no checks.
+pub(crate) fn pi_with_complete<T: Real>(n: T, n1: T, k: T, phi_r: T, m1: T, complete: T) -> T {
+    pi_reduced(n, n1, phi_r, m1) + k * T::TWO * complete
 }
 
-/// `Π(n; φ|m)` for `|φ| ≤ π/2`.
-fn pi_reduced<T: Real>(n: T, phi: T, m: T) -> T {
+/// `Π(n; φ|m)` for `|φ| ≤ π/2`, with `n₁ = 1 − n`, `m₁ = 1 − m`.
+fn pi_reduced<T: Real>(n: T, n1: T, phi: T, m1: T) -> T {
     let (s, c) = phi.sin_cos();
     let s2 = s * s;
     let c2 = (c * c).max(T::ZERO);
-    let d2 = c2 + (T::ONE - m) * s2; // 1 − m sin²φ without cancellation
-    let p = T::ONE - n * s2;
+    let d2 = c2 + m1 * s2; // 1 − m sin²φ without cancellation
+    // 1 − n sin²φ = (1 − n) + n cos²φ: no cancellation as n → 1 and φ → π/2 (where the
+    // integrand peaks and R_J is most sensitive to p).
+    let p = if n > T::ZERO {
+        n1 + n * c2
+    } else {
+        T::ONE - n * s2
+    };
     let rf = rf_unchecked(c2, d2, T::ONE);
     if n == T::ZERO || s == T::ZERO {
         return s * rf;
