@@ -170,8 +170,9 @@ pub(crate) fn complete_k_unchecked<T: Real>(m: T, m1: T) -> T {
     T::FRAC_PI_2 / g.a
 }
 
-/// `(sn, cn, dn)` at a reduced argument `|u| ≤ K`, by the descending Landen scheme.
-fn sn_cn_dn_reduced<T: Real>(u: T, m1: T, g: &Agm<T>) -> (T, T, T) {
+/// `(φ, sn, cn, dn)` with `φ = am(u)` at a reduced argument `|u| ≤ K`, by the descending Landen
+/// scheme: `φ_N = 2^N a_N u`, then `φ_{n−1} = (φ_n + asin(c_n/a_n · sin φ_n))/2`.
+fn landen_reduced<T: Real>(u: T, m1: T, g: &Agm<T>) -> (T, T, T, T) {
     let mut phi = g.two_pow * g.a * u;
     let mut n = g.steps;
     while n > 0 {
@@ -184,6 +185,12 @@ fn sn_cn_dn_reduced<T: Real>(u: T, m1: T, g: &Agm<T>) -> (T, T, T) {
     }
     let (sn, cn) = phi.sin_cos();
     let dn = (cn * cn + m1 * sn * sn).sqrt();
+    (phi, sn, cn, dn)
+}
+
+/// `(sn, cn, dn)` at a reduced argument `|u| ≤ K`.
+fn sn_cn_dn_reduced<T: Real>(u: T, m1: T, g: &Agm<T>) -> (T, T, T) {
+    let (_, sn, cn, dn) = landen_reduced(u, m1, g);
     (sn, cn, dn)
 }
 
@@ -272,18 +279,7 @@ pub(crate) fn amplitude_parts<T: Real>(u: T, m: T, m1: T) -> (T, T, T, T, T) {
     let g = agm(m, m1);
     let kc = T::FRAC_PI_2 / g.a;
     let (ur, k, odd) = reduce(u, kc);
-    let mut phi = g.two_pow * g.a * ur;
-    let mut n = g.steps;
-    while n > 0 {
-        n -= 1;
-        let r = match g.ratios.get(n) {
-            Some(r) => *r,
-            None => T::ZERO,
-        };
-        phi = (phi + asin_atan2(r * phi.sin())) * T::HALF;
-    }
-    let (sn_r, cn_r) = phi.sin_cos();
-    let dn = (cn_r * cn_r + m1 * sn_r * sn_r).sqrt();
+    let (phi, sn_r, cn_r, dn) = landen_reduced(ur, m1, &g);
     let (sn, cn) = if odd { (-sn_r, -cn_r) } else { (sn_r, cn_r) };
     (k, phi, sn, cn, dn)
 }
