@@ -170,6 +170,12 @@ mod firmware {
             .renormalize_fast());
         count!(table, "renormalize_exact_f32", || black_box(a)
             .renormalize());
+        count!(table, "sin_cos_f32", || gyrostat::Real::sin_cos(black_box(
+            0.7f32
+        )));
+        count!(table, "sin_cos_f64", || gyrostat::Real::sin_cos(black_box(
+            0.7f64
+        )));
         count!(table, "exp_small_angle_f32", || UnitQuat::exp_unchecked(
             black_box(phi)
         ));

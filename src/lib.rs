@@ -42,7 +42,7 @@
 //! ## Features
 //! | feature     | what it adds |
 //! |-------------|--------------|
-//! | *(none)*    | everything, with `libm` as the math backend |
+//! | *(none)*    | everything; math from `libm`, except f32 `sin`/`cos` from gyrostat's own f32 kernel ([`real`]) |
 //! | `micromath` | micromath's fast f32 `sin`/`cos`/`atan2`/`sqrt` instead of libm (see [`real`] for the measured errors) |
 //! | `defmt`     | `defmt::Format` for every public type ([`interop`]) |
 //! | `nalgebra`  | `From`/`Into` nalgebra's `UnitQuaternion`, `Quaternion`, `Vector3`, `Matrix3` (no std) |

@@ -12,26 +12,32 @@
 //! - constants come from associated consts or [`Real::from_f64`] (exact for the constants used).
 //!
 //! # Math backend
-//! By default the transcendental functions come from [`libm`] (a port of musl's libm, correctly
-//! rounded or within 1 ulp for the functions used here). With the `micromath` feature, the f32
-//! implementation of `sqrt`, `sin`, `cos`, `sin_cos` and `atan2` switches to micromath's fast
-//! approximations; f64 keeps libm, and `floor`, `exp`, `ln` always come from libm. Their worst errors, measured by this module's unit tests
-//! (`cargo test -p gyrostat --lib --features micromath real::`) against f64 libm over dense sweeps:
+//! f64 uses [`libm`] (a port of musl's libm). f32 uses libm for `sqrt`, `atan2`, `hypot`,
+//! `floor`, `exp`, `ln`, and gyrostat's own f32 kernel for `sin`/`cos` (see `sincos_f32` in
+//! this file): libm's `sinf`/`cosf` evaluate in f64, which costs about 2000 instructions per call
+//! on a Cortex-M4F whose FPU is single-precision only; the f32 kernel costs about 70 there
+//! (BENCHMARKS.md) for an error below one f32 ulp at 1.0. With the `micromath` feature, the f32
+//! `sqrt`, `sin`, `cos`, `sin_cos` and `atan2` switch to micromath's fast approximations; f64
+//! keeps libm, and `floor`, `exp`, `ln` always come from libm. Worst errors, measured by this
+//! module's unit tests (`cargo test -p gyrostat --lib --release [--features micromath] real::`)
+//! against f64 libm over dense sweeps:
 //!
-//! | function | libm f32 (default)        | micromath f32                    |
-//! |----------|---------------------------|----------------------------------|
-//! | `sqrt`   | 6.0e-8 relative (0.5 ulp) | 1.6e-6 relative (Newton-refined, see below) |
-//! | `sin`    | 3.0e-8 absolute           | 1.1e-3 absolute                  |
-//! | `cos`    | 3.0e-8 absolute           | 1.1e-3 absolute                  |
-//! | `atan2`  | 2.2e-7 rad                | 2.9e-3 rad                       |
+//! | function | f32 default                        | micromath f32                    |
+//! |----------|------------------------------------|----------------------------------|
+//! | `sqrt`   | 6.0e-8 relative (libm, 0.5 ulp)    | 1.6e-6 relative (Newton-refined, see below) |
+//! | `sin`    | 8.5e-8 absolute (f32 kernel)       | 1.1e-3 absolute                  |
+//! | `cos`    | 9.2e-8 absolute (f32 kernel)       | 1.1e-3 absolute                  |
+//! | `atan2`  | 2.2e-7 rad (libm)                  | 2.9e-3 rad                       |
 //!
-//! (sweeps: `sqrt` on [1e-6, 1e4], `sin`/`cos` on [−10, 10], `atan2` around circles of radius
-//! 1e-3 … 7; the tests assert these bounds for the active backend.)
+//! (sweeps: `sqrt` on [1e-6, 1e4], `sin`/`cos` on [−10, 10] (and ≤ 1.2e-7 on [−6000, 6000]),
+//! `atan2` around circles of radius 1e-3 … 7; the tests assert these bounds for the active
+//! backend.)
 //!
 //! micromath's own `sqrt` is a bit-trick estimate with errors of several percent, which would
 //! wreck quaternion normalisation; gyrostat therefore refines it with two Newton steps before use
 //! and states the refined error above. The micromath backend suits display and coarse control
-//! loops; it cannot meet the accuracy contract of the `rotation` module, whose tests run on libm.
+//! loops; it cannot meet the accuracy contract of the `rotation` module, whose tests run on the
+//! default backend.
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -256,7 +262,8 @@ impl Real for f32 {
     }
 }
 
-/// f32 transcendental functions from libm (default).
+/// f32 transcendental functions (default): `sin`/`cos` from gyrostat's own f32 kernel, the rest
+/// from libm.
 #[cfg(not(feature = "micromath"))]
 mod f32_backend {
     #[inline]
@@ -265,15 +272,15 @@ mod f32_backend {
     }
     #[inline]
     pub fn sin(x: f32) -> f32 {
-        libm::sinf(x)
+        super::sincos_f32(x).0
     }
     #[inline]
     pub fn cos(x: f32) -> f32 {
-        libm::cosf(x)
+        super::sincos_f32(x).1
     }
     #[inline]
     pub fn sin_cos(x: f32) -> (f32, f32) {
-        libm::sincosf(x)
+        super::sincos_f32(x)
     }
     #[inline]
     pub fn atan2(y: f32, x: f32) -> f32 {
@@ -282,6 +289,57 @@ mod f32_backend {
     #[inline]
     pub fn hypot(a: f32, b: f32) -> f32 {
         libm::hypotf(a, b)
+    }
+}
+
+/// Largest `|x|` (rad) that [`sincos_f32`] reduces in f32: `k = round(x·2/π)` stays below 2¹²,
+/// so `k·P1` and `k·P2` are exact (P1 has 8 and P2 has 12 significant bits). Beyond it, libm's
+/// exact reduction takes over.
+#[cfg(not(feature = "micromath"))]
+const SINCOS_F32_LIMIT: f32 = 6000.0;
+
+/// `(sin x, cos x)` evaluated entirely in f32.
+///
+/// The `libm` crate's `sinf`/`cosf` (musl's algorithm) evaluate their kernels in f64, which a
+/// Cortex-M4F (single-precision FPU) runs in software at about 2000 instructions per call. This
+/// kernel stays in f32:
+/// - Cody–Waite reduction `r = ((x − k·P1) − k·P2) − k·P3`, `k = round(x·2/π)`, with
+///   `P1 + P2 + P3 = π/2` split into 8, 12 and 24 significant bits, so that `|r| ≤ π/4` carries
+///   no reduction error beyond the last product's rounding for `|x| ≤` 6000 rad;
+/// - `sin r = r + r³(s₁ + r²(s₂ + r² s₃))`, `cos r = 1 − r²/2 + r⁴(c₁ + r²(c₂ + r² c₃))`, with
+///   coefficients fitted by gyrostat (weighted least squares iterated towards minimax on
+///   `|r| ≤ π/4`): approximation errors 3.8e-9 relative (sin) and 9.5e-11 absolute (cos), far
+///   below an f32 ulp, so the result's error is the f32 evaluation's rounding;
+/// - the quadrant `k mod 4` swaps and negates the pair.
+///
+/// Measured against f64 (`real::tests`): ≤ 6.0e-8 absolute on [−10, 10] and ≤ 1.2e-7 up to
+/// 6000 rad. Non-finite input gives NaN (as libm).
+#[cfg(not(feature = "micromath"))]
+fn sincos_f32(x: f32) -> (f32, f32) {
+    if !x.is_finite() || libm::fabsf(x) > SINCOS_F32_LIMIT {
+        return libm::sincosf(x);
+    }
+    const FRAC_2_PI: f32 = core::f32::consts::FRAC_2_PI;
+    const P1: f32 = 1.570_312_5;
+    const P2: f32 = 4.838_705e-4; // = 0.000483870506286621093750 exactly (12 bits)
+    const P3: f32 = -4.371_139e-8;
+    const S1: f32 = -0.166_666_55;
+    const S2: f32 = 0.008_332_16;
+    const S3: f32 = -1.951_528_2e-4;
+    const C1: f32 = 0.041_666_646;
+    const C2: f32 = -0.001_388_736_8;
+    const C3: f32 = 2.443_845e-5;
+    let kf = libm::floorf(x * FRAC_2_PI + 0.5);
+    let r = ((x - kf * P1) - kf * P2) - kf * P3;
+    let r2 = r * r;
+    let s = r + r * r2 * (S1 + r2 * (S2 + r2 * S3));
+    let c = 1.0 - 0.5 * r2 + r2 * r2 * (C1 + r2 * (C2 + r2 * C3));
+    // `as` saturates (no panic); |kf| ≤ 3820 here.
+    match (kf as i32) & 3 {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
     }
 }
 
@@ -407,8 +465,32 @@ mod tests {
             assert!(cos.abs <= 1.2e-7, "cos abs {}", cos.abs);
             assert!(atan2_abs <= 4.8e-7, "atan2 abs {}", atan2_abs);
             // The measured values stated in the module docs.
-            assert!(sin.abs <= 3.0e-8 && cos.abs <= 3.0e-8 && atan2_abs <= 2.2e-7);
+            assert!(sin.abs <= 8.5e-8 && cos.abs <= 9.2e-8 && atan2_abs <= 2.2e-7);
         }
+    }
+
+    /// The f32-native kernel over its whole reduced range and across the libm fallback.
+    #[cfg(not(feature = "micromath"))]
+    #[test]
+    fn sincos_f32_kernel_wide_range() {
+        let sin = sweep(400_000, -6000.0, 6000.0, <f32 as Real>::sin, libm::sin);
+        let cos = sweep(400_000, -6000.0, 6000.0, <f32 as Real>::cos, libm::cos);
+        let far = sweep(1000, 6000.0, 1e6, <f32 as Real>::sin, libm::sin);
+        let tiny = sweep(1000, -1e-6, 1e-6, <f32 as Real>::sin, libm::sin);
+        println!(
+            "sincos_f32: |x| <= 6000: sin {:.2e}, cos {:.2e}; libm beyond: {:.2e}; tiny rel {:.2e}",
+            sin.abs, cos.abs, far.abs, tiny.rel
+        );
+        assert!(
+            sin.abs <= 1.2e-7 && cos.abs <= 1.2e-7,
+            "{} {}",
+            sin.abs,
+            cos.abs
+        );
+        assert!(far.abs <= 1.2e-7);
+        assert!(tiny.rel <= 6.0e-8);
+        let (s, c) = super::sincos_f32(f32::NAN);
+        assert!(s.is_nan() && c.is_nan());
     }
 
     #[test]
