@@ -12,6 +12,7 @@
 //! - [`ref_exact`]: quadrature elliptic integrals, Newton-inverted Jacobi functions and a tiny-step
 //!   RK4 free rigid body (issue 5: exact free rigid body).
 //! - [`tolerance`]: the per-type tolerances shared by the comparison tests.
+//! - [`widen`]: gyrostat values of any scalar type as plain f64 arrays.
 
 pub mod ref_dynamics;
 pub mod ref_exact;
@@ -19,3 +20,4 @@ pub mod ref_propagation;
 pub mod ref_rotation;
 pub mod reference;
 pub mod tolerance;
+pub mod widen;

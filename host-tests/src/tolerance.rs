@@ -21,3 +21,18 @@ impl Tolerance for f32 {
 impl Tolerance for f64 {
     const SHORT: f64 = 1e-13;
 }
+
+/// The accuracy contract of gyrostat's `rotation` module (rad), per type: f32 1e-6 (inputs
+/// rounded to f32), f64 1e-14. The contract itself is stated in the `rotation` module docs.
+pub trait Contract: gyrostat::Real {
+    /// Worst allowed rotation error, radians.
+    const CONTRACT: f64;
+}
+
+impl Contract for f32 {
+    const CONTRACT: f64 = 1e-6;
+}
+
+impl Contract for f64 {
+    const CONTRACT: f64 = 1e-14;
+}

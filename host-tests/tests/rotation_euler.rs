@@ -9,22 +9,8 @@ use gyrostat::{Quat, Real, UnitQuat};
 use host_tests::ref_rotation::{
     all_sequences, euler_matrix, is_proper, poles, quat_matrix, rot_dist,
 };
-
-/// The accuracy contract of the rotation module, per type (rad): f32 1e-6 (inputs rounded to
-/// f32), f64 1e-14.
-trait Contract: Real {
-    const CONTRACT: f64;
-}
-impl Contract for f32 {
-    const CONTRACT: f64 = 1e-6;
-}
-impl Contract for f64 {
-    const CONTRACT: f64 = 1e-14;
-}
-
-fn q64<T: Real>(q: UnitQuat<T>) -> [f64; 4] {
-    q.to_array().map(|c| c.to_f64())
-}
+use host_tests::tolerance::Contract;
+use host_tests::widen::q64;
 
 /// Outer-angle pairs for the sweep: generic values, values at ±π, zeros, equal values.
 const OUTER: [(f64, f64); 10] = [

@@ -5,10 +5,7 @@
 use gyrostat::rotation::{Euler, EulerSequence, euler_rate_min_det};
 use gyrostat::{Error, Mat3, Real, Vec3};
 use host_tests::ref_rotation::{all_sequences, euler_matrix, is_proper, omega_from_matrices};
-
-fn m64<T: Real>(m: &Mat3<T>) -> [[f64; 3]; 3] {
-    m.m.map(|r| r.map(|c| c.to_f64()))
-}
+use host_tests::widen::m64;
 
 /// ω from the rate matrices equals the angular velocity of the reference Euler matrices moved
 /// along the rates (central differences, h = 1e-5: truncation ~1e-10); inverses give back the

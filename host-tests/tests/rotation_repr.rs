@@ -11,29 +11,11 @@ use gyrostat::{Error, Mat3, Quat, Real, Su2, UnitQuat, Vec3};
 use host_tests::ref_rotation::{
     all_sequences, euler_matrix, gibbs_matrix, mrp_matrix, quat_matrix, rot_dist, rotvec_matrix,
 };
-use host_tests::reference::{M3, mat_dist, rodrigues, su2_matrix, u2_dist, u2_mul};
+use host_tests::reference::{mat_dist, rodrigues, su2_matrix, u2_dist, u2_mul};
+use host_tests::tolerance::Contract;
+use host_tests::widen::{m64, q64, v64};
 use proptest::prelude::*;
 
-/// The accuracy contract, per type (rad): f32 1e-6, f64 1e-14.
-trait Contract: Real {
-    const CONTRACT: f64;
-}
-impl Contract for f32 {
-    const CONTRACT: f64 = 1e-6;
-}
-impl Contract for f64 {
-    const CONTRACT: f64 = 1e-14;
-}
-
-fn q64<T: Real>(q: UnitQuat<T>) -> [f64; 4] {
-    q.to_array().map(|c| c.to_f64())
-}
-fn v64<T: Real>(v: Vec3<T>) -> [f64; 3] {
-    v.to_array().map(|c| c.to_f64())
-}
-fn m64<T: Real>(m: &Mat3<T>) -> M3 {
-    m.m.map(|r| r.map(|c| c.to_f64()))
-}
 fn quat<T: Real>(q: [f64; 4]) -> UnitQuat<T> {
     UnitQuat::try_new(Quat::from_array(q.map(T::from_f64))).unwrap()
 }
