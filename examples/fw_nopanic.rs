@@ -82,13 +82,7 @@ mod firmware {
             sink(lab_rate_between(q, q, dt));
             sink(quat_rate_body(raw, v));
             sink(norm_deviation(q));
-            for rule in [
-                ConingRule::Exp,
-                ConingRule::OnePlusPrevious,
-                ConingRule::TwoSample,
-                ConingRule::ThreeSample,
-                ConingRule::FourSample,
-            ] {
+            for rule in ConingRule::ALL {
                 let mut integ = IncrementIntegrator::new(q, black_box(rule), norm);
                 for _ in 0..black_box(7) {
                     sink(integ.push(d));

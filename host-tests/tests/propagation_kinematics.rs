@@ -156,13 +156,7 @@ fn spin_precession_matches_seed<T: Real + Tolerance>() {
         check("exp step", k, q, tol);
     }
     // Increments (constant rate: every coning correction vanishes, increments are ω dt).
-    for rule in [
-        ConingRule::Exp,
-        ConingRule::OnePlusPrevious,
-        ConingRule::TwoSample,
-        ConingRule::ThreeSample,
-        ConingRule::FourSample,
-    ] {
+    for rule in ConingRule::ALL {
         let mut integ =
             IncrementIntegrator::new(UnitQuat::<T>::IDENTITY, rule, Normalization::Fast);
         for k in 1..=n {

@@ -57,6 +57,15 @@ pub enum ConingRule {
 }
 
 impl ConingRule {
+    /// Every rule, in order of increasing samples per update.
+    pub const ALL: [ConingRule; 5] = [
+        ConingRule::Exp,
+        ConingRule::OnePlusPrevious,
+        ConingRule::TwoSample,
+        ConingRule::ThreeSample,
+        ConingRule::FourSample,
+    ];
+
     /// Increments consumed by one attitude update (1 to 4).
     pub const fn samples_per_update(self) -> usize {
         match self {
