@@ -1,9 +1,10 @@
 //! Cost of one step of each dynamics integrator (f32 and f64): rigid body with a diagonal and
-//! with a full tensor, and a gyrostat with 4 reaction wheels and an external torque.
+//! with a full tensor, and a gyrostat with 4 reaction wheels and an external torque; and of one
+//! evaluation of the exact free rigid body.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use gyrostat::dynamics::{
-    BodyHamiltonian, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
+    FreeRigidBody, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
 };
 use gyrostat::{Mat3, Real, UnitQuat, Vec3};
 use std::hint::black_box;
@@ -20,9 +21,8 @@ fn v<T: Real>(a: [f64; 3]) -> Vec3<T> {
 }
 
 fn bench_type<T: Real>(c: &mut Criterion, ty: &str) {
-    let diag =
-        BodyHamiltonian::rigid(Inertia::try_from_principal(v::<T>([6.0, 4.0, 3.0])).unwrap());
-    let full = BodyHamiltonian::rigid(
+    let diag = Gyrostat::rigid(Inertia::try_from_principal(v::<T>([6.0, 4.0, 3.0])).unwrap());
+    let full = Gyrostat::rigid(
         Inertia::try_from_tensor(Mat3::from_rows(
             [3.0, -0.4, 0.25].map(T::from_f64),
             [-0.4, 4.0, 0.3].map(T::from_f64),
@@ -30,10 +30,7 @@ fn bench_type<T: Real>(c: &mut Criterion, ty: &str) {
         ))
         .unwrap(),
     );
-    let s0 = State {
-        attitude: UnitQuat::IDENTITY,
-        momentum: v::<T>([0.3, 4.0, 0.05]),
-    };
+    let s0 = State::new(UnitQuat::IDENTITY, v::<T>([0.3, 4.0, 0.05]));
     let dt = T::from_f64(0.01);
     let mut g = c.benchmark_group(format!("dynamics_step_{ty}"));
     for (name, integ) in INTEGRATORS {
@@ -57,17 +54,34 @@ fn bench_type<T: Real>(c: &mut Criterion, ty: &str) {
         Wheel::try_new(v::<T>([0.0, 0.0, 1.0]), T::from_f64(0.02)).unwrap(),
         Wheel::try_new(v::<T>([a, a, a]), T::from_f64(0.02)).unwrap(),
     ];
-    let gyro = Gyrostat::new(full, wheels);
+    let gyro = Gyrostat::new(*full.model(), wheels);
     let cmd = WheelCommand::Torque([0.001, -0.002, 0.0005, 0.0].map(T::from_f64));
     let tau = v::<T>([0.01, 0.0, -0.005]);
     for (name, integ) in INTEGRATORS {
         g.bench_function(format!("gyrostat4_torque/{name}"), |b| {
-            let mut s = gyro.state_from_omega(UnitQuat::IDENTITY, v([0.1, 0.5, 0.2]), [T::ZERO; 4]);
+            let mut s = gyro
+                .state_from_omega(UnitQuat::IDENTITY, v([0.1, 0.5, 0.2]), [T::ZERO; 4])
+                .unwrap();
             b.iter(|| {
-                s = gyro.step(integ, black_box(&s), dt, tau, &cmd).unwrap();
+                let held = gyro.control(&s, dt, tau, &cmd);
+                s = gyro
+                    .step_with(integ, black_box(&s), T::ZERO, dt, held)
+                    .unwrap();
             })
         });
     }
+    let exact = FreeRigidBody::try_new(
+        &Inertia::try_from_principal(v::<T>([1.0, 2.0, 3.0])).unwrap(),
+        &State::new(UnitQuat::IDENTITY, v([0.4, 0.5, 2.5])),
+    )
+    .unwrap();
+    g.bench_function("exact_free_body/state_at", |b| {
+        let mut t = T::ZERO;
+        b.iter(|| {
+            t += T::from_f64(1e-3);
+            black_box(exact.state_at(black_box(t)))
+        })
+    });
     g.finish();
 }
 

@@ -283,9 +283,8 @@ mod firmware {
             });
         }
         {
-            use gyrostat::dynamics::free_rigid_body::FreeRigidBody;
             use gyrostat::dynamics::{
-                BodyHamiltonian, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
+                FreeRigidBody, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
             };
             let principal = Inertia::try_from_principal(Vec3::new(6.0f32, 4.0, 3.0));
             let full = Inertia::try_from_components(
@@ -298,20 +297,12 @@ mod firmware {
                 Wheel::try_new(Vec3::Z, 0.02),
                 Wheel::try_new(Vec3::new(1.0, 1.0, 1.0), 0.02),
             ];
-            let exact = FreeRigidBody::try_new(
-                Vec3::new(6.0f32, 4.0, 3.0),
-                Vec3::new(0.3, 4.0, 0.05),
-                UnitQuat::IDENTITY,
-            );
-            if let (Ok(principal), Ok(full), [Ok(w0), Ok(w1), Ok(w2), Ok(w3)], Ok(exact)) =
-                (principal, full, wheels, exact)
+            let s = State::new(UnitQuat::IDENTITY, Vec3::new(0.3f32, 4.0, 0.05));
+            if let (Ok(principal), Ok(full), [Ok(w0), Ok(w1), Ok(w2), Ok(w3)]) =
+                (principal, full, wheels)
             {
-                let body = BodyHamiltonian::rigid(principal);
-                let full_body = BodyHamiltonian::rigid(full);
-                let s = State {
-                    attitude: UnitQuat::IDENTITY,
-                    momentum: Vec3::new(0.3f32, 4.0, 0.05),
-                };
+                let body = Gyrostat::rigid(principal);
+                let full_body = Gyrostat::rigid(full);
                 let h = 0.01f32;
                 count!(table, "dyn_rk4_step_f32", heavy, || body.step(
                     Integrator::Rk4,
@@ -336,26 +327,28 @@ mod firmware {
                 count!(table, "dyn_strang_step_full_tensor_f32", heavy, || {
                     full_body.step(Integrator::Strang, black_box(&s), black_box(h))
                 });
-                let g = Gyrostat::new(full_body, [w0, w1, w2, w3]);
-                let gs = g.state_from_omega(UnitQuat::IDENTITY, Vec3::new(0.1, 0.5, 0.2), [0.0; 4]);
+                let g = Gyrostat::new(*full_body.model(), [w0, w1, w2, w3]);
                 let tau = Vec3::new(0.01f32, 0.0, -0.005);
                 let cmd = WheelCommand::Torque([0.001f32, -0.002, 0.0005, 0.0]);
-                count!(
-                    table,
-                    "dyn_gyrostat_4_wheels_strang_step_f32",
-                    heavy,
-                    || {
-                        g.step(
-                            Integrator::Strang,
-                            black_box(&gs),
-                            black_box(h),
-                            black_box(tau),
-                            &cmd,
-                        )
-                    }
-                );
-                count!(table, "dyn_exact_free_body_state_at_f32", heavy, || exact
-                    .state_at(black_box(7.5f32)));
+                if let Ok(gs) =
+                    g.state_from_omega(UnitQuat::IDENTITY, Vec3::new(0.1, 0.5, 0.2), [0.0; 4])
+                {
+                    count!(
+                        table,
+                        "dyn_gyrostat_4_wheels_strang_step_f32",
+                        heavy,
+                        || {
+                            let gs = black_box(&gs);
+                            let h = black_box(h);
+                            let held = g.control(gs, h, black_box(tau), &cmd);
+                            g.step_with(Integrator::Strang, gs, 0.0, h, held)
+                        }
+                    );
+                }
+                if let Ok(exact) = FreeRigidBody::try_new(&principal, &s) {
+                    count!(table, "dyn_exact_free_body_state_at_f32", heavy, || exact
+                        .state_at(black_box(7.5f32)));
+                }
             }
         }
 

@@ -118,9 +118,8 @@ mod firmware {
             }
         }
         {
-            use gyrostat::dynamics::free_rigid_body::FreeRigidBody;
             use gyrostat::dynamics::{
-                BodyHamiltonian, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
+                Control, FreeRigidBody, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
             };
             let moments = black_box(Vec3::new(6.0f32, 4.0, 3.0));
             let j0 = black_box(Vec3::new(0.3f32, 4.0, 0.05));
@@ -128,32 +127,37 @@ mod firmware {
                 Inertia::try_from_components(moments, black_box(Vec3::new(-0.4, 0.25, 0.3))),
                 Wheel::try_new(black_box(Vec3::Z), black_box(0.02f32)),
             ) {
-                let body = BodyHamiltonian::rigid(inertia);
-                let s = State {
-                    attitude: q,
-                    momentum: j0,
-                };
-                for integ in [
-                    Integrator::Rk4,
-                    Integrator::Strang,
-                    Integrator::Yoshida4,
-                    Integrator::Suzuki4,
-                ] {
+                let body = Gyrostat::rigid(inertia);
+                let s = State::new(q, j0);
+                for integ in Integrator::ALL {
                     sink(body.step(black_box(integ), &s, black_box(0.01)));
+                    sink(body.step_with(
+                        black_box(integ),
+                        &s,
+                        black_box(0.0),
+                        black_box(0.01),
+                        Control::torque(v),
+                    ));
                 }
-                let g = Gyrostat::new(body, [w]);
-                let gs = g.state_from_omega(q, v, [0.0]);
-                sink(g.step(
-                    Integrator::Strang,
-                    &gs,
-                    black_box(0.01),
-                    v,
-                    &WheelCommand::Torque([black_box(0.001)]),
-                ));
+                let g = Gyrostat::new(*body.model(), [w]);
+                if let Ok(gs) = g.state_from_omega(q, v, [0.0]) {
+                    for command in [
+                        WheelCommand::Torque([black_box(0.001)]),
+                        WheelCommand::Speed([black_box(10.0)]),
+                    ] {
+                        let held = g.control(&gs, black_box(0.01), v, &command);
+                        sink(g.step_with(Integrator::Strang, &gs, 0.0, black_box(0.01), held));
+                    }
+                }
+                if let Ok(exact) = FreeRigidBody::try_new(&inertia, &s) {
+                    sink(exact.try_state_at(black_box(7.5)));
+                    sink(exact.flip_interval());
+                }
             }
-            if let Ok(exact) = FreeRigidBody::try_new(moments, j0, q) {
+            if let Ok(diagonal) = Inertia::try_from_principal(moments)
+                && let Ok(exact) = FreeRigidBody::try_new(&diagonal, &State::new(q, j0))
+            {
                 sink(exact.try_state_at(black_box(7.5)));
-                sink(exact.flip_interval());
             }
         }
         // f64 (soft float on every Cortex-M) goes through the same paths.

@@ -8,8 +8,10 @@ use std::fmt::Display;
 use std::io::{self, BufWriter, Write};
 use std::process::ExitCode;
 
-use gyrostat::dynamics::{BodyHamiltonian, Inertia, Integrator, Quartic, State, lab_momentum};
-use gyrostat::{Mat3, Quat, Real, UnitQuat, Vec3};
+use gyrostat::dynamics::{
+    BodyHamiltonian, DriftMonitor, FreeRigidBody, Gyrostat, Inertia, Integrator, Quartic, State,
+};
+use gyrostat::{Error, Quat, Real, UnitQuat, Vec3};
 
 const HELP: &str = "\
 simulate: rigid-body / gyrostat attitude dynamics (gyrostat crate)
@@ -306,7 +308,7 @@ fn build<T: Real>(cfg: &Config) -> Result<BodyHamiltonian<T>, String> {
         Some((false, t)) => Quartic::Cubic(T::from_f64(t)),
     };
     BodyHamiltonian::try_new(inertia, v3(cfg.spin), quartic).map_err(|e| match e {
-        gyrostat::Error::InvalidArgument => {
+        Error::InvalidArgument => {
             "--quartic needs a diagonal inertia tensor (the quartic polynomials are defined on \
              principal axes); drop --inertia-offdiag"
                 .to_string()
@@ -320,17 +322,24 @@ fn run_csv<T: Real + Display>(cfg: &Config) -> Result<(), String> {
     let q0 = UnitQuat::try_new(Quat::from_array(cfg.q0.map(T::from_f64)))
         .map_err(|e| format!("--q0: {e}"))?;
     let j0 = match cfg.initial {
-        Initial::Omega(w) => momentum_from_omega(&model, v3(w))?,
+        Initial::Omega(w) => model.momentum_from_omega(v3(w)).map_err(|e| match e {
+            Error::NotConverged => {
+                "--omega with --quartic: Newton's method did not converge; give --momentum"
+                    .to_string()
+            }
+            e => format!("--omega with --quartic: no momentum found ({e}); give --momentum"),
+        })?,
         Initial::Momentum(j) => v3(j),
     };
     let stdout = io::stdout();
     let mut out = BufWriter::new(stdout.lock());
-    let mut state = State {
-        attitude: q0,
-        momentum: j0,
-    };
+    let mut state = State::new(q0, j0);
+    let body = Gyrostat::from(model);
     let exact = match cfg.method {
-        Method::Exact => Some(exact::Exact::<T>::try_new(model.inertia(), q0, j0)?),
+        Method::Exact => Some(
+            FreeRigidBody::try_new(model.inertia(), &state)
+                .map_err(|e| format!("--integrator exact: {e}"))?,
+        ),
         Method::Step(_) => None,
     };
     let write_row = |out: &mut BufWriter<io::StdoutLock<'_>>, k: u64, s: &State<T>| {
@@ -361,7 +370,7 @@ fn run_csv<T: Real + Display>(cfg: &Config) -> Result<(), String> {
         let dt = T::from_f64(cfg.dt);
         for k in 1..=cfg.steps {
             state = match (&cfg.method, &exact) {
-                (Method::Step(integ), _) => match model.step(*integ, &state, dt) {
+                (Method::Step(integ), _) => match body.step(*integ, &state, dt) {
                     Ok(s) => s,
                     Err(e) => {
                         return Ok(Err(format!(
@@ -387,85 +396,6 @@ fn run_csv<T: Real + Display>(cfg: &Config) -> Result<(), String> {
     }
 }
 
-/// The momentum J with ∇H(J) = ω. Linear (J = Iω + S) without a quartic term; with one, Newton's
-/// method from the linear guess, with the Hessian I⁻¹ + ∇²quartic.
-fn momentum_from_omega<T: Real>(
-    model: &BodyHamiltonian<T>,
-    omega: Vec3<T>,
-) -> Result<Vec3<T>, String> {
-    let mut j = model.inertia().mul_vec(omega) + model.spin();
-    let (octa, t) = match model.quartic() {
-        Quartic::None => return Ok(j),
-        Quartic::Octahedral(t) => (true, t),
-        Quartic::Cubic(t) => (false, t),
-    };
-    for _ in 0..50 {
-        let f = model.omega(j) - omega;
-        let (x, y, z) = (j.x, j.y, j.z);
-        let hq = if octa {
-            let k = T::from_f64(12.0) * t;
-            Mat3::from_diagonal(Vec3::new(k * x * x, k * y * y, k * z * z))
-        } else {
-            let (two, four) = (T::TWO * t, T::from_f64(4.0) * t);
-            Mat3::from_rows(
-                [two * (y * y + z * z), four * x * y, four * x * z],
-                [four * x * y, two * (x * x + z * z), four * y * z],
-                [four * x * z, four * y * z, two * (x * x + y * y)],
-            )
-        };
-        let jac = model.inertia().inverse() + hq;
-        let step = jac.try_inverse().map_err(|e| {
-            format!("--omega with --quartic: no momentum found ({e}); give --momentum")
-        })? * f;
-        j -= step;
-        if step.norm().to_f64() <= 1e-14 * (1.0 + j.norm().to_f64()) {
-            return Ok(j);
-        }
-    }
-    let f = (model.omega(j) - omega).norm().to_f64();
-    if f <= 1e-6 * (1.0 + omega.norm().to_f64()) {
-        Ok(j)
-    } else {
-        Err("--omega with --quartic: Newton's method did not converge; give --momentum".into())
-    }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Exact solution (torque-free rigid body)
-
-mod exact {
-    use super::*;
-    use gyrostat::dynamics::free_rigid_body::FreeRigidBody;
-
-    /// The closed-form torque-free rigid body (the library's `FreeRigidBody`), set up in the
-    /// principal frame of the tensor: `J_p = P* J P`, `q_p = q ⊗ P`, and mapped back.
-    pub struct Exact<T> {
-        body: FreeRigidBody<T>,
-        p: UnitQuat<T>,
-    }
-
-    impl<T: Real> Exact<T> {
-        pub fn try_new(i: &Inertia<T>, q0: UnitQuat<T>, j0: Vec3<T>) -> Result<Self, String> {
-            let p = i.principal_rotation();
-            let body = FreeRigidBody::try_new(i.principal_moments(), p.inverse_rotate(j0), q0 * p)
-                .map_err(|e| format!("--integrator exact: {e}"))?;
-            Ok(Self { body, p })
-        }
-
-        pub fn state_at(&self, t: T) -> State<T> {
-            let (q, j) = self.body.state_at(t);
-            State {
-                attitude: q * self.p.inverse(),
-                momentum: self.p.rotate(j),
-            }
-        }
-
-        pub fn flip_interval(&self) -> Option<T> {
-            self.body.flip_interval()
-        }
-    }
-}
-
 // ---------------------------------------------------------------------------------------------
 // Default scenario
 
@@ -478,66 +408,56 @@ struct Run {
     energy_drift: f64,
     norm_drift: f64,
     lab_drift: f64,
-    attitudes: Vec<[f64; 4]>,
+    attitudes: Vec<UnitQuat<f64>>,
 }
 
 fn simulate_default<T: Real>(integ: Integrator, dt: f64, steps: usize, every: usize) -> Run {
     let moments = [6.0, 4.0, 3.0];
     let inertia = Inertia::try_from_principal(v3::<T>(moments)).expect("physical");
-    let model = BodyHamiltonian::rigid(inertia);
-    let omega0 = DEFAULT_OMEGA0;
-    let mut s = State {
-        attitude: UnitQuat::IDENTITY,
-        momentum: model.inertia().mul_vec(v3(omega0)),
-    };
-    let e0 = model.energy(s.momentum).to_f64();
-    let n0 = s.momentum.norm().to_f64();
-    let l0 = lab_momentum(s.attitude, s.momentum);
-    let l0 = [l0.x.to_f64(), l0.y.to_f64(), l0.z.to_f64()];
-    let mut run = Run {
-        flips: Vec::new(),
-        energy_drift: 0.0,
-        norm_drift: 0.0,
-        lab_drift: 0.0,
-        attitudes: Vec::new(),
-    };
+    let body = Gyrostat::rigid(inertia);
+    let mut s = body
+        .state_from_omega(UnitQuat::IDENTITY, v3(DEFAULT_OMEGA0), [])
+        .expect("finite");
+    let mut monitor = DriftMonitor::new(body.invariants(&s));
+    let mut flips = Vec::new();
+    let mut attitudes = Vec::new();
     let mut prev = s.momentum.y.to_f64();
     for k in 1..=steps {
-        s = model.step(integ, &s, T::from_f64(dt)).expect("finite step");
+        s = body.step(integ, &s, T::from_f64(dt)).expect("finite step");
         let jy = s.momentum.y.to_f64();
         if (jy > 0.0) != (prev > 0.0) {
             // Linear interpolation of the zero crossing of J₂.
             let t = (k as f64 - 1.0 + prev / (prev - jy)) * dt;
-            run.flips.push(t);
+            flips.push(t);
         }
         prev = jy;
-        let e = model.energy(s.momentum).to_f64();
-        run.energy_drift = run.energy_drift.max(((e - e0) / e0).abs());
-        run.norm_drift = run
-            .norm_drift
-            .max((s.momentum.norm().to_f64() - n0).abs() / n0);
-        let l = lab_momentum(s.attitude, s.momentum);
-        let dl = [
-            l.x.to_f64() - l0[0],
-            l.y.to_f64() - l0[1],
-            l.z.to_f64() - l0[2],
-        ];
-        run.lab_drift = run
-            .lab_drift
-            .max((dl[0] * dl[0] + dl[1] * dl[1] + dl[2] * dl[2]).sqrt() / n0);
+        monitor.record(&body.invariants(&s));
         if k % every == 0 {
-            run.attitudes
-                .push(s.attitude.to_array().map(|c| c.to_f64()));
+            attitudes.push(widen(s.attitude));
         }
     }
-    run
+    let drift = monitor.worst();
+    Run {
+        flips,
+        energy_drift: drift.energy.to_f64(),
+        norm_drift: drift.momentum_norm.to_f64(),
+        lab_drift: drift.lab_momentum.to_f64(),
+        attitudes,
+    }
 }
 
-fn angle_between(a: &[f64; 4], b: &[f64; 4]) -> f64 {
-    let d: f64 = a.iter().zip(b).map(|(x, y)| x * y).sum();
-    let d = d.abs().min(1.0);
-    // 2·atan2(|a − ±b|/2 ..): use the stable form 2·atan2(√(1 − d²), d).
-    2.0 * (1.0 - d * d).max(0.0).sqrt().atan2(d)
+/// An attitude of any scalar type in f64.
+fn widen<T: Real>(q: UnitQuat<T>) -> UnitQuat<f64> {
+    UnitQuat::new_unchecked(Quat::from_array(q.to_array().map(|c| c.to_f64())))
+}
+
+/// The largest geodesic angle (degrees) between two attitude sequences.
+fn max_angle_deg(a: &[UnitQuat<f64>], b: &[UnitQuat<f64>]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| x.angle_to(*y))
+        .fold(0.0f64, f64::max)
+        .to_degrees()
 }
 
 fn mean_interval(t: &[f64]) -> Option<f64> {
@@ -556,27 +476,16 @@ fn default_scenario() -> Result<(), String> {
     // reference for the flip interval 2K(m)/λ and for the attitude.
     let moments = [6.0, 4.0, 3.0];
     let inertia = Inertia::try_from_principal(v3::<f64>(moments)).map_err(|e| e.to_string())?;
-    let j0 = inertia.mul_vec(v3(DEFAULT_OMEGA0));
-    let exact = exact::Exact::try_new(&inertia, UnitQuat::IDENTITY, j0)?;
+    let start = Gyrostat::rigid(inertia)
+        .state_from_omega(UnitQuat::IDENTITY, v3(DEFAULT_OMEGA0), [])
+        .map_err(|e| e.to_string())?;
+    let exact = FreeRigidBody::try_new(&inertia, &start).map_err(|e| e.to_string())?;
     let closed = exact.flip_interval();
-    let exact_attitudes: Vec<[f64; 4]> = (1..=steps / every)
-        .map(|k| exact.state_at((k * every) as f64 * dt).attitude.to_array())
+    let exact_attitudes: Vec<UnitQuat<f64>> = (1..=steps / every)
+        .map(|k| exact.state_at((k * every) as f64 * dt).attitude)
         .collect();
-    let err_vs_exact = |r: &Run| {
-        r.attitudes
-            .iter()
-            .zip(&exact_attitudes)
-            .map(|(a, b)| angle_between(a, b))
-            .fold(0.0f64, f64::max)
-            .to_degrees()
-    };
-    let f32_vs_f64 = r32
-        .attitudes
-        .iter()
-        .zip(&r64.attitudes)
-        .map(|(a, b)| angle_between(a, b))
-        .fold(0.0f64, f64::max)
-        .to_degrees();
+    let err_vs_exact = |r: &Run| max_angle_deg(&r.attitudes, &exact_attitudes);
+    let f32_vs_f64 = max_angle_deg(&r32.attitudes, &r64.attitudes);
     let fmt_opt = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4} s"));
     println!("gyrostat simulate: the intermediate-axis (Dzhanibekov) flip");
     println!(

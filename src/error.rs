@@ -26,8 +26,8 @@ pub enum Error {
     /// An inertia tensor is not physical: not symmetric, not positive definite, or its principal
     /// moments violate the triangle inequality `I_a ≤ I_b + I_c`.
     NonPhysicalInertia,
-    /// A time step is too long for the requested algorithm to stay within its stated accuracy.
-    StepTooLong,
+    /// An iterative solve did not reach its stated accuracy within its step budget.
+    NotConverged,
     /// An argument is outside the documented domain (for example a negative step or count).
     InvalidArgument,
 }
@@ -41,7 +41,7 @@ impl fmt::Display for Error {
             Error::NotRotation => "matrix is not a proper rotation",
             Error::Singular => "configuration is singular for this conversion",
             Error::NonPhysicalInertia => "inertia tensor is not physical",
-            Error::StepTooLong => "time step is too long for this algorithm",
+            Error::NotConverged => "iterative solve did not converge",
             Error::InvalidArgument => "argument outside the documented domain",
         };
         f.write_str(s)

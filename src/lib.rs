@@ -78,7 +78,7 @@ pub use error::Error;
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
-pub use linalg::{Complex, Mat3, Vec3};
+pub use linalg::{Axis, Complex, Mat3, Vec3};
 pub use real::Real;
 pub use rotation::{
     AxisAngle, Dcm, Euler, EulerSequence, Gibbs, GimbalPolicy, Mrp, PolarAxisAngle, RotationVector,

@@ -2,8 +2,8 @@
 //! wheels, against the independent body-rate reference `ω̇ = I⁻¹(τ − ḣ − ω × (Iω + h))`.
 
 use gyrostat::dynamics::{
-    BodyHamiltonian, Control, Gyrostat, GyrostatState, Inertia, Integrator, Quartic, State, Wheel,
-    WheelCommand, euler_rate, lab_momentum,
+    BodyHamiltonian, Control, Gyrostat, Inertia, Integrator, Quartic, State, Wheel, WheelCommand,
+    angular_acceleration, lab_momentum,
 };
 use gyrostat::{Error, Mat3, Real, UnitQuat, Vec3};
 use host_tests::ref_dynamics::{euler_rk4, log_log_slope, quat_to_matrix};
@@ -43,15 +43,15 @@ fn torque_ref(t: f64, r: &M3) -> [f64; 3] {
     ]
 }
 
-fn torque_lib<T: Real>(t: T, s: &State<T>) -> Vec3<T> {
+fn torque_lib<T: Real>(t: T, s: &State<T>) -> Control<T> {
     let r = s.attitude.to_rotation_matrix();
     let m: M3 = [0, 1, 2].map(|i| [0, 1, 2].map(|j| r.m[i][j].to_f64()));
-    v(torque_ref(t.to_f64(), &m))
+    Control::torque(v(torque_ref(t.to_f64(), &m)))
 }
 
-fn err<T: Real>(s: &State<T>, h: &BodyHamiltonian<T>, r: &M3, w: [f64; 3]) -> f64 {
+fn err<T: Real>(s: &State<T>, body: &Gyrostat<T>, r: &M3, w: [f64; 3]) -> f64 {
     let q = s.attitude.to_array().map(|c| c.to_f64());
-    let om = h.omega(s.momentum);
+    let om = body.omega(s);
     let dw = [
         om.x.to_f64() - w[0],
         om.y.to_f64() - w[1],
@@ -60,20 +60,19 @@ fn err<T: Real>(s: &State<T>, h: &BodyHamiltonian<T>, r: &M3, w: [f64; 3]) -> f6
     mat_dist(&quat_to_matrix(q), r).max(dw.iter().fold(0.0f64, |a, b| a.max(b.abs())))
 }
 
-fn run_torqued<T: Real>(integ: Integrator, dt: f64, t_end: f64) -> (State<T>, BodyHamiltonian<T>) {
-    let h = BodyHamiltonian::rigid(inertia::<T>());
-    let mut s = State {
-        attitude: UnitQuat::IDENTITY,
-        momentum: h.inertia().mul_vec(v(W0)),
-    };
+fn run_torqued<T: Real>(integ: Integrator, dt: f64, t_end: f64) -> (State<T>, Gyrostat<T>) {
+    let body = Gyrostat::rigid(inertia::<T>());
+    let mut s = body
+        .state_from_omega(UnitQuat::IDENTITY, v(W0), [])
+        .unwrap();
     let n = (t_end / dt).round() as usize;
     for k in 0..n {
         let t = T::from_f64(k as f64 * dt);
-        s = h
+        s = body
             .step_with(integ, &s, t, T::from_f64(dt), torque_lib::<T>)
             .unwrap();
     }
-    (s, h)
+    (s, body)
 }
 
 /// Torque-driven Euler equations with the full tensor I_FULL: every integrator against the
@@ -117,10 +116,10 @@ fn torqued_euler_full_inertia_against_reference() {
     assert!(e32 < 1e-4);
 }
 
-/// `euler_rate` solves I ω̇ = −ω × (Iω + h) + τ − ḣ: check it against the reference formula
+/// `angular_acceleration` solves I ω̇ = −ω × (Iω + h) + τ − ḣ: check it against the reference formula
 /// (cofactor inverse) at a few points, f32 and f64 (relative tolerances: f64 1e-14, f32 2e-6).
 #[test]
-fn euler_rate_matches_reference_formula() {
+fn angular_acceleration_matches_reference_formula() {
     fn check<T: Real>(tol: f64) {
         let i = inertia::<T>();
         let inv = host_tests::ref_dynamics::inverse(&I_FULL);
@@ -138,14 +137,14 @@ fn euler_rate_matches_reference_formula() {
                 [0.0, 0.0, 0.0],
             ),
         ] {
-            let got = euler_rate(&i, v(w), v(h), v(hd), v(tau));
+            let got = angular_acceleration(&i, v(w), v(h), v(hd), v(tau));
             let l = [0, 1, 2].map(|k| mat_vec(&I_FULL, &w)[k] + h[k]);
             let c = host_tests::ref_dynamics::cross(w, l);
             let rhs = [0, 1, 2].map(|k| tau[k] - hd[k] - c[k]);
             let want = mat_vec(&inv, &rhs);
             let scale = want.iter().fold(1.0f64, |a, b| a.max(b.abs()));
-            for k in 0..3 {
-                assert!((got[k].to_f64() - want[k]).abs() < tol * scale);
+            for (g, w) in got.to_array().iter().zip(want) {
+                assert!((g.to_f64() - w).abs() < tol * scale);
             }
         }
     }
@@ -176,16 +175,18 @@ fn wheel_exchange_conserves_total_momentum() {
         let body = BodyHamiltonian::rigid(inertia::<T>());
         let g = Gyrostat::new(body, wheels::<T>());
         let speeds0 = [10.0, -5.0, 0.0, 20.0].map(T::from_f64);
-        let mut s = g.state_from_omega(UnitQuat::IDENTITY, v(W0), speeds0);
+        let mut s = g
+            .state_from_omega(UnitQuat::IDENTITY, v(W0), speeds0)
+            .unwrap();
         let l0 = lab_momentum(s.attitude, s.momentum);
         let u = [0.002, -0.001, 0.003, -0.0015];
         let cmd = WheelCommand::Torque(u.map(T::from_f64));
         let (dt, n) = (0.005, 2000);
         let w_start = g.omega(&s);
+        let dt_t = T::from_f64(dt);
         for _ in 0..n {
-            s = g
-                .step(integ, &s, T::from_f64(dt), Vec3::ZERO, &cmd)
-                .unwrap();
+            let held = g.control(&s, dt_t, Vec3::ZERO, &cmd);
+            s = g.step_with(integ, &s, T::ZERO, dt_t, held).unwrap();
         }
         let dl = (lab_momentum(s.attitude, s.momentum) - l0).norm().to_f64() / l0.norm().to_f64();
         let dw = (g.omega(&s) - w_start).norm().to_f64();
@@ -248,16 +249,13 @@ fn wheel_exchange_conserves_total_momentum() {
 fn wheel_speed_command_is_reached() {
     let body = BodyHamiltonian::rigid(inertia::<f64>());
     let g = Gyrostat::new(body, wheels::<f64>());
-    let s0: GyrostatState<f64, 4> = g.state_from_omega(UnitQuat::IDENTITY, Vec3::ZERO, [0.0; 4]);
+    let s0: State<f64, 4> = g
+        .state_from_omega(UnitQuat::IDENTITY, Vec3::ZERO, [0.0; 4])
+        .unwrap();
     let target = [100.0, -50.0, 25.0, 10.0];
+    let held = g.control(&s0, 0.01, Vec3::ZERO, &WheelCommand::Speed(target));
     let s1 = g
-        .step(
-            Integrator::Yoshida4,
-            &s0,
-            0.01,
-            Vec3::ZERO,
-            &WheelCommand::Speed(target),
-        )
+        .step_with(Integrator::Yoshida4, &s0, 0.0, 0.01, held)
         .unwrap();
     for (got, want) in s1.wheel_speeds.iter().zip(target) {
         assert!((got - want).abs() < 1e-12);
@@ -272,11 +270,8 @@ fn wheel_speed_command_is_reached() {
 /// Typed errors: bad steps, bad wheels, quartic with a non-diagonal tensor.
 #[test]
 fn errors_are_typed() {
-    let body = BodyHamiltonian::rigid(inertia::<f64>());
-    let s = State {
-        attitude: UnitQuat::IDENTITY,
-        momentum: Vec3::new(1.0, 0.0, 0.0),
-    };
+    let body = Gyrostat::rigid(inertia::<f64>());
+    let s = State::new(UnitQuat::IDENTITY, Vec3::new(1.0, 0.0, 0.0));
     assert_eq!(
         body.step(Integrator::Strang, &s, 0.0),
         Err(Error::InvalidArgument)
@@ -289,28 +284,26 @@ fn errors_are_typed() {
         body.step(Integrator::Rk4, &s, f64::NAN),
         Err(Error::NonFinite)
     );
-    assert_eq!(
-        body.step_with_torque(
-            Integrator::Strang,
-            &s,
-            0.1,
-            Vec3::new(f64::INFINITY, 0.0, 0.0)
-        ),
-        Err(Error::NonFinite)
-    );
-    assert_eq!(
-        body.step_with(Integrator::Yoshida4, &s, 0.0, 0.1, |_, _| Vec3::new(
-            f64::NAN,
-            0.0,
-            0.0
-        )),
-        Err(Error::NonFinite)
-    );
+    for integ in Integrator::ALL {
+        let held = Control::torque(Vec3::new(f64::INFINITY, 0.0, 0.0));
+        assert_eq!(
+            body.step_with(integ, &s, 0.1, 0.1, held),
+            Err(Error::NonFinite)
+        );
+        let law = |_, _: &State<f64>| Control::torque(Vec3::new(f64::NAN, 0.0, 0.0));
+        assert_eq!(
+            body.step_with(integ, &s, 0.0, 0.1, law),
+            Err(Error::NonFinite)
+        );
+        assert_eq!(
+            body.step_with(integ, &s, f64::NAN, 0.1, Control::ZERO),
+            Err(Error::NonFinite)
+        );
+    }
     assert_eq!(Wheel::try_new(Vec3::ZERO, 0.1f64), Err(Error::ZeroNorm));
     assert_eq!(Wheel::try_new(Vec3::X, 0.0f64), Err(Error::InvalidArgument));
     assert_eq!(
         BodyHamiltonian::try_new(inertia::<f64>(), Vec3::ZERO, Quartic::Cubic(0.1)),
         Err(Error::InvalidArgument)
     );
-    let _ = Control::<f64, 0>::ZERO;
 }

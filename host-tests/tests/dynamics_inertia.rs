@@ -34,7 +34,10 @@ fn check_eigen<T: Real>(a: &M3, tol_val: f64, tol_vec: f64) {
     let mut got: Vec<(f64, [f64; 3])> = (0..3)
         .map(|i| {
             let c = vecs.col(i);
-            (vals[i].to_f64(), [c.x.to_f64(), c.y.to_f64(), c.z.to_f64()])
+            (
+                vals.to_array()[i].to_f64(),
+                [c.x.to_f64(), c.y.to_f64(), c.z.to_f64()],
+            )
         })
         .collect();
     got.sort_by(|x, y| x.0.total_cmp(&y.0));

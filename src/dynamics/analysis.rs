@@ -3,26 +3,16 @@
 //! multipole coefficients of a gyro-rotor Hamiltonian.
 //!
 //! # Conventions
-//! The seed's BOD-frame direction of `J` at polar angle `β` and azimuth `γ` is
-//! `Ĵ = (−cos γ sin β, sin γ sin β, cos β)` (the `⟨z|` row of `R(αβγ)`, (6.7.40)); moments are
-//! indexed like the body axes `(I₁, I₂, I₃)` in any order unless a function says otherwise.
+//! Every function takes the body's validated [`Inertia`] and works with its principal moments
+//! `(I₁, I₂, I₃)` ([`Inertia::principal_moments`], in the body-axis order for a diagonal tensor)
+//! in the principal frame. The seed's BOD-frame direction of `J` at polar angle `β` and azimuth
+//! `γ` is `Ĵ = (−cos γ sin β, sin γ sin β, cos β)` (the `⟨z|` row of `R(αβγ)`, (6.7.40)).
 //! Rigid-rotor constants are `A = 1/(2I₁)`, `B = 1/(2I₂)`, `C = 1/(2I₃)` (6.9.2). Angles are in
 //! radians.
 
-use crate::{Error, Real, Vec3};
-
-fn check_moments<T: Real>(i: Vec3<T>) -> Result<(), Error> {
-    if !i.is_finite() {
-        return Err(Error::NonFinite);
-    }
-    if i.x <= T::ZERO || i.y <= T::ZERO || i.z <= T::ZERO {
-        return Err(Error::NonPhysicalInertia);
-    }
-    if i.x > i.y + i.z || i.y > i.x + i.z || i.z > i.x + i.y {
-        return Err(Error::NonPhysicalInertia);
-    }
-    Ok(())
-}
+use crate::dynamics::Inertia;
+use crate::dynamics::free_rigid_body::EQUAL_MOMENTS_TOLERANCE;
+use crate::{Axis, Error, Real, Vec3};
 
 fn check_finite<T: Real>(xs: &[T]) -> Result<(), Error> {
     if xs.iter().all(|x| x.is_finite()) {
@@ -50,12 +40,15 @@ fn energy_per_j2<T: Real>(i: Vec3<T>, beta: T, gamma: T) -> T {
 /// energy of momentum magnitude `j` pointing along `Ĵ(β, γ)` in the body frame.
 ///
 /// # Errors
-/// [`Error::NonFinite`], [`Error::NonPhysicalInertia`] (moments not positive or violating the
-/// triangle inequality).
-pub fn rotational_energy<T: Real>(moments: Vec3<T>, j: T, beta: T, gamma: T) -> Result<T, Error> {
-    check_moments(moments)?;
+/// [`Error::NonFinite`] for a non-finite argument.
+pub fn rotational_energy<T: Real>(
+    inertia: &Inertia<T>,
+    j: T,
+    beta: T,
+    gamma: T,
+) -> Result<T, Error> {
     check_finite(&[j, beta, gamma])?;
-    Ok(j * j * energy_per_j2(moments, beta, gamma))
+    Ok(j * j * energy_per_j2(inertia.principal_moments(), beta, gamma))
 }
 
 /// The constant-energy surface (CES) radius
@@ -65,18 +58,17 @@ pub fn rotational_energy<T: Real>(moments: Vec3<T>, j: T, beta: T, gamma: T) -> 
 /// # Errors
 /// As [`rotational_energy`], plus [`Error::InvalidArgument`] for `energy < 0`.
 pub fn constant_energy_radius<T: Real>(
-    moments: Vec3<T>,
+    inertia: &Inertia<T>,
     energy: T,
     beta: T,
     gamma: T,
 ) -> Result<T, Error> {
-    check_moments(moments)?;
     check_finite(&[energy, beta, gamma])?;
     if energy < T::ZERO {
         return Err(Error::InvalidArgument);
     }
     // The denominator is ≥ 1/(2 I_max) > 0.
-    Ok((energy / energy_per_j2(moments, beta, gamma)).sqrt())
+    Ok((energy / energy_per_j2(inertia.principal_moments(), beta, gamma)).sqrt())
 }
 
 /// The separatrix azimuth `γ_B` (6.8.10): the separatrix of the rigid rotor (the constant-`J`
@@ -93,11 +85,10 @@ pub fn constant_energy_radius<T: Real>(
 /// `I₂ ≈ 5.646`). The test `analysis_seed` records this.
 ///
 /// # Errors
-/// [`Error::NonFinite`]; [`Error::NonPhysicalInertia`]; [`Error::InvalidArgument`] unless `I₂`
-/// lies strictly between `I₁` and `I₃` (no separatrix for a symmetric top, and `I₂` must be the
-/// intermediate moment).
-pub fn separatrix_angle<T: Real>(moments: Vec3<T>) -> Result<T, Error> {
-    check_moments(moments)?;
+/// [`Error::InvalidArgument`] unless `I₂` lies strictly between `I₁` and `I₃` (no separatrix for
+/// a symmetric top, and `I₂` must be the intermediate moment).
+pub fn separatrix_angle<T: Real>(inertia: &Inertia<T>) -> Result<T, Error> {
+    let moments = inertia.principal_moments();
     let (i1, i2, i3) = (moments.x, moments.y, moments.z);
     let between = (i1 > i2 && i2 > i3) || (i1 < i2 && i2 < i3);
     if !between {
@@ -130,7 +121,7 @@ pub struct SmallMotion<T> {
 }
 
 /// Small-oscillation and divergence rates of `J` (magnitude `j`) near the principal axis
-/// `axis` (0, 1, 2), (6.8.6a–c): with `a` that axis and `b, c` the others,
+/// `axis`, (6.8.6a–c): with `a` that axis and `b, c` the others,
 ///
 /// `rate = (J/I_a) √(|(I_b − I_a)(I_c − I_a)| / (I_b I_c))`,
 ///
@@ -141,17 +132,19 @@ pub struct SmallMotion<T> {
 /// the exact `|λ|` of [`super::free_rigid_body`].
 ///
 /// # Errors
-/// [`Error::NonFinite`], [`Error::NonPhysicalInertia`], [`Error::InvalidArgument`] for
-/// `axis > 2`.
-pub fn small_motion<T: Real>(moments: Vec3<T>, j: T, axis: usize) -> Result<SmallMotion<T>, Error> {
-    check_moments(moments)?;
+/// [`Error::NonFinite`] for a non-finite `j`.
+pub fn small_motion<T: Real>(
+    inertia: &Inertia<T>,
+    j: T,
+    axis: Axis,
+) -> Result<SmallMotion<T>, Error> {
     check_finite(&[j])?;
-    let (ia, ib, ic) = match axis {
-        0 => (moments.x, moments.y, moments.z),
-        1 => (moments.y, moments.z, moments.x),
-        2 => (moments.z, moments.x, moments.y),
-        _ => return Err(Error::InvalidArgument),
-    };
+    let moments = inertia.principal_moments();
+    let (ia, ib, ic) = (
+        moments[axis],
+        moments[axis.next()],
+        moments[axis.next().next()],
+    );
     let prod = (ib - ia) * (ic - ia);
     let rate = j.abs() / ia * (prod.abs() / (ib * ic)).sqrt();
     let kind = if prod > T::ZERO {
@@ -182,20 +175,25 @@ pub struct SymmetricTopRates<T> {
     pub omega_lab: Vec3<T>,
 }
 
-/// Symmetric-top rates (6.7.39)–(6.7.43) for transverse moment `I_II = I₁ = I₂`, axial moment
-/// `I₃`, momentum magnitude `j` and tilt `β` of the symmetry axis from `J`.
+/// Symmetric-top rates (6.7.39)–(6.7.43) for a body whose first two principal moments are the
+/// transverse moment `I_II = I₁ = I₂` and whose third is the axial moment `I₃`, momentum
+/// magnitude `j` and tilt `β` of the symmetry axis from `J`.
 ///
 /// # Errors
-/// [`Error::NonFinite`]; [`Error::NonPhysicalInertia`] unless `I_II, I₃ > 0` and
-/// `I₃ ≤ 2 I_II` (triangle inequality).
+/// [`Error::NonFinite`] for a non-finite argument; [`Error::InvalidArgument`] unless `I₁ = I₂`
+/// (within [`EQUAL_MOMENTS_TOLERANCE`] ulp, relative).
 pub fn symmetric_top_rates<T: Real>(
-    i_transverse: T,
-    i_axial: T,
+    inertia: &Inertia<T>,
     j: T,
     beta: T,
 ) -> Result<SymmetricTopRates<T>, Error> {
-    check_moments(Vec3::new(i_transverse, i_transverse, i_axial))?;
     check_finite(&[j, beta])?;
+    let m = inertia.principal_moments();
+    let tol = T::from_f64(EQUAL_MOMENTS_TOLERANCE) * T::EPSILON * m.x.max(m.y);
+    if (m.x - m.y).abs() > tol {
+        return Err(Error::InvalidArgument);
+    }
+    let (i_transverse, i_axial) = ((m.x + m.y) * T::HALF, m.z);
     let (sb, cb) = beta.sin_cos();
     let alpha_dot = j / i_transverse;
     let gamma_dot = (T::ONE / i_axial - T::ONE / i_transverse) * j * cb;
@@ -249,18 +247,25 @@ impl<T: Real> GyroMultipoles<T> {
 }
 
 /// The gyro-rotor multipole coefficients (6.9.4) for principal moments `(I₁, I₂, I₃)` and
-/// body-fixed rotor spin `S` (`A = 1/(2I₁)`, … (6.9.2)).
+/// rotor spin `S` (`A = 1/(2I₁)`, … (6.9.2)). `spin` is given in the body frame; the multipoles
+/// are those of the principal frame, so a non-diagonal tensor's spin is rotated into it
+/// (`P* ⊗ S ⊗ P`) first.
 ///
 /// # Errors
-/// [`Error::NonFinite`], [`Error::NonPhysicalInertia`].
+/// [`Error::NonFinite`] for a non-finite spin.
 pub fn gyro_multipoles<T: Real>(
-    moments: Vec3<T>,
+    inertia: &Inertia<T>,
     spin: Vec3<T>,
 ) -> Result<GyroMultipoles<T>, Error> {
-    check_moments(moments)?;
     if !spin.is_finite() {
         return Err(Error::NonFinite);
     }
+    let moments = inertia.principal_moments();
+    let spin = if inertia.is_diagonal() {
+        spin
+    } else {
+        inertia.principal_rotation().inverse_rotate(spin)
+    };
     let a = T::HALF / moments.x;
     let b = T::HALF / moments.y;
     let c = T::HALF / moments.z;

@@ -3,8 +3,12 @@
 //! right (evaluate at any `t`, no accumulation).
 //!
 //! # Model and conventions
-//! The body frame is the principal frame: the inertia tensor is `diag(I₁, I₂, I₃)` (any order).
-//! The body angular momentum `J` obeys `J̇ = J × ω`, `ω = I⁻¹J` (seed (6.8.5), Euler's equations
+//! The closed forms below are stated in the principal frame, where the inertia tensor is
+//! `diag(I₁, I₂, I₃)` (any order). A body with a non-diagonal tensor is solved in its principal
+//! frame and mapped back: with `P` the rotation from principal to body axes
+//! ([`Inertia::principal_rotation`]), the principal-frame momentum is `P* ⊗ J ⊗ P` and attitude
+//! `q ⊗ P`, and the results return by the inverse maps. For a diagonal tensor `P = 1` and no
+//! mapping is done. The body angular momentum `J` obeys `J̇ = J × ω`, `ω = I⁻¹J` (seed (6.8.5), Euler's equations
 //! (6.7.50)); the attitude `q` maps body to lab (crate conventions) and obeys
 //! `q̇ = ½ q ⊗ (0, ω)`; the lab momentum `q J q*` is constant.
 //!
@@ -77,7 +81,8 @@ use super::elliptic::{
     amplitude_parts, complete_k_unchecked, f_reduced, pi_complete_unchecked, pi_with_complete,
     sech_tanh,
 };
-use crate::{Error, Real, UnitQuat, Vec3};
+use crate::dynamics::{Inertia, State};
+use crate::{Axis, Error, Real, UnitQuat, Vec3};
 
 /// Two principal moments within this relative distance (`|Iₐ − I_b| ≤ tol·max`) are treated as
 /// equal: 16 ulp. Beyond it the asymmetric (elliptic) solution is used and is accurate; below
@@ -90,27 +95,29 @@ pub const EQUAL_MOMENTS_TOLERANCE: f64 = 16.0;
 /// `J² − 2E·I_mid` from the components (two products and a difference, ≤ 4 ulp each, doubled).
 pub const SEPARATRIX_TOLERANCE: f64 = 8.0;
 
-/// The qualitative kind of torque-free motion, decided once by [`FreeRigidBody::try_new`].
+/// The qualitative kind of torque-free motion, decided once by [`FreeRigidBody::try_new`]. Axes
+/// are principal axes: for a diagonal tensor the body axes, otherwise the columns of
+/// [`Inertia::principal_axes`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Regime {
     /// All three moments equal: rotation at constant `ω` about the fixed `J`.
     Sphere,
-    /// Two moments equal: regular precession (6.7.39)–(6.7.43). `axis` is the body index
-    /// (0, 1, 2) of the distinct (symmetry) moment.
+    /// Two moments equal: regular precession (6.7.39)–(6.7.43). `axis` is the principal axis
+    /// of the distinct (symmetry) moment.
     SymmetricTop {
-        /// Body index of the symmetry axis.
-        axis: usize,
+        /// The symmetry axis.
+        axis: Axis,
     },
-    /// `J` along a principal axis: steady rotation. `axis` is its body index.
+    /// `J` along a principal axis: steady rotation about `axis`.
     Stationary {
-        /// Body index of the rotation axis.
-        axis: usize,
+        /// The rotation axis.
+        axis: Axis,
     },
     /// Asymmetric top, `J` circulating around the principal axis `axis` (the major or minor
     /// axis) with parameter `m ∈ [0, 1)`.
     Circulating {
-        /// Body index of the axis `J` circulates around.
-        axis: usize,
+        /// The axis `J` circulates around.
+        axis: Axis,
     },
     /// Asymmetric top exactly on the separatrix (`m = 1`): `J` tends to the intermediate axis.
     Separatrix,
@@ -119,8 +126,8 @@ pub enum Regime {
 /// Data of the asymmetric (elliptic or separatrix) motion.
 #[derive(Clone, Copy, Debug)]
 struct Asymmetric<T> {
-    /// Body indices `(a₁, a₂, a₃)`: `a₂` intermediate, `a₃` the axis circulated.
-    idx: [usize; 3],
+    /// Axes `(a₁, a₂, a₃)`: `a₂` intermediate, `a₃` the axis circulated.
+    idx: [Axis; 3],
     /// `s₁ A₁`, `s₁ A₂`, `s₃ A₃`: signed amplitudes.
     amp: [T; 3],
     m: T,
@@ -170,26 +177,28 @@ enum Motion<T> {
 /// The exact torque-free motion of a rigid body, evaluated in closed form at any time.
 ///
 /// ```
-/// use gyrostat::dynamics::free_rigid_body::FreeRigidBody;
+/// use gyrostat::dynamics::{FreeRigidBody, Inertia, State};
 /// use gyrostat::{UnitQuat, Vec3};
 /// // A box spun near its intermediate axis: the Dzhanibekov flip.
-/// let body = FreeRigidBody::try_new(
-///     Vec3::new(1.0f64, 2.0, 3.0),
-///     Vec3::new(0.01, 2.0, 0.01),
-///     UnitQuat::IDENTITY,
-/// )?;
+/// let inertia = Inertia::try_from_principal(Vec3::new(1.0f64, 2.0, 3.0))?;
+/// let start = State::new(UnitQuat::IDENTITY, Vec3::new(0.01, 2.0, 0.01));
+/// let body = FreeRigidBody::try_new(&inertia, &start)?;
 /// let half = body.flip_interval().unwrap();
-/// let (q, j) = body.state_at(half);
-/// assert!(j.y < -1.9); // J has flipped to the other end of the intermediate axis
+/// let s = body.state_at(half);
+/// assert!(s.momentum.y < -1.9); // J has flipped to the other end of the intermediate axis
 /// // The lab momentum is unchanged.
-/// let j_lab = q.rotate(j);
+/// let j_lab = s.attitude.rotate(s.momentum);
 /// assert!((j_lab - Vec3::new(0.01, 2.0, 0.01)).norm() < 1e-9);
 /// # Ok::<(), gyrostat::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct FreeRigidBody<T> {
     moments: Vec3<T>,
+    /// `P`, principal → body; `None` for a diagonal tensor (`P = 1`).
+    principal: Option<UnitQuat<T>>,
+    /// Initial momentum, principal frame.
     j0: Vec3<T>,
+    /// Initial attitude of the principal frame, `q₀ ⊗ P`.
     q0: UnitQuat<T>,
     j_norm: T,
     energy: T,
@@ -197,45 +206,41 @@ pub struct FreeRigidBody<T> {
     motion: Motion<T>,
 }
 
-fn axis_vec<T: Real>(i: usize) -> Vec3<T> {
-    Vec3::unit(i)
-}
-
-fn get<T: Real>(v: Vec3<T>, i: usize) -> T {
-    match i {
-        0 => v.x,
-        1 => v.y,
-        _ => v.z,
-    }
-}
-
 fn sign<T: Real>(x: T) -> T {
     if x < T::ZERO { -T::ONE } else { T::ONE }
 }
 
 impl<T: Real> FreeRigidBody<T> {
-    /// Sets up the motion from principal moments, initial body momentum and initial attitude
-    /// (body → lab).
+    /// Sets up the motion of a body with inertia `inertia` from its initial state (attitude
+    /// body → lab, body momentum).
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for non-finite input; [`Error::NonPhysicalInertia`] unless every
-    /// moment is positive and `Iₐ ≤ I_b + I_c` for each (the triangle inequality of a real mass
-    /// distribution, seed §6.7); [`Error::ZeroNorm`] for `J = 0`.
-    pub fn try_new(
-        principal_moments: Vec3<T>,
-        j0_body: Vec3<T>,
-        q0: UnitQuat<T>,
-    ) -> Result<Self, Error> {
-        let i = principal_moments;
-        if !i.is_finite() || !j0_body.is_finite() || !q0.as_quat().is_finite() {
+    /// [`Error::NonFinite`] for a non-finite state; [`Error::ZeroNorm`] for `J = 0`.
+    pub fn try_new(inertia: &Inertia<T>, initial: &State<T>) -> Result<Self, Error> {
+        let (q0, j0) = (initial.attitude, initial.momentum);
+        if !j0.is_finite() || !q0.as_quat().is_finite() {
             return Err(Error::NonFinite);
         }
-        if i.x <= T::ZERO || i.y <= T::ZERO || i.z <= T::ZERO {
-            return Err(Error::NonPhysicalInertia);
-        }
-        if i.x > i.y + i.z || i.y > i.x + i.z || i.z > i.x + i.y {
-            return Err(Error::NonPhysicalInertia);
-        }
+        let principal = if inertia.is_diagonal() {
+            None
+        } else {
+            Some(inertia.principal_rotation())
+        };
+        let (q0, j0) = match principal {
+            None => (q0, j0),
+            Some(p) => (q0 * p, p.inverse_rotate(j0)),
+        };
+        Self::in_principal_frame(inertia.principal_moments(), j0, q0, principal)
+    }
+
+    /// The motion from principal moments (validated by [`Inertia`]) and the initial momentum and
+    /// attitude of the principal frame.
+    fn in_principal_frame(
+        i: Vec3<T>,
+        j0_body: Vec3<T>,
+        q0: UnitQuat<T>,
+        principal: Option<UnitQuat<T>>,
+    ) -> Result<Self, Error> {
         let j_norm = j0_body.norm();
         if !j_norm.is_finite() {
             return Err(Error::NonFinite);
@@ -251,23 +256,24 @@ impl<T: Real> FreeRigidBody<T> {
 
         // Sort the axes by moment: lo, mid, hi (a 3-element network; no slice sort, whose
         // total-order check has a panic path).
-        let (mut lo, mut mid, mut hi) = (0usize, 1usize, 2usize);
-        if get(i, mid) < get(i, lo) {
+        let (mut lo, mut mid, mut hi) = (Axis::X, Axis::Y, Axis::Z);
+        if i[mid] < i[lo] {
             core::mem::swap(&mut lo, &mut mid);
         }
-        if get(i, hi) < get(i, mid) {
+        if i[hi] < i[mid] {
             core::mem::swap(&mut mid, &mut hi);
         }
-        if get(i, mid) < get(i, lo) {
+        if i[mid] < i[lo] {
             core::mem::swap(&mut lo, &mut mid);
         }
-        let (i_lo, i_mid, i_hi) = (get(i, lo), get(i, mid), get(i, hi));
+        let (i_lo, i_mid, i_hi) = (i[lo], i[mid], i[hi]);
         let eq_tol = T::from_f64(EQUAL_MOMENTS_TOLERANCE) * T::EPSILON;
         let lo_eq_mid = i_mid - i_lo <= eq_tol * i_mid;
         let mid_eq_hi = i_hi - i_mid <= eq_tol * i_hi;
 
         let mut this = Self {
             moments: i,
+            principal,
             j0: j0_body,
             q0,
             j_norm,
@@ -279,11 +285,8 @@ impl<T: Real> FreeRigidBody<T> {
             return Ok(this);
         }
         // Stationary: J exactly along one principal axis.
-        for ax in 0..3 {
-            let others = [0usize, 1, 2]
-                .iter()
-                .filter(|k| **k != ax)
-                .all(|k| get(j0_body, *k) == T::ZERO);
+        for ax in Axis::ALL {
+            let others = j0_body[ax.next()] == T::ZERO && j0_body[ax.next().next()] == T::ZERO;
             if others {
                 this.regime = Regime::Stationary { axis: ax };
                 return Ok(this);
@@ -295,8 +298,8 @@ impl<T: Real> FreeRigidBody<T> {
             } else {
                 (lo, i_lo, (i_mid + i_hi) * T::HALF)
             };
-            let e_s = axis_vec::<T>(ax);
-            let j_s = get(j0_body, ax);
+            let e_s = Vec3::unit(ax);
+            let j_s = j0_body[ax];
             this.regime = Regime::SymmetricTop { axis: ax };
             this.motion = Motion::Symmetric {
                 e_s,
@@ -307,27 +310,27 @@ impl<T: Real> FreeRigidBody<T> {
         }
 
         // Asymmetric top. d = J² − 2E·I_mid from the components.
-        let j_lo = get(j0_body, lo);
-        let j_hi = get(j0_body, hi);
+        let j_lo = j0_body[lo];
+        let j_hi = j0_body[hi];
         let d = j_hi * j_hi * ((i_hi - i_mid) / i_hi) - j_lo * j_lo * ((i_mid - i_lo) / i_lo);
         let j2 = j_norm * j_norm;
         let sep_tol = T::from_f64(SEPARATRIX_TOLERANCE) * T::EPSILON * j2;
         let separatrix = d.abs() <= sep_tol;
         let (a1, a3) = if d >= T::ZERO { (lo, hi) } else { (hi, lo) };
-        if separatrix && (get(j0_body, a1) == T::ZERO || get(j0_body, a3) == T::ZERO) {
+        if separatrix && (j0_body[a1] == T::ZERO || j0_body[a3] == T::ZERO) {
             // On the separatrix with J₁ = 0 or J₃ = 0 means at the saddle (within rounding).
             this.regime = Regime::Stationary { axis: mid };
             return Ok(this);
         }
         let a2 = mid;
-        let e1 = axis_vec::<T>(a1);
-        let e2 = axis_vec::<T>(a2);
-        let e3 = axis_vec::<T>(a3);
-        let (i1, i2, i3) = (get(i, a1), get(i, a2), get(i, a3));
+        let e1 = Vec3::unit(a1);
+        let e2 = Vec3::unit(a2);
+        let e3 = Vec3::unit(a3);
+        let (i1, i2, i3) = (i[a1], i[a2], i[a3]);
         // The relabelled frame (e_{a₁}, h·e_{a₂}, e_{a₃}) is right-handed: h = ±1.
         let h = sign(e1.cross(e2).dot(e3));
         // Components in that frame, where J̇ = J × ω keeps the cyclic form of (6.8.5d).
-        let (jj1, jj2, jj3) = (get(j0_body, a1), h * get(j0_body, a2), get(j0_body, a3));
+        let (jj1, jj2, jj3) = (j0_body[a1], h * j0_body[a2], j0_body[a3]);
         // Same-signed ratios in both labelings.
         let r21 = (i3 - i2) / (i3 - i1); // ∈ (0, 1)
         let r31 = (i2 - i1) / (i3 - i1); // ∈ (0, 1)
@@ -436,7 +439,7 @@ impl<T: Real> FreeRigidBody<T> {
         self.regime
     }
 
-    /// The principal moments given at construction.
+    /// The principal moments (those of [`Inertia::principal_moments`]).
     pub fn principal_moments(&self) -> Vec3<T> {
         self.moments
     }
@@ -485,6 +488,20 @@ impl<T: Real> FreeRigidBody<T> {
 
     /// Body angular momentum at time `t`.
     pub fn body_momentum_at(&self, t: T) -> Vec3<T> {
+        self.principal_to_body(self.principal_momentum_at(t))
+    }
+
+    /// A principal-frame vector in the body frame.
+    #[inline]
+    fn principal_to_body(&self, v: Vec3<T>) -> Vec3<T> {
+        match self.principal {
+            None => v,
+            Some(p) => p.rotate(v),
+        }
+    }
+
+    /// Principal-frame angular momentum at time `t`.
+    fn principal_momentum_at(&self, t: T) -> Vec3<T> {
         match &self.motion {
             Motion::Steady { .. } => self.j0,
             Motion::Symmetric { e_s, body_rate, .. } => {
@@ -512,27 +529,27 @@ impl<T: Real> FreeRigidBody<T> {
         let [a1, a2, a3] = a.idx;
         let [p1, p2, p3] = a.amp;
         let mut j = Vec3::ZERO;
-        set(&mut j, a1, p1 * cn);
-        set(&mut j, a2, p2 * sn);
-        set(&mut j, a3, p3 * dn);
+        j[a1] = p1 * cn;
+        j[a2] = p2 * sn;
+        j[a3] = p3 * dn;
         j
     }
 
     /// Body angular velocity `ω = I⁻¹ J` at time `t` (rad/s, body frame).
     pub fn body_rates_at(&self, t: T) -> Vec3<T> {
-        let j = self.body_momentum_at(t);
-        Vec3::new(
+        let j = self.principal_momentum_at(t);
+        self.principal_to_body(Vec3::new(
             j.x / self.moments.x,
             j.y / self.moments.y,
             j.z / self.moments.z,
-        )
+        ))
     }
 
     /// [`FreeRigidBody::state_at`] with a check of `t`.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite `t`.
-    pub fn try_state_at(&self, t: T) -> Result<(UnitQuat<T>, Vec3<T>), Error> {
+    pub fn try_state_at(&self, t: T) -> Result<State<T>, Error> {
         if !t.is_finite() {
             return Err(Error::NonFinite);
         }
@@ -543,10 +560,18 @@ impl<T: Real> FreeRigidBody<T> {
     ///
     /// Closed form for every finite `t` (negative too); cost independent of `t`. Accuracy of
     /// the attitude degrades like `ε·|ψ(t)|` (the angle about `J` is evaluated, not
-    /// accumulated). `t` must be finite
-    /// (a NaN or infinite `t` gives NaN components, never a panic); use
-    /// [`FreeRigidBody::try_state_at`] to have it checked.
-    pub fn state_at(&self, t: T) -> (UnitQuat<T>, Vec3<T>) {
+    /// accumulated). `t` must be finite (a NaN or infinite `t` gives NaN components, never a
+    /// panic); use [`FreeRigidBody::try_state_at`] to have it checked.
+    pub fn state_at(&self, t: T) -> State<T> {
+        let (q, j) = self.principal_state_at(t);
+        match self.principal {
+            None => State::new(q, j),
+            Some(p) => State::new(q * p.inverse(), p.rotate(j)),
+        }
+    }
+
+    /// The attitude and momentum of the principal frame at time `t`.
+    fn principal_state_at(&self, t: T) -> (UnitQuat<T>, Vec3<T>) {
         match &self.motion {
             Motion::Steady { rate } => {
                 let axis = self.j0.scale(T::ONE / self.j_norm);
@@ -586,14 +611,6 @@ impl<T: Real> FreeRigidBody<T> {
                 (q.renormalize_fast(), j)
             }
         }
-    }
-}
-
-fn set<T: Real>(v: &mut Vec3<T>, i: usize, x: T) {
-    match i {
-        0 => v.x = x,
-        1 => v.y = x,
-        _ => v.z = x,
     }
 }
 

@@ -1,45 +1,162 @@
-//! The gyrostat: a rigid body with constant rotor spins and `N` reaction wheels.
+//! The body: a gyrostat, a rigid body with constant rotor spins and `N` reaction wheels, and its
+//! step. A rigid body is the zero-wheel case.
 //!
-//! Body-frame total momentum `J = I·ω + S + Σ I_wᵢ Ωᵢ gᵢ` (DESIGN: `J = I ω + h`), where `I` is
-//! the whole spacecraft's tensor with the wheels locked, `S` the constant rotor spins and
-//! `Ωᵢ` the wheel speeds relative to the body (state). With external torque `τ` and wheel
-//! torques `ḣᵢ = I_wᵢ Ω̇ᵢ` the motion is
+//! Body-frame total momentum `J = I·ω + S + Σ I_wᵢ Ωᵢ gᵢ` (crate docs: `J = I ω + h`), where `I`
+//! is the whole body's tensor with the wheels locked, `S` the constant rotor spins and `Ωᵢ` the
+//! wheel speeds relative to the body ([`State`]). With external torque `τ` and wheel torques
+//! `ḣᵢ = I_wᵢ Ω̇ᵢ` the motion is
 //!
-//! `J̇ = J × ω + τ`, `ω = I⁻¹(J − h)`, `h = S + Σ I_wᵢ Ωᵢ gᵢ`,
+//! `J̇ = J × ω + τ`, `ω = ∇H(J) = I⁻¹(J − h) + ∇quartic(J)`, `h = S + Σ I_wᵢ Ωᵢ gᵢ`,
 //!
-//! which is the Euler equation `I ω̇ = −ω × (I ω + h) + τ − ḣ` ([`euler_rate`]) written for the
-//! conserved quantity `J`: the wheel torque is internal, so it moves momentum between the wheels
-//! and the body without changing `J`.
+//! which is the Euler equation `I ω̇ = −ω × (I ω + h) + τ − ḣ` ([`angular_acceleration`]) written
+//! for the conserved quantity `J` (seed (6.8.5), (6.9.2)): the wheel torque is internal, so it
+//! moves momentum between the wheels and the body without changing `J`.
 //!
-//! Inputs come either as plain values per step ([`Gyrostat::step`] with a [`WheelCommand`]: the
-//! firmware form) or as a law `f(t, state)` evaluated at the integrator's stages
-//! ([`Gyrostat::step_with`]: the host form).
+//! # Stepping
+//! [`Gyrostat::step`] advances a torque-free body (wheels coasting); [`Gyrostat::step_with`]
+//! takes an input, either a [`Control`] held over the step (the firmware form, see
+//! [`Gyrostat::control`]) or a law `f(t, state)` evaluated at the integrator's stages (the host
+//! form). Both check the step once and return a typed error for a non-finite result.
+//!
+//! ```
+//! use gyrostat::dynamics::{Gyrostat, Inertia, Integrator, State, lab_momentum};
+//! use gyrostat::{UnitQuat, Vec3};
+//! let body = Gyrostat::rigid(Inertia::try_from_principal(Vec3::new(6.0f64, 4.0, 3.0))?);
+//! let mut s = State::new(UnitQuat::IDENTITY, Vec3::new(0.1, 1.0, 0.1));
+//! let l0 = lab_momentum(s.attitude, s.momentum);
+//! for _ in 0..1000 {
+//!     s = body.step(Integrator::Strang, &s, 0.01)?;
+//! }
+//! // The splitting conserves |J| and the lab momentum to rounding.
+//! assert!((s.momentum.norm() - l0.norm()).abs() < 1e-13);
+//! assert!((lab_momentum(s.attitude, s.momentum) - l0).norm() < 1e-12);
+//! # Ok::<(), gyrostat::Error>(())
+//! ```
 
 use crate::dynamics::hamiltonian::BodyHamiltonian;
 use crate::dynamics::inertia::Inertia;
-use crate::dynamics::integrators::{Control, Engine, GyrostatState, Integrator, Wheel};
-use crate::{Error, Real, Vec3};
+use crate::dynamics::monitors::{Invariants, lab_momentum, momentum_norm};
+use crate::dynamics::splitting::Stages;
+use crate::dynamics::state::{Control, ControlLaw, State, WheelCommand};
+use crate::dynamics::{rk4, splitting};
+use crate::{Error, Real, UnitQuat, Vec3};
 
-/// What the wheels are told to do during one step.
+/// The integration method of a step.
+///
+/// - [`Integrator::Rk4`]: the classical Runge–Kutta method on `(q, J, wheel speeds)`, the
+///   quaternion renormalised after each step. The baseline of Basilisk and NASA 42: order 4, but
+///   its energy and `|J|` errors grow linearly with time.
+/// - The Lie–Poisson splittings ([`crate::dynamics::splitting`]): every sub-step an exact
+///   rotation, so `|J|` and the lab momentum are conserved to rounding and the energy error stays
+///   bounded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Integrator {
+    /// Classical Runge–Kutta, order 4, quaternion renormalised each step.
+    Rk4,
+    /// Lie–Poisson splitting, Strang composition, order 2 (5 exact one-axis rotations).
+    Strang,
+    /// Yoshida's 3-stage symmetric composition of Strang steps, order 4.
+    Yoshida4,
+    /// Suzuki's 5-stage symmetric composition of Strang steps, order 4, smaller error constant.
+    Suzuki4,
+}
+
+impl Integrator {
+    /// Every method, in the order above.
+    pub const ALL: [Integrator; 4] = [
+        Integrator::Rk4,
+        Integrator::Strang,
+        Integrator::Yoshida4,
+        Integrator::Suzuki4,
+    ];
+
+    /// `true` for the Lie–Poisson splitting methods (exact `|J|`, bounded energy error).
+    #[inline]
+    pub fn is_splitting(self) -> bool {
+        !matches!(self, Integrator::Rk4)
+    }
+}
+
+/// One reaction wheel: a symmetric rotor spinning about a body-fixed unit axis `g`.
+///
+/// Its momentum relative to the body is `I_w Ω g`. The body tensor of the [`Gyrostat`] includes
+/// the wheels as if locked (all their mass and inertia), so the total momentum is
+/// `J = I·ω + Σ I_w Ω g` exactly.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum WheelCommand<T, const N: usize> {
-    /// Wheel torques `ḣᵢ = I_wᵢ Ω̇ᵢ`, held over the step.
-    Torque([T; N]),
-    /// Wheel speeds `Ωᵢ` (rad/s, relative to the body) to reach at the end of the step: an
-    /// ideal speed loop, realised as the constant torque `I_wᵢ (Ωᵢ,cmd − Ωᵢ)/dt`.
-    Speed([T; N]),
+pub struct Wheel<T> {
+    axis: Vec3<T>,
+    inertia: T,
+    inv_inertia: T,
+}
+
+impl<T: Real> Wheel<T> {
+    /// A wheel with spin axis `axis` (body frame, normalised here) and axial inertia `inertia`.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for non-finite input, [`Error::ZeroNorm`] for a zero axis,
+    /// [`Error::InvalidArgument`] for `inertia ≤ 0`.
+    pub fn try_new(axis: Vec3<T>, inertia: T) -> Result<Self, Error> {
+        if !inertia.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        let axis = axis.try_normalize()?;
+        if inertia <= T::ZERO {
+            return Err(Error::InvalidArgument);
+        }
+        Ok(Self {
+            axis,
+            inertia,
+            inv_inertia: T::ONE / inertia,
+        })
+    }
+
+    /// The unit spin axis (body frame).
+    #[inline]
+    pub fn axis(&self) -> Vec3<T> {
+        self.axis
+    }
+
+    /// The axial inertia `I_w`.
+    #[inline]
+    pub fn inertia(&self) -> T {
+        self.inertia
+    }
+
+    /// The wheel's speed rate `Ω̇ = ḣ / I_w` under wheel torque `torque`.
+    #[inline]
+    pub(crate) fn acceleration(&self, torque: T) -> T {
+        torque * self.inv_inertia
+    }
 }
 
 /// A gyrostat: a body Hamiltonian (inertia with the wheels locked, constant spins `S`, optional
-/// quartic term) and `N` reaction wheels.
+/// quartic term) and `N` reaction wheels. `Gyrostat<T>` (`N = 0`) is a rigid body or gyro-rotor.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Gyrostat<T, const N: usize> {
+pub struct Gyrostat<T, const N: usize = 0> {
     model: BodyHamiltonian<T>,
     wheels: [Wheel<T>; N],
 }
 
+impl<T: Real> Gyrostat<T> {
+    /// The rigid body `H = ½ J·I⁻¹·J` (6.5.11): no rotors, no wheels. Infallible because
+    /// `inertia` is validated.
+    #[inline]
+    pub fn rigid(inertia: Inertia<T>) -> Self {
+        Self::new(BodyHamiltonian::rigid(inertia), [])
+    }
+}
+
+impl<T: Real> From<BodyHamiltonian<T>> for Gyrostat<T> {
+    /// The body of a Hamiltonian, with no wheels.
+    #[inline]
+    fn from(model: BodyHamiltonian<T>) -> Self {
+        Self::new(model, [])
+    }
+}
+
 impl<T: Real, const N: usize> Gyrostat<T, N> {
     /// Builds from a validated model and validated wheels (infallible).
+    #[inline]
     pub fn new(model: BodyHamiltonian<T>, wheels: [Wheel<T>; N]) -> Self {
         Self { model, wheels }
     }
@@ -56,22 +173,19 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         &self.wheels
     }
 
-    fn engine(&self) -> Engine<'_, T, N> {
-        Engine {
-            model: &self.model,
-            wheels: &self.wheels,
-        }
-    }
-
     /// The total rotor momentum `h = S + Σ I_wᵢ Ωᵢ gᵢ` (body frame).
     #[inline]
     pub fn rotor_momentum(&self, wheel_speeds: &[T; N]) -> Vec3<T> {
-        self.engine().rotor(wheel_speeds)
+        let mut s = self.model.spin();
+        for (wheel, speed) in self.wheels.iter().zip(wheel_speeds.iter()) {
+            s += wheel.axis * (wheel.inertia * *speed);
+        }
+        s
     }
 
-    /// The body rate `ω = ∇H(J) = I⁻¹(J − h) + ∇quartic`.
+    /// The body rate `ω = ∇H(J) = I⁻¹(J − h) + ∇quartic(J)`.
     #[inline]
-    pub fn omega(&self, state: &GyrostatState<T, N>) -> Vec3<T> {
+    pub fn omega(&self, state: &State<T, N>) -> Vec3<T> {
         self.model
             .omega_with_rotor(state.momentum, self.rotor_momentum(&state.wheel_speeds))
     }
@@ -79,53 +193,62 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     /// The body Hamiltonian `H(J)` at the current rotor momentum: conserved when no torque acts
     /// and the wheels coast. (The wheels' own spin energy `Σ ½ I_w Ωᵢ²` is not included.)
     #[inline]
-    pub fn energy(&self, state: &GyrostatState<T, N>) -> T {
+    pub fn energy(&self, state: &State<T, N>) -> T {
         self.model
             .energy_with_rotor(state.momentum, self.rotor_momentum(&state.wheel_speeds))
     }
 
-    /// The state with body rate `omega` (body frame) instead of momentum: `J = I·ω + h`.
-    pub fn state_from_omega(
-        &self,
-        attitude: crate::UnitQuat<T>,
-        omega: Vec3<T>,
-        wheel_speeds: [T; N],
-    ) -> GyrostatState<T, N> {
-        let momentum = self.model.inertia.mul_vec(omega) + self.rotor_momentum(&wheel_speeds);
-        GyrostatState {
-            attitude,
-            momentum,
-            wheel_speeds,
+    /// The conserved quantities of torque-free motion at `state`: energy, `|J|`, lab momentum
+    /// (see [`crate::dynamics::monitors`]).
+    #[inline]
+    pub fn invariants(&self, state: &State<T, N>) -> Invariants<T> {
+        Invariants {
+            energy: self.energy(state),
+            momentum_norm: momentum_norm(state.momentum),
+            lab_momentum: lab_momentum(state.attitude, state.momentum),
         }
     }
 
-    /// One step with plain inputs held over the step: external body torque `torque` and a
-    /// wheel command (the firmware form).
+    /// The state with body rate `omega` (body frame) instead of momentum: the `J` with
+    /// `∇H(J) = ω` at the rotor momentum of `wheel_speeds` (`J = I·ω + h` without a quartic
+    /// term; see [`BodyHamiltonian::momentum_from_omega_with_rotor`]).
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for non-finite input or result; [`Error::InvalidArgument`] for
-    /// `dt ≤ 0`.
-    pub fn step(
+    /// As [`BodyHamiltonian::momentum_from_omega_with_rotor`].
+    pub fn state_from_omega(
         &self,
-        integrator: Integrator,
-        state: &GyrostatState<T, N>,
+        attitude: UnitQuat<T>,
+        omega: Vec3<T>,
+        wheel_speeds: [T; N],
+    ) -> Result<State<T, N>, Error> {
+        let h = self.rotor_momentum(&wheel_speeds);
+        Ok(State {
+            attitude,
+            momentum: self.model.momentum_from_omega_with_rotor(omega, h)?,
+            wheel_speeds,
+        })
+    }
+
+    /// The control held over one step of length `dt` from `state` (a zero-order hold): the
+    /// external body torque `torque` and the wheel torques that realise `command` (for
+    /// [`WheelCommand::Speed`], `I_wᵢ (Ωᵢ,cmd − Ωᵢ)/dt` from the speeds of `state`). Pass it to
+    /// [`Gyrostat::step_with`] with the same `state` and `dt`.
+    ///
+    /// A non-finite input, or `dt = 0` with a speed command, gives a non-finite control, which
+    /// the step rejects with [`Error::NonFinite`].
+    pub fn control(
+        &self,
+        state: &State<T, N>,
         dt: T,
         torque: Vec3<T>,
         command: &WheelCommand<T, N>,
-    ) -> Result<GyrostatState<T, N>, Error> {
-        if !dt.is_finite() {
-            return Err(Error::NonFinite);
-        }
-        if dt <= T::ZERO {
-            return Err(Error::InvalidArgument);
-        }
-        let torque = torque.try_finite()?;
-        let mut wheel_torques = [T::ZERO; N];
-        match command {
-            WheelCommand::Torque(u) => wheel_torques = *u,
+    ) -> Control<T, N> {
+        let wheel_torques = match command {
+            WheelCommand::Torque(u) => *u,
             WheelCommand::Speed(target) => {
                 let inv_dt = T::ONE / dt;
-                for (((u, tgt), now), wheel) in wheel_torques
+                let mut u = [T::ZERO; N];
+                for (((u, tgt), now), wheel) in u
                     .iter_mut()
                     .zip(target.iter())
                     .zip(state.wheel_speeds.iter())
@@ -133,47 +256,108 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
                 {
                     *u = wheel.inertia * (*tgt - *now) * inv_dt;
                 }
+                u
             }
-        }
-        if !wheel_torques.iter().all(|u| u.is_finite()) {
-            return Err(Error::NonFinite);
-        }
-        let control = Control {
+        };
+        Control {
             torque,
             wheel_torques,
-        };
-        self.engine()
-            .step(integrator, state, T::ZERO, dt, true, |_, _| control)
+        }
     }
 
-    /// One step from time `t` with a control law `f(t, state) → Control` evaluated at the
-    /// integrator's stages (the host form). See [`crate::dynamics::integrators`] for the order
-    /// of the splitting methods with state-dependent laws.
+    /// One torque-free step of length `dt`, the wheels coasting.
     ///
     /// # Errors
-    /// As [`Gyrostat::step`].
-    pub fn step_with<F>(
+    /// [`Error::NonFinite`] for a non-finite `dt` or a non-finite result (a step far too long
+    /// for the dynamics); [`Error::InvalidArgument`] for `dt ≤ 0`.
+    pub fn step(
         &self,
         integrator: Integrator,
-        state: &GyrostatState<T, N>,
+        state: &State<T, N>,
+        dt: T,
+    ) -> Result<State<T, N>, Error> {
+        check_step(T::ZERO, dt)?;
+        let next = match Stages::of(integrator, dt) {
+            Some(stages) => splitting::free(self, state, stages.as_slice()),
+            None => {
+                let mut torque_free = Control::ZERO;
+                rk4::step(self, state, T::ZERO, dt, &mut torque_free)
+            }
+        };
+        finish(next)
+    }
+
+    /// One step from time `t` with an input: a [`Control`] held over the step (see
+    /// [`Gyrostat::control`]) or a law `f(t, state) → Control` evaluated at the integrator's
+    /// stages. See [`crate::dynamics::splitting`] for the order of the splitting methods with
+    /// state-dependent laws.
+    ///
+    /// # Errors
+    /// As [`Gyrostat::step`], plus [`Error::NonFinite`] for a non-finite `t` and for an input
+    /// that makes the result non-finite (a non-finite torque).
+    ///
+    /// ```
+    /// use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State};
+    /// use gyrostat::{UnitQuat, Vec3};
+    /// let body = Gyrostat::rigid(Inertia::try_from_principal(Vec3::new(2.0f32, 2.0, 2.0))?);
+    /// let s = State::new(UnitQuat::IDENTITY, Vec3::ZERO);
+    /// // A held torque of 0.5 N·m about z for 2 s adds 1 N·m·s of momentum.
+    /// let held = Control::torque(Vec3::new(0.0, 0.0, 0.5));
+    /// let s1 = body.step_with(Integrator::Strang, &s, 0.0, 2.0, held)?;
+    /// assert!((s1.momentum.z - 1.0).abs() < 1e-6);
+    /// // The same torque as a law of time and state.
+    /// let s2 = body.step_with(Integrator::Rk4, &s, 0.0, 2.0, |_t, _s: &State<f32>| held)?;
+    /// assert!((s2.momentum.z - 1.0).abs() < 1e-6);
+    /// # Ok::<(), gyrostat::Error>(())
+    /// ```
+    pub fn step_with<L: ControlLaw<T, N>>(
+        &self,
+        integrator: Integrator,
+        state: &State<T, N>,
         t: T,
         dt: T,
-        law: F,
-    ) -> Result<GyrostatState<T, N>, Error>
-    where
-        F: FnMut(T, &GyrostatState<T, N>) -> Control<T, N>,
-    {
-        self.engine().step(integrator, state, t, dt, true, law)
+        mut input: L,
+    ) -> Result<State<T, N>, Error> {
+        check_step(t, dt)?;
+        let next = match Stages::of(integrator, dt) {
+            Some(stages) => splitting::kicked(self, state, t, stages.as_slice(), &mut input),
+            None => rk4::step(self, state, t, dt, &mut input),
+        };
+        finish(next)
     }
 }
 
-/// The Euler equation with a full inertia tensor, rotor momentum and torque, solved for the
-/// body angular acceleration: `ω̇ = I⁻¹ (−ω × (I ω + h) + τ − ḣ)` (seed (6.8.5) with rotors,
-/// (6.9.2)).
+/// The checks every step makes of its time and step length.
+#[inline]
+fn check_step<T: Real>(t: T, dt: T) -> Result<(), Error> {
+    if !dt.is_finite() || !t.is_finite() {
+        return Err(Error::NonFinite);
+    }
+    if dt <= T::ZERO {
+        return Err(Error::InvalidArgument);
+    }
+    Ok(())
+}
+
+/// Renormalises the attitude of a step's result and rejects a non-finite one. The norm is within
+/// a truncation error of 1, far from overflow, so [`UnitQuat::renormalize`]'s plain square root
+/// is safe.
+#[inline]
+fn finish<T: Real, const N: usize>(mut state: State<T, N>) -> Result<State<T, N>, Error> {
+    state.attitude = state.attitude.renormalize();
+    if state.is_finite() {
+        Ok(state)
+    } else {
+        Err(Error::NonFinite)
+    }
+}
+
+/// The Euler equation with a full inertia tensor, rotor momentum and torque, solved for the body
+/// angular acceleration: `ω̇ = I⁻¹ (−ω × (I ω + h) + τ − ḣ)` (seed (6.8.5) with rotors, (6.9.2)).
 ///
 /// `h` is the body-frame rotor momentum (relative to the body), `h_dot` its rate (the wheel
 /// torques), `torque` the external torque (body frame).
-pub fn euler_rate<T: Real>(
+pub fn angular_acceleration<T: Real>(
     inertia: &Inertia<T>,
     omega: Vec3<T>,
     h: Vec3<T>,

@@ -11,11 +11,28 @@
 //! - semi-rigid: the rigid (or gyro-rotor) part plus an octahedral `t₄(J₁⁴ + J₂⁴ + J₃⁴)`
 //!   (6.8.20a) or cubic `t₂₂(J₁²J₂² + J₁²J₃² + J₂²J₃²)` (6.8.20b) centrifugal-distortion term.
 //!
-//! The monitors are here too: [`BodyHamiltonian::energy`], the Casimir `|J|`
-//! ([`momentum_norm`]) and the lab-frame angular momentum `q ⊗ J ⊗ q*` ([`lab_momentum`]).
+//! The inverse map, the momentum `J` of a given body rate `ω`, is
+//! [`BodyHamiltonian::momentum_from_omega`] (linear without a quartic term, Newton's method with
+//! the Hessian [`BodyHamiltonian::hessian`] with one).
 
 use crate::dynamics::inertia::Inertia;
-use crate::{Error, Real, UnitQuat, Vec3};
+use crate::{Error, Mat3, Real, Vec3};
+
+/// Newton steps [`BodyHamiltonian::momentum_from_omega`] takes at most. From the linear guess
+/// `J = I·ω + S` the iteration converges quadratically while the quartic term is a perturbation
+/// of the quadratic one (a handful of steps); the cap bounds the cost when it is not.
+pub const MOMENTUM_SOLVE_MAX_STEPS: usize = 50;
+
+/// Relative Newton step `|ΔJ| ≤ tol·(1 + |J|)` at which [`BodyHamiltonian::momentum_from_omega`]
+/// stops: 1e-14, about 50 f64 ulp, where the quadratic convergence has reached rounding. Below
+/// f32's resolution, so an f32 solve runs all [`MOMENTUM_SOLVE_MAX_STEPS`] steps and is then
+/// judged by [`MOMENTUM_SOLVE_RESIDUAL`].
+pub const MOMENTUM_SOLVE_STEP_TOLERANCE: f64 = 1e-14;
+
+/// Largest accepted residual `|∇H(J) − ω| ≤ tol·(1 + |ω|)` of a solve that did not meet
+/// [`MOMENTUM_SOLVE_STEP_TOLERANCE`]: 1e-6, a few f32 ulp of the rate with margin (the rounding
+/// floor of evaluating `∇H` in f32).
+pub const MOMENTUM_SOLVE_RESIDUAL: f64 = 1e-6;
 
 /// A quartic centrifugal-distortion term added to the quadratic Hamiltonian (6.8.20).
 ///
@@ -39,11 +56,11 @@ pub enum Quartic<T> {
 /// the gyro-rotor (6.9.2b); with `S = 0` it is the rigid rotor (6.7.27a).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BodyHamiltonian<T> {
-    pub(crate) inertia: Inertia<T>,
-    pub(crate) spin: Vec3<T>,
-    pub(crate) quartic: Quartic<T>,
+    inertia: Inertia<T>,
+    spin: Vec3<T>,
+    quartic: Quartic<T>,
     /// `Aᵢ = 1/(2λᵢ)` on the principal axes (6.9.2).
-    pub(crate) half_inverse: Vec3<T>,
+    half_inverse: Vec3<T>,
 }
 
 impl<T: Real> BodyHamiltonian<T> {
@@ -102,6 +119,12 @@ impl<T: Real> BodyHamiltonian<T> {
         self.quartic
     }
 
+    /// `Aᵢ = 1/(2λᵢ)` on the principal axes (6.9.2).
+    #[inline]
+    pub(crate) fn half_inverse(&self) -> Vec3<T> {
+        self.half_inverse
+    }
+
     /// `H(J)` with the model's own rotor momentum `S`.
     #[inline]
     pub fn energy(&self, j: Vec3<T>) -> T {
@@ -125,11 +148,74 @@ impl<T: Real> BodyHamiltonian<T> {
     pub fn omega_with_rotor(&self, j: Vec3<T>, s: Vec3<T>) -> Vec3<T> {
         self.inertia.solve(j - s) + quartic_gradient(self.quartic, j)
     }
+
+    /// The Hessian `∂ω/∂J = ∇²H(J) = I⁻¹ + ∇²quartic(J)` (symmetric; independent of the rotor
+    /// momentum): octahedral `12t₄ diag(Jᵢ²)`, cubic `2t₂₂(|J|² − Jᵢ²)` on the diagonal and
+    /// `4t₂₂ JᵢJₖ` off it.
+    pub fn hessian(&self, j: Vec3<T>) -> Mat3<T> {
+        self.inertia.inverse() + quartic_hessian(self.quartic, j)
+    }
+
+    /// The momentum `J` with body rate `∇H(J) = ω` at the model's own rotor momentum `S`.
+    ///
+    /// # Errors
+    /// As [`BodyHamiltonian::momentum_from_omega_with_rotor`].
+    ///
+    /// ```
+    /// use gyrostat::dynamics::{BodyHamiltonian, Inertia, Quartic};
+    /// use gyrostat::Vec3;
+    /// let i = Inertia::try_from_principal(Vec3::new(6.0f64, 4.0, 3.0))?;
+    /// let h = BodyHamiltonian::try_new(i, Vec3::ZERO, Quartic::Cubic(0.002))?;
+    /// let omega = Vec3::new(0.5, 1.0, 0.3);
+    /// let j = h.momentum_from_omega(omega)?;
+    /// assert!((h.omega(j) - omega).norm() < 1e-14);
+    /// # Ok::<(), gyrostat::Error>(())
+    /// ```
+    pub fn momentum_from_omega(&self, omega: Vec3<T>) -> Result<Vec3<T>, Error> {
+        self.momentum_from_omega_with_rotor(omega, self.spin)
+    }
+
+    /// The momentum `J` with body rate `∇H(J) = ω` at total rotor momentum `s`: `J = I·ω + s`
+    /// without a quartic term; with one, Newton's method from that guess with the Hessian
+    /// [`BodyHamiltonian::hessian`], stopped at [`MOMENTUM_SOLVE_STEP_TOLERANCE`] or after
+    /// [`MOMENTUM_SOLVE_MAX_STEPS`] steps.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for non-finite input or a non-finite Hessian; [`Error::Singular`]
+    /// where the Hessian is singular (the rate does not determine the momentum there);
+    /// [`Error::NotConverged`] when the iterates diverge or the last one misses
+    /// [`MOMENTUM_SOLVE_RESIDUAL`].
+    pub fn momentum_from_omega_with_rotor(
+        &self,
+        omega: Vec3<T>,
+        s: Vec3<T>,
+    ) -> Result<Vec3<T>, Error> {
+        let omega = omega.try_finite()?;
+        let mut j = self.inertia.mul_vec(omega) + s.try_finite()?;
+        if self.quartic == Quartic::None {
+            return Ok(j);
+        }
+        let step_tol = T::from_f64(MOMENTUM_SOLVE_STEP_TOLERANCE);
+        for _ in 0..MOMENTUM_SOLVE_MAX_STEPS {
+            let residual = self.omega_with_rotor(j, s) - omega;
+            let step = self.hessian(j).try_inverse()? * residual;
+            j -= step;
+            if step.norm() <= step_tol * (T::ONE + j.norm()) {
+                return Ok(j);
+            }
+        }
+        let residual = (self.omega_with_rotor(j, s) - omega).norm();
+        if residual <= T::from_f64(MOMENTUM_SOLVE_RESIDUAL) * (T::ONE + omega.norm()) {
+            Ok(j)
+        } else {
+            Err(Error::NotConverged)
+        }
+    }
 }
 
 /// The quartic energy term (6.8.20).
 #[inline]
-pub(crate) fn quartic_energy<T: Real>(q: Quartic<T>, j: Vec3<T>) -> T {
+fn quartic_energy<T: Real>(q: Quartic<T>, j: Vec3<T>) -> T {
     let (x2, y2, z2) = (j.x * j.x, j.y * j.y, j.z * j.z);
     match q {
         Quartic::None => T::ZERO,
@@ -140,7 +226,7 @@ pub(crate) fn quartic_energy<T: Real>(q: Quartic<T>, j: Vec3<T>) -> T {
 
 /// Gradient of the quartic term: octahedral `4t₄Jᵢ³`, cubic `2t₂₂Jᵢ(|J|² − Jᵢ²)`.
 #[inline]
-pub(crate) fn quartic_gradient<T: Real>(q: Quartic<T>, j: Vec3<T>) -> Vec3<T> {
+fn quartic_gradient<T: Real>(q: Quartic<T>, j: Vec3<T>) -> Vec3<T> {
     let (x2, y2, z2) = (j.x * j.x, j.y * j.y, j.z * j.z);
     match q {
         Quartic::None => Vec3::ZERO,
@@ -159,14 +245,24 @@ pub(crate) fn quartic_gradient<T: Real>(q: Quartic<T>, j: Vec3<T>) -> Vec3<T> {
     }
 }
 
-/// The Casimir `|J|`: conserved by every torque-free body-frame flow `J̇ = J × ∇H`.
+/// Hessian of the quartic term: octahedral `12t₄ diag(Jᵢ²)`; cubic `2t₂₂(|J|² − Jᵢ²)` on the
+/// diagonal, `4t₂₂ JᵢJₖ` off it.
 #[inline]
-pub fn momentum_norm<T: Real>(j: Vec3<T>) -> T {
-    j.norm()
-}
-
-/// The lab-frame angular momentum `q ⊗ J ⊗ q*` (6.8.2): constant for torque-free motion.
-#[inline]
-pub fn lab_momentum<T: Real>(attitude: UnitQuat<T>, j_body: Vec3<T>) -> Vec3<T> {
-    attitude.rotate(j_body)
+fn quartic_hessian<T: Real>(q: Quartic<T>, j: Vec3<T>) -> Mat3<T> {
+    let Vec3 { x, y, z } = j;
+    match q {
+        Quartic::None => Mat3::ZERO,
+        Quartic::Octahedral(t4) => {
+            let k = T::from_f64(12.0) * t4;
+            Mat3::from_diagonal(Vec3::new(k * x * x, k * y * y, k * z * z))
+        }
+        Quartic::Cubic(t22) => {
+            let (two, four) = (T::TWO * t22, T::from_f64(4.0) * t22);
+            Mat3::from_rows(
+                [two * (y * y + z * z), four * x * y, four * x * z],
+                [four * x * y, two * (x * x + z * z), four * y * z],
+                [four * x * z, four * y * z, two * (x * x + y * y)],
+            )
+        }
+    }
 }

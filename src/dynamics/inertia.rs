@@ -2,15 +2,16 @@
 //!
 //! [`Inertia`] holds a full symmetric body-frame tensor `I` (seed (6.5.4)–(6.5.5)), its inverse,
 //! and its principal moments and axes from a symmetric 3×3 eigen-decomposition
-//! ([`symmetric_eigen`], cyclic Jacobi with a fixed sweep cap). The rotation into the principal
-//! frame is kept as a [`UnitQuat`] so that the Lie–Poisson integrators, which need a diagonal
-//! tensor, can work in the principal frame of any body.
+//! ([`symmetric_eigen`], cyclic Jacobi with a fixed sweep cap). The rotation from the principal
+//! frame to the body frame is kept as a [`UnitQuat`] too, so that closed forms stated in
+//! principal axes (the exact free body, the seed's analysis) apply to any body.
 //!
 //! A tensor is accepted only if it is physical: finite, symmetric, positive definite, and its
 //! principal moments obey the triangle inequality `I_a ≤ I_b + I_c` (a consequence of
-//! `I_a = Σ m (r_b² + r_c²)`, with equality for a flat lamina).
+//! `I_a = Σ m (r_b² + r_c²)`, with equality for a flat lamina). This is the one place where
+//! moments are validated: everything that takes principal moments takes an [`Inertia`].
 
-use crate::{Error, Mat3, Quat, Real, UnitQuat, Vec3};
+use crate::{Dcm, Error, Mat3, Real, UnitQuat, Vec3};
 
 /// Sweeps of the cyclic Jacobi method before it stops regardless of convergence.
 ///
@@ -143,7 +144,9 @@ impl<T: Real> Inertia<T> {
             inverse,
             moments,
             axes,
-            rotation: quat_from_rotation_matrix(&axes),
+            // `axes` is a proper rotation (orthonormal columns to rounding, det +1 by
+            // construction): Shepperd's method of `Dcm` applies.
+            rotation: Dcm::from_matrix_unchecked(axes).to_unit_quat(),
             diagonal,
         })
     }
@@ -326,53 +329,6 @@ fn jacobi_angle<T: Real>(app: T, aqq: T, apq: T) -> Option<(T, T, T)> {
     Some((c, t * c, t))
 }
 
-/// The unit quaternion of a proper rotation matrix (Shepperd's method: the largest of the four
-/// squared components is taken from the diagonal, the others from off-diagonal sums, so that no
-/// small number is divided by). Sign chosen with `w ≥ 0`.
-pub(crate) fn quat_from_rotation_matrix<T: Real>(r: &Mat3<T>) -> UnitQuat<T> {
-    let m = r.m;
-    let tr = m[0][0] + m[1][1] + m[2][2];
-    let one = T::ONE;
-    let quarter = T::HALF * T::HALF;
-    let q = if tr >= m[0][0] && tr >= m[1][1] && tr >= m[2][2] {
-        let s = (one + tr).sqrt() * T::TWO; // 4w
-        Quat::new(
-            quarter * s,
-            (m[2][1] - m[1][2]) / s,
-            (m[0][2] - m[2][0]) / s,
-            (m[1][0] - m[0][1]) / s,
-        )
-    } else if m[0][0] >= m[1][1] && m[0][0] >= m[2][2] {
-        let s = (one + m[0][0] - m[1][1] - m[2][2]).sqrt() * T::TWO; // 4x
-        Quat::new(
-            (m[2][1] - m[1][2]) / s,
-            quarter * s,
-            (m[0][1] + m[1][0]) / s,
-            (m[0][2] + m[2][0]) / s,
-        )
-    } else if m[1][1] >= m[2][2] {
-        let s = (one + m[1][1] - m[0][0] - m[2][2]).sqrt() * T::TWO; // 4y
-        Quat::new(
-            (m[0][2] - m[2][0]) / s,
-            (m[0][1] + m[1][0]) / s,
-            quarter * s,
-            (m[1][2] + m[2][1]) / s,
-        )
-    } else {
-        let s = (one + m[2][2] - m[0][0] - m[1][1]).sqrt() * T::TWO; // 4z
-        Quat::new(
-            (m[1][0] - m[0][1]) / s,
-            (m[0][2] + m[2][0]) / s,
-            (m[1][2] + m[2][1]) / s,
-            quarter * s,
-        )
-    };
-    let q = if q.w < T::ZERO { -q } else { q };
-    // The input is orthonormal to rounding, so |q| is 1 to rounding and the identity fallback is
-    // unreachable except for a non-finite matrix.
-    UnitQuat::try_new(q).unwrap_or(UnitQuat::IDENTITY)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -414,20 +370,5 @@ mod tests {
         );
         let nan = Vec3::new(f64::NAN, 1.0, 1.0);
         assert_eq!(Inertia::try_from_principal(nan), Err(Error::NonFinite));
-    }
-
-    #[test]
-    fn shepperd_all_branches() {
-        // Near-π turns about each axis select the x, y, z branches; a small turn the w branch.
-        for (axis, angle) in [
-            (Vec3::new(1.0f64, 0.1, -0.2), 3.1),
-            (Vec3::new(0.1, 1.0, 0.2), 3.0),
-            (Vec3::new(-0.2, 0.1, 1.0), 3.13),
-            (Vec3::new(0.3, -0.5, 0.8), 0.4),
-        ] {
-            let q = UnitQuat::try_from_axis_angle(axis, angle).unwrap();
-            let back = quat_from_rotation_matrix(&q.to_rotation_matrix());
-            assert!(back.dot(q).abs() > 1.0 - 1e-15, "{axis:?} {angle}");
-        }
     }
 }

@@ -65,7 +65,7 @@ impl Format for Error {
             Error::NotRotation => "NotRotation",
             Error::Singular => "Singular",
             Error::NonPhysicalInertia => "NonPhysicalInertia",
-            Error::StepTooLong => "StepTooLong",
+            Error::NotConverged => "NotConverged",
             Error::InvalidArgument => "InvalidArgument",
         };
         write!(f, "Error::{}", s)

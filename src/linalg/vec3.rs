@@ -1,6 +1,6 @@
 //! Three-vectors.
 
-use core::ops::{Add, AddAssign, Div, Index, IndexMut, Mul, Neg, Sub, SubAssign};
+use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
 use crate::{Error, Real};
 
@@ -42,16 +42,6 @@ impl<T: Real> Vec3<T> {
     #[inline]
     pub const fn to_array(self) -> [T; 3] {
         [self.x, self.y, self.z]
-    }
-
-    /// The `i`-th unit vector (0 → x, 1 → y, otherwise z).
-    #[inline]
-    pub fn unit(i: usize) -> Self {
-        match i {
-            0 => Self::X,
-            1 => Self::Y,
-            _ => Self::Z,
-        }
     }
 
     /// Dot product.
@@ -185,30 +175,5 @@ impl<T: Real> Div<T> for Vec3<T> {
     #[inline]
     fn div(self, s: T) -> Self {
         Self::new(self.x / s, self.y / s, self.z / s)
-    }
-}
-
-/// Component access by index: 0 → x, 1 → y, anything else → z (never panics).
-impl<T> Index<usize> for Vec3<T> {
-    type Output = T;
-    #[inline]
-    fn index(&self, i: usize) -> &T {
-        match i {
-            0 => &self.x,
-            1 => &self.y,
-            _ => &self.z,
-        }
-    }
-}
-
-/// Component access by index: 0 → x, 1 → y, anything else → z (never panics).
-impl<T> IndexMut<usize> for Vec3<T> {
-    #[inline]
-    fn index_mut(&mut self, i: usize) -> &mut T {
-        match i {
-            0 => &mut self.x,
-            1 => &mut self.y,
-            _ => &mut self.z,
-        }
     }
 }

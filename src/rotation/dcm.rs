@@ -210,3 +210,24 @@ impl<T: Real> From<Dcm<T>> for Mat3<T> {
         d.0
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shepperd_every_branch_round_trips() {
+        // Near-π turns about each axis select the x, y, z branches; a small turn the w branch.
+        for (axis, angle) in [
+            (Vec3::new(1.0f64, 0.1, -0.2), 3.1),
+            (Vec3::new(0.1, 1.0, 0.2), 3.0),
+            (Vec3::new(-0.2, 0.1, 1.0), 3.13),
+            (Vec3::new(0.3, -0.5, 0.8), 0.4),
+        ] {
+            let q = UnitQuat::try_from_axis_angle(axis, angle).unwrap();
+            let back = Dcm::from(q).to_unit_quat();
+            assert!(back.dot(q).abs() > 1.0 - 1e-15, "{axis:?} {angle}");
+            assert!((back.as_quat().norm() - 1.0).abs() < 1e-15);
+        }
+    }
+}

@@ -45,49 +45,17 @@
 use core::fmt;
 use core::str::FromStr;
 
-use crate::{Error, Quat, Real, UnitQuat};
+use crate::{Axis, Error, Quat, Real, UnitQuat};
 
-/// A coordinate axis of an Euler sequence.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Axis {
-    /// The x axis.
-    X,
-    /// The y axis.
-    Y,
-    /// The z axis.
-    Z,
-}
-
-impl Axis {
-    /// 0 for x, 1 for y, 2 for z.
-    #[inline]
-    pub const fn index(self) -> usize {
-        match self {
-            Axis::X => 0,
-            Axis::Y => 1,
-            Axis::Z => 2,
-        }
-    }
-
-    /// The axis with index `i` (0, 1, anything else → z).
-    #[inline]
-    pub const fn from_index(i: usize) -> Self {
-        match i {
-            0 => Axis::X,
-            1 => Axis::Y,
-            _ => Axis::Z,
-        }
-    }
-
-    const fn letter(self, upper: bool) -> char {
-        match (self, upper) {
-            (Axis::X, true) => 'X',
-            (Axis::Y, true) => 'Y',
-            (Axis::Z, true) => 'Z',
-            (Axis::X, false) => 'x',
-            (Axis::Y, false) => 'y',
-            (Axis::Z, false) => 'z',
-        }
+/// The letter of an axis in scipy's notation: uppercase for intrinsic, lowercase for extrinsic.
+const fn letter(axis: Axis, upper: bool) -> char {
+    match (axis, upper) {
+        (Axis::X, true) => 'X',
+        (Axis::Y, true) => 'Y',
+        (Axis::Z, true) => 'Z',
+        (Axis::X, false) => 'x',
+        (Axis::Y, false) => 'y',
+        (Axis::Z, false) => 'z',
     }
 }
 
@@ -233,11 +201,11 @@ impl EulerSequence {
     /// The axes in the order their rotation matrices appear in the product `R = R₁·R₂·R₃`, with
     /// the angle index each one takes: intrinsic keeps the order, extrinsic reverses it.
     #[inline]
-    pub(crate) const fn product_order(&self) -> ([usize; 3], [usize; 3]) {
+    pub(crate) const fn product_order(&self) -> ([Axis; 3], [usize; 3]) {
         let [a, b, c] = self.axes;
         match self.frame {
-            Frame::Intrinsic => ([a.index(), b.index(), c.index()], [0, 1, 2]),
-            Frame::Extrinsic => ([c.index(), b.index(), a.index()], [2, 1, 0]),
+            Frame::Intrinsic => ([a, b, c], [0, 1, 2]),
+            Frame::Extrinsic => ([c, b, a], [2, 1, 0]),
         }
     }
 }
@@ -253,7 +221,7 @@ impl fmt::Display for EulerSequence {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let upper = matches!(self.frame, Frame::Intrinsic);
         for a in self.axes {
-            fmt::Write::write_char(f, a.letter(upper))?;
+            fmt::Write::write_char(f, letter(a, upper))?;
         }
         Ok(())
     }
@@ -354,42 +322,42 @@ pub(crate) fn wrap<T: Real>(x: T) -> T {
 
 /// Parity `ε_ijk` of a permutation of `(0, 1, 2)`: `+1` even, `−1` odd.
 #[inline]
-pub(crate) fn parity(i: usize, j: usize) -> i8 {
-    // For distinct i, j the permutation is even iff j = i + 1 (mod 3).
-    if (i + 1) % 3 == j { 1 } else { -1 }
+pub(crate) fn parity(i: Axis, j: Axis) -> i8 {
+    // For distinct i, j the permutation is even iff j follows i cyclically.
+    if i.next() == j { 1 } else { -1 }
 }
 
 /// The elementary rotation about coordinate axis `axis` by `angle`: `(cos(θ/2), sin(θ/2)·e_axis)`.
 #[inline]
-pub(crate) fn elementary<T: Real>(axis: usize, angle: T) -> Quat<T> {
+pub(crate) fn elementary<T: Real>(axis: Axis, angle: T) -> Quat<T> {
     let (s, c) = (angle * T::HALF).sin_cos();
     let z = T::ZERO;
     match axis {
-        0 => Quat::new(c, s, z, z),
-        1 => Quat::new(c, z, s, z),
-        _ => Quat::new(c, z, z, s),
+        Axis::X => Quat::new(c, s, z, z),
+        Axis::Y => Quat::new(c, z, s, z),
+        Axis::Z => Quat::new(c, z, z, s),
     }
 }
 
 /// `q ⊗ (cos(θ/2), sin(θ/2)·e_axis)`: the Hamilton product with an elementary rotation, using
 /// its sparsity (8 multiplications instead of 16).
 #[inline]
-pub(crate) fn mul_elementary<T: Real>(q: Quat<T>, axis: usize, angle: T) -> Quat<T> {
+pub(crate) fn mul_elementary<T: Real>(q: Quat<T>, axis: Axis, angle: T) -> Quat<T> {
     let (s, c) = (angle * T::HALF).sin_cos();
     let Quat { w, x, y, z } = q;
     match axis {
-        0 => Quat::new(c * w - s * x, c * x + s * w, c * y + s * z, c * z - s * y),
-        1 => Quat::new(c * w - s * y, c * x - s * z, c * y + s * w, c * z + s * x),
-        _ => Quat::new(c * w - s * z, c * x + s * y, c * y - s * x, c * z + s * w),
+        Axis::X => Quat::new(c * w - s * x, c * x + s * w, c * y + s * z, c * z - s * y),
+        Axis::Y => Quat::new(c * w - s * y, c * x - s * z, c * y + s * w, c * z + s * x),
+        Axis::Z => Quat::new(c * w - s * z, c * x + s * y, c * y - s * x, c * z + s * w),
     }
 }
 
 #[inline]
-fn comp<T: Real>(q: &Quat<T>, i: usize) -> T {
+fn comp<T: Real>(q: &Quat<T>, i: Axis) -> T {
     match i {
-        0 => q.x,
-        1 => q.y,
-        _ => q.z,
+        Axis::X => q.x,
+        Axis::Y => q.y,
+        Axis::Z => q.z,
     }
 }
 
@@ -469,7 +437,7 @@ impl<T: Real> UnitQuat<T> {
         // Extrinsic order e1, e2, e3 (first applied first) = product order reversed.
         let (i, j, k0) = (axes[2], axes[1], axes[0]);
         let proper = i == k0;
-        let k = if proper { 3 - i - j } else { k0 };
+        let k = if proper { i.remaining(j) } else { k0 };
         // Parity of the permutation (i, j, k): +1 even, −1 odd.
         let sign = if parity(i, j) > 0 { T::ONE } else { -T::ONE };
         let (qi, qj, qk) = (comp(q, i), comp(q, j), comp(q, k) * sign);

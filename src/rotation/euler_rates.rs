@@ -14,7 +14,7 @@
 //! `±cos θ₂` (Tait–Bryan): the inverses are singular at gimbal lock and return
 //! [`Error::Singular`] within [`euler_rate_min_det`] of it.
 
-use crate::{Error, Mat3, Real, Vec3};
+use crate::{Axis, Error, Mat3, Real, Vec3};
 
 use super::euler::{Euler, Frame};
 
@@ -29,19 +29,19 @@ pub fn euler_rate_min_det<T: Real>() -> T {
 }
 
 /// `R_axis(angle)ᵀ·v` when `transpose`, else `R_axis(angle)·v`.
-fn rot_axis<T: Real>(axis: usize, angle: T, v: Vec3<T>, transpose: bool) -> Vec3<T> {
+fn rot_axis<T: Real>(axis: Axis, angle: T, v: Vec3<T>, transpose: bool) -> Vec3<T> {
     let (s, c) = angle.sin_cos();
     let s = if transpose { -s } else { s };
     match axis {
-        0 => Vec3::new(v.x, c * v.y - s * v.z, s * v.y + c * v.z),
-        1 => Vec3::new(c * v.x + s * v.z, v.y, -s * v.x + c * v.z),
-        _ => Vec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z),
+        Axis::X => Vec3::new(v.x, c * v.y - s * v.z, s * v.y + c * v.z),
+        Axis::Y => Vec3::new(c * v.x + s * v.z, v.y, -s * v.x + c * v.z),
+        Axis::Z => Vec3::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z),
     }
 }
 
 impl<T: Real> Euler<T> {
     /// Product-order axes and angles `(i, j, k)`, `(θ₁, θ₂, θ₃)`.
-    fn product(&self) -> ([usize; 3], [T; 3]) {
+    fn product(&self) -> ([Axis; 3], [T; 3]) {
         let (axes, _) = self.sequence.product_order();
         let [a, b, c] = self.angles;
         match self.sequence.frame() {

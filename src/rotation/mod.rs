@@ -54,11 +54,12 @@ mod rotvec;
 mod su2;
 mod unit_quat;
 
+pub use crate::linalg::Axis;
 pub use axis_angle::{AxisAngle, PolarAxisAngle};
 pub use dcm::Dcm;
 pub use euler::{
-    Axis, Euler, EulerSequence, EulerSolution, Frame, GIMBAL_LOCK_THRESHOLD, GimbalLock,
-    GimbalPolicy, Pole, gimbal_lock_threshold,
+    Euler, EulerSequence, EulerSolution, Frame, GIMBAL_LOCK_THRESHOLD, GimbalLock, GimbalPolicy,
+    Pole, gimbal_lock_threshold,
 };
 pub use euler_rates::euler_rate_min_det;
 pub use gibbs::Gibbs;
