@@ -37,6 +37,7 @@
 use heapless::Vec as HVec;
 
 use crate::propagation::Normalization;
+use crate::propagation::exponential::apply_rotation_vector;
 use crate::{Error, Real, UnitQuat, Vec3};
 
 /// An increment (coning) rule: how the rotation vector of one attitude update is formed.
@@ -128,7 +129,7 @@ pub fn rotation_vector_for<T: Real>(previous: Vec3<T>, samples: &[Vec3<T>]) -> V
 /// angle uses the series of [`UnitQuat::exp`] (no trigonometric call below 0.37 rad in f32).
 #[inline]
 pub fn coning2_update<T: Real>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
-    (q * UnitQuat::exp_unchecked(two_sample(t1, t2))).renormalize_fast()
+    apply_rotation_vector(q, two_sample(t1, t2), Normalization::Fast)
 }
 
 /// Buffer of the increments of the current update group.
@@ -203,9 +204,7 @@ impl<T: Real> IncrementIntegrator<T> {
 
     fn commit(&mut self) {
         if let Some(last) = self.group.last().copied() {
-            self.q = self
-                .norm
-                .apply(self.q * UnitQuat::exp_unchecked(self.phi()));
+            self.q = apply_rotation_vector(self.q, self.phi(), self.norm);
             self.previous = last;
             self.group.clear();
         }
@@ -229,8 +228,7 @@ impl<T: Real> IncrementIntegrator<T> {
         if self.group.is_empty() {
             self.q
         } else {
-            self.norm
-                .apply(self.q * UnitQuat::exp_unchecked(self.phi()))
+            apply_rotation_vector(self.q, self.phi(), self.norm)
         }
     }
 

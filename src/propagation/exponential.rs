@@ -40,20 +40,23 @@ pub fn step_constant_rate<T: Real>(
     Ok(q * UnitQuat::exp(phi)?)
 }
 
-/// [`step_constant_rate`] without the checks, for an inner loop with validated input.
+/// [`step_constant_rate`] without the checks, for an inner loop with validated input: the
+/// update kernel [`apply_rotation_vector`] with `φ = ω Δt`, not renormalised.
 #[inline]
 pub fn step_constant_rate_unchecked<T: Real>(
     q: UnitQuat<T>,
     omega_body: Vec3<T>,
     dt: T,
 ) -> UnitQuat<T> {
-    q * UnitQuat::exp_unchecked(omega_body.scale(dt))
+    apply_rotation_vector(q, omega_body.scale(dt), Normalization::None)
 }
 
-/// `q ⊗ exp(φ)` followed by the normalisation policy: the attitude update for a body-frame
-/// rotation vector `φ` accumulated over one update interval (by a coning rule or an integrator).
-/// Unchecked: a non-finite `φ` gives a non-finite attitude.
-#[inline]
+/// The update kernel of every exponential-map rule: `q ⊗ exp(φ)` followed by the normalisation
+/// policy, for a body-frame rotation vector `φ` accumulated over one update interval (by a coning
+/// rule, the two-speed accumulator, Magnus-4 or CF4). The exponential is
+/// [`UnitQuat::exp_unchecked`] (series below its small-angle threshold). Unchecked: a non-finite
+/// `φ` gives a non-finite attitude.
+#[inline(always)]
 pub fn apply_rotation_vector<T: Real>(
     q: UnitQuat<T>,
     phi: Vec3<T>,

@@ -19,6 +19,8 @@
 //! the drifts are the rates at which pure coning motion makes the attitude error grow along the
 //! cone axis, measured in `host-tests/tests/propagation_coning.rs`.)
 //!
+//! Every exponential-map rule forms a body-frame rotation vector `φ` and then goes through one
+//! update kernel, [`exponential::apply_rotation_vector`]: `q ← normalise(q ⊗ exp(φ))`.
 //! [`kinematics`] has the differential equation itself and the rate between two attitudes;
 //! [`normalization`] the renormalisation policy and the `|q|` health value.
 //!

@@ -41,6 +41,7 @@
 use heapless::Vec as HVec;
 
 use crate::propagation::Normalization;
+use crate::propagation::exponential::apply_rotation_vector;
 use crate::propagation::kinematics::quat_rate_body;
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
 
@@ -146,7 +147,7 @@ pub fn magnus4_rotation_vector<T: Real>(w1: Vec3<T>, w2: Vec3<T>, h: T) -> Vec3<
 /// renormalised (a product of unit quaternions, unit to about one ulp).
 #[inline]
 pub fn magnus4_step<T: Real>(q: UnitQuat<T>, w1: Vec3<T>, w2: Vec3<T>, h: T) -> UnitQuat<T> {
-    q * UnitQuat::exp_unchecked(magnus4_rotation_vector(w1, w2, h))
+    apply_rotation_vector(q, magnus4_rotation_vector(w1, w2, h), Normalization::None)
 }
 
 /// The two CF4 rotation vectors `(φ_first, φ_second)` over one step `h` from the Gauss-node
@@ -163,8 +164,21 @@ pub fn cf4_rotation_vectors<T: Real>(w1: Vec3<T>, w2: Vec3<T>, h: T) -> (Vec3<T>
 /// [`cf4_rotation_vectors`]). Unchecked, not renormalised.
 #[inline]
 pub fn cf4_step<T: Real>(q: UnitQuat<T>, w1: Vec3<T>, w2: Vec3<T>, h: T) -> UnitQuat<T> {
+    cf4_update(q, w1, w2, h, Normalization::None)
+}
+
+/// [`cf4_step`] followed by the normalisation policy: two applications of the update kernel
+/// [`apply_rotation_vector`], the policy applied once, after the second.
+#[inline]
+fn cf4_update<T: Real>(
+    q: UnitQuat<T>,
+    w1: Vec3<T>,
+    w2: Vec3<T>,
+    h: T,
+    norm: Normalization,
+) -> UnitQuat<T> {
     let (p1, p2) = cf4_rotation_vectors(w1, w2, h);
-    q * UnitQuat::exp_unchecked(p1) * UnitQuat::exp_unchecked(p2)
+    apply_rotation_vector(apply_rotation_vector(q, p1, Normalization::None), p2, norm)
 }
 
 /// One classical RK4 step of `q̇ = ½ q ⊗ (0, ω)` with the rates at the start, midpoint and end
@@ -258,15 +272,12 @@ impl<T: Real> RateIntegrator<T> {
     fn advance<const M: usize>(&mut self, s: &[Vec3<T>; M], w: &[[f64; M]; 5]) -> UnitQuat<T> {
         let h = self.dt;
         self.q = match self.method {
-            RateMethod::Magnus4 => self.norm.apply(magnus4_step(
-                self.q,
-                interp(s, &w[G1]),
-                interp(s, &w[G2]),
-                h,
-            )),
+            RateMethod::Magnus4 => {
+                let phi = magnus4_rotation_vector(interp(s, &w[G1]), interp(s, &w[G2]), h);
+                apply_rotation_vector(self.q, phi, self.norm)
+            }
             RateMethod::Cf4 => {
-                self.norm
-                    .apply(cf4_step(self.q, interp(s, &w[G1]), interp(s, &w[G2]), h))
+                cf4_update(self.q, interp(s, &w[G1]), interp(s, &w[G2]), h, self.norm)
             }
             RateMethod::Rk4 => {
                 let q = rk4_step(
