@@ -14,34 +14,7 @@
 
 #![allow(clippy::needless_range_loop)] // explicit indices mirror the formulas
 
-use crate::reference::{M3, V3, det, mat_mul, mat_vec, transpose};
-
-/// Cross product.
-pub fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// Dot product.
-pub fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Euclidean norm.
-pub fn norm(a: V3) -> f64 {
-    dot(a, a).sqrt()
-}
-
-fn add(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn scale(a: V3, s: f64) -> V3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
+use crate::reference::{M3, V3, add, cross, det, mat_mul, mat_vec, norm, scale, transpose};
 
 fn madd(a: &M3, b: &M3, s: f64) -> M3 {
     [0, 1, 2].map(|i| [0, 1, 2].map(|j| a[i][j] + s * b[i][j]))
@@ -62,23 +35,6 @@ pub fn inverse(a: &M3) -> M3 {
     };
     // inverse[j][i] = cofactor(i, j) / det (cyclic indices give the signs).
     [0, 1, 2].map(|j| [0, 1, 2].map(|i| c(i, j) / d))
-}
-
-/// The rotation matrix of a scalar-first Hamilton quaternion (body → lab columns), from the
-/// textbook formula `R = (w² − v·v)·1 + 2vvᵀ + 2w[v]×` (Shuster 1993, eq. 159 transposed to the
-/// active convention).
-pub fn quat_to_matrix(q: [f64; 4]) -> M3 {
-    let n2 = q.iter().map(|c| c * c).sum::<f64>();
-    let [w, x, y, z] = q.map(|c| c / n2.sqrt());
-    let v = [x, y, z];
-    let s = skew(v);
-    let a = w * w - dot(v, v);
-    [0, 1, 2].map(|i| {
-        [0, 1, 2].map(|j| {
-            let delta = if i == j { a } else { 0.0 };
-            delta + 2.0 * v[i] * v[j] + 2.0 * w * s[i][j]
-        })
-    })
 }
 
 /// `R^T·v`: lab → body.

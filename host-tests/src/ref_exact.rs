@@ -11,6 +11,8 @@
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
+use crate::reference::qmul;
+
 /// Gauss–Legendre nodes and weights on `[−1, 1]`, by Newton's method on `P_n`.
 pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     let mut out = Vec::with_capacity(n);
@@ -198,24 +200,6 @@ pub struct RigidState {
     pub j: [f64; 3],
     /// Attitude quaternion, scalar first.
     pub q: [f64; 4],
-}
-
-fn qmul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
-    [
-        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
-    ]
-}
-
-/// Rotates `v` by the unit quaternion `q` (`q v q*`).
-pub fn qrotate(q: [f64; 4], v: [f64; 3]) -> [f64; 3] {
-    let r = qmul(
-        qmul(q, [0.0, v[0], v[1], v[2]]),
-        [q[0], -q[1], -q[2], -q[3]],
-    );
-    [r[1], r[2], r[3]]
 }
 
 fn deriv(inertia: [f64; 3], s: &RigidState) -> RigidState {

@@ -26,25 +26,7 @@
 //! evaluated with the product forms `cos B − cos A = −2 sin((A+B)/2) sin((B−A)/2)` and
 //! `sin B − sin A = 2 cos((A+B)/2) sin((B−A)/2)` to avoid cancellation for short intervals.
 
-use crate::reference::{M3, V3, rodrigues};
-
-/// Quaternion `[w, x, y, z]`.
-pub type Q = [f64; 4];
-
-/// Hamilton product, written out.
-pub fn qmul(a: Q, b: Q) -> Q {
-    [
-        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
-    ]
-}
-
-/// Conjugate.
-pub fn qconj(a: Q) -> Q {
-    [a[0], -a[1], -a[2], -a[3]]
-}
+use crate::reference::{M3, Q, V3, qconj, qmul, rodrigues};
 
 /// Classical coning motion with half-cone angle `alpha` (rad) and coning rate `omega_c` (rad/s).
 #[derive(Clone, Copy, Debug)]
@@ -105,14 +87,6 @@ pub fn body_error(q_true: Q, q_est: Q) -> V3 {
     let e = qmul(qconj(q_true), q_est);
     let s = if e[0] < 0.0 { -2.0 } else { 2.0 };
     [s * e[1], s * e[2], s * e[3]]
-}
-
-/// The rotation angle between two attitudes in `[0, π]` (SO(3) view: `q` and `−q` agree):
-/// `2 atan2(|v|, |w|)` of `q_true* ⊗ q_est`.
-pub fn angle_between(q_true: Q, q_est: Q) -> f64 {
-    let e = qmul(qconj(q_true), q_est);
-    let v = (e[1] * e[1] + e[2] * e[2] + e[3] * e[3]).sqrt();
-    2.0 * v.atan2(e[0].abs())
 }
 
 /// Least-squares slope of `ys` against `ts`.

@@ -61,35 +61,6 @@ pub fn is_proper(seq: &str) -> bool {
     b[0].eq_ignore_ascii_case(&b[2])
 }
 
-fn ham(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
-    let [aw, ax, ay, az] = a;
-    let [bw, bx, by, bz] = b;
-    [
-        aw * bw - ax * bx - ay * by - az * bz,
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-    ]
-}
-
-/// The rotation matrix of a quaternion `[w, x, y, z]` (normalised here): column `j` is
-/// `q ⊗ (0, e_j) ⊗ q*`, by explicit Hamilton products.
-pub fn quat_matrix(q: [f64; 4]) -> M3 {
-    let n = q.iter().map(|c| c * c).sum::<f64>().sqrt();
-    let q = q.map(|c| c / n);
-    let qc = [q[0], -q[1], -q[2], -q[3]];
-    let mut r = [[0.0; 3]; 3];
-    for j in 0..3 {
-        let mut e = [0.0; 4];
-        e[j + 1] = 1.0;
-        let v = ham(ham(q, e), qc);
-        for i in 0..3 {
-            r[i][j] = v[i + 1];
-        }
-    }
-    r
-}
-
 /// The rotation matrix of a rotation vector: Rodrigues (6.6.15) of its direction and length.
 pub fn rotvec_matrix(v: V3) -> M3 {
     let t = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();

@@ -1,12 +1,94 @@
-//! The independent f64 reference: 3×3 matrices, Rodrigues rotations and SU(2) matrices.
+//! The shared f64 toolkit of the independent reference: vectors, 3×3 matrices, quaternions as
+//! plain arrays, Rodrigues rotations and SU(2) matrices. Every reference module and test builds
+//! on these; none of them calls gyrostat.
 //!
 //! Written from the seed's formulas, not from gyrostat's code: rotation matrices come from the
-//! Rodrigues form (6.6.13)–(6.6.15) of an axis and angle, spinors from the 2×2 matrix (6.6.4).
+//! Rodrigues form (6.6.13)–(6.6.15) of an axis and angle, spinors from the 2×2 matrix (6.6.4),
+//! quaternion products from the Hamilton rule written out.
 
 /// A 3×3 matrix, `m[row][col]`.
 pub type M3 = [[f64; 3]; 3];
 /// A 3-vector.
 pub type V3 = [f64; 3];
+/// A quaternion `[w, x, y, z]` (Hamilton, scalar first; an attitude maps body → lab).
+pub type Q = [f64; 4];
+
+/// `a + b`.
+pub fn add(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+/// `s·a`.
+pub fn scale(a: V3, s: f64) -> V3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+/// Dot product.
+pub fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Cross product.
+pub fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Euclidean norm.
+pub fn norm(a: V3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// Hamilton product `a ⊗ b`, written out.
+pub fn qmul(a: Q, b: Q) -> Q {
+    [
+        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
+    ]
+}
+
+/// Conjugate.
+pub fn qconj(a: Q) -> Q {
+    [a[0], -a[1], -a[2], -a[3]]
+}
+
+/// Rotates `v` by the unit quaternion `q`: the vector part of `q ⊗ (0, v) ⊗ q*`.
+pub fn qrotate(q: Q, v: V3) -> V3 {
+    let r = qmul(qmul(q, [0.0, v[0], v[1], v[2]]), qconj(q));
+    [r[1], r[2], r[3]]
+}
+
+/// The rotation matrix of a quaternion `[w, x, y, z]` (normalised here): column `j` is
+/// `q ⊗ (0, e_j) ⊗ q*`, by explicit Hamilton products.
+pub fn quat_matrix(q: Q) -> M3 {
+    let n = q.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let q = q.map(|c| c / n);
+    let qc = qconj(q);
+    let mut r = [[0.0; 3]; 3];
+    for j in 0..3 {
+        let mut e = [0.0; 4];
+        e[j + 1] = 1.0;
+        let v = qmul(qmul(q, e), qc);
+        for i in 0..3 {
+            r[i][j] = v[i + 1];
+        }
+    }
+    r
+}
+
+/// The rotation angle between two attitudes in `[0, π]` (SO(3) view: `q` and `−q` agree):
+/// `2 atan2(|v|, |w|)` of `a* ⊗ b`, accurate for tiny angles (unlike `acos` of the dot
+/// product).
+pub fn quat_angle(a: Q, b: Q) -> f64 {
+    let e = qmul(qconj(a), b);
+    let v = (e[1] * e[1] + e[2] * e[2] + e[3] * e[3]).sqrt();
+    2.0 * v.atan2(e[0].abs())
+}
 
 /// A complex number `(re, im)`.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,38 +1,47 @@
-//! Tolerances for comparing gyrostat against the f64 reference, per scalar type.
+//! The one tolerance trait: every per-type bound of the comparison tests goes through it.
 //!
-//! The numbers compared are of order one (unit quaternions, rotation matrices, unit-norm
-//! vectors), so the tolerances are absolute. Each states the rounding budget it allows.
+//! The numbers compared are mostly of order one (unit quaternions, rotation matrices, unit-norm
+//! vectors), so the tolerances are absolute unless a test says otherwise. Each bound states the
+//! rounding budget it allows, where it is defined: the two shared ones here, the others at the
+//! test that uses them through [`Tolerance::per_type`].
 
-/// A scalar type under test, with its comparison tolerance for short (a few operations) chains
-/// of order-one quantities.
-pub trait Tolerance {
+use gyrostat::Real;
+
+/// A scalar type under test (f32 or f64) with its tolerances.
+pub trait Tolerance: Real {
+    /// The type's name in test output: `"f32"` or `"f64"`.
+    const NAME: &'static str;
+
     /// Absolute tolerance for a short chain of operations on order-one values.
     ///
-    /// f32: 2e-6 ≈ 17 ulp at 1.0 (each of ~10 roundings of ≤ 0.5 ulp, plus libm's ≤ 1 ulp
-    /// sin/cos at the inputs, with margin). f64: 1e-13 ≈ 450 ulp at 1.0, the same budget scaled
-    /// by the larger number of roundings a proptest input chain can accumulate.
+    /// f32: 2e-6 ≈ 17 ulp at 1.0 (each of ~10 roundings of ≤ 0.5 ulp, plus the ≤ 1-ulp sin/cos
+    /// at the inputs, with margin). f64: 1e-13 ≈ 450 ulp at 1.0, the same budget scaled by the
+    /// larger number of roundings a proptest input chain can accumulate.
     const SHORT: f64;
+
+    /// The accuracy contract of gyrostat's `rotation` module (rad, stated in its docs): f32 1e-6
+    /// (inputs rounded to f32), f64 1e-14.
+    const CONTRACT: f64;
+
+    /// A bound stated per type at the test that uses it: `f32_bound` for f32, `f64_bound` for
+    /// f64. The test's doc comment says where each number comes from.
+    fn per_type(f32_bound: f64, f64_bound: f64) -> f64;
 }
 
 impl Tolerance for f32 {
+    const NAME: &'static str = "f32";
     const SHORT: f64 = 2e-6;
+    const CONTRACT: f64 = 1e-6;
+    fn per_type(f32_bound: f64, _f64_bound: f64) -> f64 {
+        f32_bound
+    }
 }
 
 impl Tolerance for f64 {
+    const NAME: &'static str = "f64";
     const SHORT: f64 = 1e-13;
-}
-
-/// The accuracy contract of gyrostat's `rotation` module (rad), per type: f32 1e-6 (inputs
-/// rounded to f32), f64 1e-14. The contract itself is stated in the `rotation` module docs.
-pub trait Contract: gyrostat::Real {
-    /// Worst allowed rotation error, radians.
-    const CONTRACT: f64;
-}
-
-impl Contract for f32 {
-    const CONTRACT: f64 = 1e-6;
-}
-
-impl Contract for f64 {
     const CONTRACT: f64 = 1e-14;
+    fn per_type(_f32_bound: f64, f64_bound: f64) -> f64 {
+        f64_bound
+    }
 }

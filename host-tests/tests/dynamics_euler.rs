@@ -6,16 +6,13 @@ use gyrostat::dynamics::{
     angular_acceleration, lab_momentum,
 };
 use gyrostat::{Error, Mat3, Real, UnitQuat, Vec3};
-use host_tests::ref_dynamics::{euler_rk4, log_log_slope, quat_to_matrix};
-use host_tests::reference::{IDENTITY, M3, mat_dist, mat_vec};
+use host_tests::cast::vec3;
+use host_tests::ref_dynamics::{euler_rk4, log_log_slope};
+use host_tests::reference::{IDENTITY, M3, cross, mat_dist, mat_vec, quat_matrix};
 
 /// A full, non-diagonal but physical tensor (a rotated box plus products of inertia).
 const I_FULL: M3 = [[3.0, -0.4, 0.25], [-0.4, 4.0, 0.3], [0.25, 0.3, 5.0]];
 const W0: [f64; 3] = [0.4, -0.3, 0.8];
-
-fn v<T: Real>(a: [f64; 3]) -> Vec3<T> {
-    Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]))
-}
 
 fn inertia<T: Real>() -> Inertia<T> {
     Inertia::try_from_tensor(Mat3::from_rows(
@@ -46,7 +43,7 @@ fn torque_ref(t: f64, r: &M3) -> [f64; 3] {
 fn torque_lib<T: Real>(t: T, s: &State<T>) -> Control<T> {
     let r = s.attitude.to_rotation_matrix();
     let m: M3 = [0, 1, 2].map(|i| [0, 1, 2].map(|j| r.m[i][j].to_f64()));
-    Control::torque(v(torque_ref(t.to_f64(), &m)))
+    Control::torque(vec3(torque_ref(t.to_f64(), &m)))
 }
 
 fn err<T: Real>(s: &State<T>, body: &Gyrostat<T>, r: &M3, w: [f64; 3]) -> f64 {
@@ -57,13 +54,13 @@ fn err<T: Real>(s: &State<T>, body: &Gyrostat<T>, r: &M3, w: [f64; 3]) -> f64 {
         om.y.to_f64() - w[1],
         om.z.to_f64() - w[2],
     ];
-    mat_dist(&quat_to_matrix(q), r).max(dw.iter().fold(0.0f64, |a, b| a.max(b.abs())))
+    mat_dist(&quat_matrix(q), r).max(dw.iter().fold(0.0f64, |a, b| a.max(b.abs())))
 }
 
 fn run_torqued<T: Real>(integ: Integrator, dt: f64, t_end: f64) -> (State<T>, Gyrostat<T>) {
     let body = Gyrostat::rigid(inertia::<T>());
     let mut s = body
-        .state_from_omega(UnitQuat::IDENTITY, v(W0), [])
+        .state_from_omega(UnitQuat::IDENTITY, vec3(W0), [])
         .unwrap();
     let n = (t_end / dt).round() as usize;
     for k in 0..n {
@@ -75,22 +72,26 @@ fn run_torqued<T: Real>(integ: Integrator, dt: f64, t_end: f64) -> (State<T>, Gy
     (s, body)
 }
 
-/// Torque-driven Euler equations with the full tensor I_FULL: every integrator against the
-/// reference (RK4 on (R, ω), 50 000 steps), with measured orders (Strang 2, Yoshida/Suzuki/RK4
-/// 4; band ±0.3) and f32 beside f64 (f32 at dt = 0.01: 500 steps × ~13 sub-steps and 4 kicks,
-/// each rounding values of order one by ε = 6e-8; measured 1.4e-5, bound 1e-4).
-#[test]
-fn torqued_euler_full_inertia_against_reference() {
-    let t_end = 5.0;
-    let (r_ref, w_ref) = euler_rk4(
+/// The torque-driven reference of the tests below: RK4 on (R, ω) with the full tensor I_FULL,
+/// 50 000 steps over `t_end` = 5 s.
+fn torqued_reference() -> (M3, [f64; 3]) {
+    euler_rk4(
         &I_FULL,
         &IDENTITY,
         W0,
-        t_end,
+        5.0,
         50_000,
         &|t, r, _w| torque_ref(t, r),
         &|_t| ([0.0; 3], [0.0; 3]),
-    );
+    )
+}
+
+/// Torque-driven Euler equations with the full tensor I_FULL: every integrator against the
+/// reference, with measured orders (Strang 2, Yoshida/Suzuki/RK4 4; band ±0.3).
+#[test]
+fn torqued_euler_full_inertia_orders() {
+    let t_end = 5.0;
+    let (r_ref, w_ref) = torqued_reference();
     let dts = [0.1, 0.05, 0.025, 0.0125];
     for (integ, p) in [
         (Integrator::Strang, 2.0),
@@ -110,17 +111,27 @@ fn torqued_euler_full_inertia_against_reference() {
         assert!((order - p).abs() < 0.3, "{integ:?} order {order}");
         assert!(errs[3] > 1e-12);
     }
-    let (s32, h32) = run_torqued::<f32>(Integrator::Yoshida4, 0.01, t_end);
-    let e32 = err(&s32, &h32, &r_ref, w_ref);
-    println!("f32 Yoshida4 dt = 0.01: {e32:.2e}");
-    assert!(e32 < 1e-4);
 }
 
-/// `angular_acceleration` solves I ω̇ = −ω × (Iω + h) + τ − ḣ: check it against the reference formula
-/// (cofactor inverse) at a few points, f32 and f64 (relative tolerances: f64 1e-14, f32 2e-6).
-#[test]
-fn angular_acceleration_matches_reference_formula() {
-    fn check<T: Real>(tol: f64) {
+host_tests::per_type! {
+    /// f32 and f64 at dt = 0.01 against the torque-driven reference (Yoshida4, 500 steps): f64 to
+    /// its truncation error (measured 1.0e-9, bound 1e-8), f32 to its rounding budget (500 steps ×
+    /// ~13 sub-steps and 4 kicks, each rounding values of order one by ε = 6e-8; measured 1.4e-5,
+    /// bound 1e-4).
+    #[test]
+    fn torqued_yoshida4_at_dt_0_01() {
+        let (r_ref, w_ref) = torqued_reference();
+        let (s, body) = run_torqued::<T>(Integrator::Yoshida4, 0.01, 5.0);
+        let e = err(&s, &body, &r_ref, w_ref);
+        println!("{} Yoshida4 dt = 0.01: {e:.2e}", T::NAME);
+        assert!(e < T::per_type(1e-4, 1e-8));
+    }
+
+    /// `angular_acceleration` solves I ω̇ = −ω × (Iω + h) + τ − ḣ: check it against the reference formula
+    /// (cofactor inverse) at a few points, f32 and f64 (relative tolerances: f64 1e-14, f32 2e-6).
+    #[test]
+    fn angular_acceleration_matches_reference_formula() {
+        let tol = T::per_type(2e-6, 1e-14);
         let i = inertia::<T>();
         let inv = host_tests::ref_dynamics::inverse(&I_FULL);
         for (w, h, hd, tau) in [
@@ -137,9 +148,9 @@ fn angular_acceleration_matches_reference_formula() {
                 [0.0, 0.0, 0.0],
             ),
         ] {
-            let got = angular_acceleration(&i, v(w), v(h), v(hd), v(tau));
+            let got = angular_acceleration(&i, vec3(w), vec3(h), vec3(hd), vec3(tau));
             let l = [0, 1, 2].map(|k| mat_vec(&I_FULL, &w)[k] + h[k]);
-            let c = host_tests::ref_dynamics::cross(w, l);
+            let c = cross(w, l);
             let rhs = [0, 1, 2].map(|k| tau[k] - hd[k] - c[k]);
             let want = mat_vec(&inv, &rhs);
             let scale = want.iter().fold(1.0f64, |a, b| a.max(b.abs()));
@@ -148,100 +159,101 @@ fn angular_acceleration_matches_reference_formula() {
             }
         }
     }
-    check::<f64>(1e-14);
-    check::<f32>(2e-6);
+
+    /// Wheel torques only (no external torque): the wheels take momentum from the body, the body
+    /// rate changes a lot, and the total lab-frame momentum is conserved — by the splitting to
+    /// rounding (f64 ≤ 1e-12 relative over 2000 steps, measured ≤ 3e-14; f32: 2000 steps × 5–13
+    /// general-axis rotations of ~20 roundings of ε = 6e-8 each, a random walk of a few 1e-5,
+    /// measured ≤ 3e-5, bound 1e-4), by RK4 to its truncation error (f64 measured 8e-13, bound
+    /// 1e-9; f32 its rounding, measured 1.5e-6, bound 1e-4). The state is also checked against
+    /// the reference driven by the same wheel momentum profile h(t) (constant wheel torque ⇒ Ω
+    /// linear in t): f64 to the truncation error of each method (Strang 2.9e-6, bound 1e-4;
+    /// Yoshida4 and RK4 ≤ 2.3e-10, bound 1e-8), f32 to its rounding (measured ≤ 7.2e-5, bounds
+    /// 2e-4 Strang, 1e-4 Yoshida4 and RK4).
+    #[test]
+    fn wheel_exchange_conserves_total_momentum() {
+        // (integrator, lab-momentum bound, reference bound): see the doc comment.
+        for (integ, tol_lab, tol_ref) in [
+            (Integrator::Strang, T::per_type(1e-4, 1e-12), T::per_type(2e-4, 1e-4)),
+            (Integrator::Yoshida4, T::per_type(1e-4, 1e-12), T::per_type(1e-4, 1e-8)),
+            (Integrator::Rk4, T::per_type(1e-4, 1e-9), T::per_type(1e-4, 1e-8)),
+        ] {
+            let body = BodyHamiltonian::rigid(inertia::<T>());
+            let g = Gyrostat::new(body, wheels::<T>());
+            let speeds0 = [10.0, -5.0, 0.0, 20.0].map(T::from_f64);
+            let mut s = g
+                .state_from_omega(UnitQuat::IDENTITY, vec3(W0), speeds0)
+                .unwrap();
+            let l0 = lab_momentum(s.attitude, s.momentum);
+            let u = [0.002, -0.001, 0.003, -0.0015];
+            let cmd = WheelCommand::Torque(u.map(T::from_f64));
+            let (dt, n) = (0.005, 2000);
+            let w_start = g.omega(&s);
+            let dt_t = T::from_f64(dt);
+            for _ in 0..n {
+                let held = g.control(&s, dt_t, Vec3::ZERO, &cmd);
+                s = g.step_with(integ, &s, T::ZERO, dt_t, held).unwrap();
+            }
+            let dl = (lab_momentum(s.attitude, s.momentum) - l0).norm().to_f64() / l0.norm().to_f64();
+            let dw = (g.omega(&s) - w_start).norm().to_f64();
+            // Reference: the same motion with the prescribed rotor momentum.
+            let t_end = dt * n as f64;
+            let ws = wheels::<f64>();
+            let rotor = |t: f64| {
+                let mut h = [0.0; 3];
+                let mut hd = [0.0; 3];
+                for (k, w) in ws.iter().enumerate() {
+                    let om = [10.0, -5.0, 0.0, 20.0][k] + u[k] / w.inertia() * t;
+                    let ax = w.axis();
+                    for (c, a) in [ax.x, ax.y, ax.z].iter().enumerate() {
+                        h[c] += w.inertia() * om * a;
+                        hd[c] += u[k] * a;
+                    }
+                }
+                (h, hd)
+            };
+            let (r_ref, w_ref) = euler_rk4(
+                &I_FULL,
+                &IDENTITY,
+                W0,
+                t_end,
+                20_000,
+                &|_, _, _| [0.0; 3],
+                &rotor,
+            );
+            let q = s.attitude.to_array().map(|c| c.to_f64());
+            let om = g.omega(&s);
+            let e = mat_dist(&quat_matrix(q), &r_ref)
+                .max((om.x.to_f64() - w_ref[0]).abs())
+                .max((om.y.to_f64() - w_ref[1]).abs())
+                .max((om.z.to_f64() - w_ref[2]).abs());
+            // Wheel speeds: Ω = Ω₀ + u/I_w·t exactly (up to rounding).
+            for (k, w) in s.wheel_speeds.iter().enumerate() {
+                let want = [10.0, -5.0, 0.0, 20.0][k] + u[k] / ws[k].inertia() * t_end;
+                assert!(
+                    (w.to_f64() - want).abs() < 1e3 * tol_ref.max(1e-12),
+                    "wheel {k}"
+                );
+            }
+            println!(
+                "{integ:?} {}: lab drift {dl:.2e}, body-rate change {dw:.3}, vs reference {e:.2e}",
+                T::NAME
+            );
+            assert!(dw > 0.05, "the wheels must actually exchange momentum");
+            assert!(dl < tol_lab, "lab momentum drift {dl}");
+            assert!(e < tol_ref, "reference error {e}");
+        }
+    }
 }
 
 fn wheels<T: Real>() -> [Wheel<T>; 4] {
     let a = 1.0 / 3.0f64.sqrt();
     [
-        Wheel::try_new(v([1.0, 0.0, 0.0]), T::from_f64(0.02)).unwrap(),
-        Wheel::try_new(v([0.0, 1.0, 0.0]), T::from_f64(0.02)).unwrap(),
-        Wheel::try_new(v([0.0, 0.0, 1.0]), T::from_f64(0.02)).unwrap(),
-        Wheel::try_new(v([a, a, a]), T::from_f64(0.03)).unwrap(),
+        Wheel::try_new(vec3([1.0, 0.0, 0.0]), T::from_f64(0.02)).unwrap(),
+        Wheel::try_new(vec3([0.0, 1.0, 0.0]), T::from_f64(0.02)).unwrap(),
+        Wheel::try_new(vec3([0.0, 0.0, 1.0]), T::from_f64(0.02)).unwrap(),
+        Wheel::try_new(vec3([a, a, a]), T::from_f64(0.03)).unwrap(),
     ]
-}
-
-/// Wheel torques only (no external torque): the wheels take momentum from the body, the body
-/// rate changes a lot, and the total lab-frame momentum is conserved — by the splitting to
-/// rounding (f64 ≤ 1e-12 relative over 2000 steps, measured ≤ 3e-14; f32: 2000 steps × 5–13
-/// general-axis rotations of ~20 roundings of ε = 6e-8 each, a random walk of a few 1e-5,
-/// measured ≤ 3e-5, bound 1e-4), by RK4 to its truncation
-/// error. The state is also checked against the reference driven by the same wheel momentum
-/// profile h(t) (constant wheel torque ⇒ Ω linear in t).
-#[test]
-fn wheel_exchange_conserves_total_momentum() {
-    fn check<T: Real>(integ: Integrator, tol_lab: f64, tol_ref: f64) {
-        let body = BodyHamiltonian::rigid(inertia::<T>());
-        let g = Gyrostat::new(body, wheels::<T>());
-        let speeds0 = [10.0, -5.0, 0.0, 20.0].map(T::from_f64);
-        let mut s = g
-            .state_from_omega(UnitQuat::IDENTITY, v(W0), speeds0)
-            .unwrap();
-        let l0 = lab_momentum(s.attitude, s.momentum);
-        let u = [0.002, -0.001, 0.003, -0.0015];
-        let cmd = WheelCommand::Torque(u.map(T::from_f64));
-        let (dt, n) = (0.005, 2000);
-        let w_start = g.omega(&s);
-        let dt_t = T::from_f64(dt);
-        for _ in 0..n {
-            let held = g.control(&s, dt_t, Vec3::ZERO, &cmd);
-            s = g.step_with(integ, &s, T::ZERO, dt_t, held).unwrap();
-        }
-        let dl = (lab_momentum(s.attitude, s.momentum) - l0).norm().to_f64() / l0.norm().to_f64();
-        let dw = (g.omega(&s) - w_start).norm().to_f64();
-        // Reference: the same motion with the prescribed rotor momentum.
-        let t_end = dt * n as f64;
-        let ws = wheels::<f64>();
-        let rotor = |t: f64| {
-            let mut h = [0.0; 3];
-            let mut hd = [0.0; 3];
-            for (k, w) in ws.iter().enumerate() {
-                let om = [10.0, -5.0, 0.0, 20.0][k] + u[k] / w.inertia() * t;
-                let ax = w.axis();
-                for (c, a) in [ax.x, ax.y, ax.z].iter().enumerate() {
-                    h[c] += w.inertia() * om * a;
-                    hd[c] += u[k] * a;
-                }
-            }
-            (h, hd)
-        };
-        let (r_ref, w_ref) = euler_rk4(
-            &I_FULL,
-            &IDENTITY,
-            W0,
-            t_end,
-            20_000,
-            &|_, _, _| [0.0; 3],
-            &rotor,
-        );
-        let q = s.attitude.to_array().map(|c| c.to_f64());
-        let om = g.omega(&s);
-        let e = mat_dist(&quat_to_matrix(q), &r_ref)
-            .max((om.x.to_f64() - w_ref[0]).abs())
-            .max((om.y.to_f64() - w_ref[1]).abs())
-            .max((om.z.to_f64() - w_ref[2]).abs());
-        // Wheel speeds: Ω = Ω₀ + u/I_w·t exactly (up to rounding).
-        for (k, w) in s.wheel_speeds.iter().enumerate() {
-            let want = [10.0, -5.0, 0.0, 20.0][k] + u[k] / ws[k].inertia() * t_end;
-            assert!(
-                (w.to_f64() - want).abs() < 1e3 * tol_ref.max(1e-12),
-                "wheel {k}"
-            );
-        }
-        println!(
-            "{integ:?} {}: lab drift {dl:.2e}, body-rate change {dw:.3}, vs reference {e:.2e}",
-            core::any::type_name::<T>()
-        );
-        assert!(dw > 0.05, "the wheels must actually exchange momentum");
-        assert!(dl < tol_lab, "lab momentum drift {dl}");
-        assert!(e < tol_ref, "reference error {e}");
-    }
-    check::<f64>(Integrator::Strang, 1e-12, 1e-4);
-    check::<f64>(Integrator::Yoshida4, 1e-12, 1e-8);
-    check::<f64>(Integrator::Rk4, 1e-9, 1e-8);
-    check::<f32>(Integrator::Strang, 1e-4, 2e-4);
-    check::<f32>(Integrator::Yoshida4, 1e-4, 1e-4);
 }
 
 /// A speed command is reached at the end of the step; the body takes the opposite momentum.

@@ -1,18 +1,12 @@
 //! Inertia validation and the principal-axis decomposition against an independent computation.
 
 use gyrostat::dynamics::inertia::{Inertia, symmetric_eigen};
-use gyrostat::{Error, Mat3, Real, UnitQuat, Vec3};
-use host_tests::ref_dynamics::{cross, norm, sym_eigenvalues, sym_eigenvector};
-use host_tests::reference::{M3, mat_mul, rodrigues, transpose};
+use gyrostat::{Error, Mat3, UnitQuat, Vec3};
+use host_tests::cast::mat3;
+use host_tests::ref_dynamics::{sym_eigenvalues, sym_eigenvector};
+use host_tests::reference::{M3, cross, mat_mul, norm, rodrigues, transpose};
+use host_tests::tolerance::Tolerance;
 use proptest::prelude::*;
-
-fn to_mat<T: Real>(a: &M3) -> Mat3<T> {
-    Mat3::from_rows(
-        a[0].map(T::from_f64),
-        a[1].map(T::from_f64),
-        a[2].map(T::from_f64),
-    )
-}
 
 /// A physical tensor `R diag(λ) Rᵀ` with λ from the box-inertia formula (so the triangle
 /// inequality holds), rotated by the Rodrigues reference.
@@ -29,8 +23,9 @@ fn rotated_box(a: f64, b: f64, c: f64, axis: [f64; 3], angle: f64) -> M3 {
 /// ε·‖I‖ with ε = 1.2e-7, plus the f32 rounding of the input entries), f64 1e-13. Eigenvectors
 /// depend on the gap: we require moments separated by ≥ 5 % and allow the vector error
 /// ε·‖I‖/gap ×  a factor 20 (f32 2e-5·(λmax/gap), f64 5e-14·(λmax/gap)).
-fn check_eigen<T: Real>(a: &M3, tol_val: f64, tol_vec: f64) {
-    let (vals, vecs) = symmetric_eigen(&to_mat::<T>(a));
+fn check_eigen<T: Tolerance>(a: &M3) {
+    let (tol_val, tol_vec) = (T::per_type(4e-6, 1e-13), T::per_type(2e-5, 5e-14));
+    let (vals, vecs) = symmetric_eigen(&mat3::<T>(a));
     let mut got: Vec<(f64, [f64; 3])> = (0..3)
         .map(|i| {
             let c = vecs.col(i);
@@ -60,32 +55,42 @@ fn check_eigen<T: Real>(a: &M3, tol_val: f64, tol_vec: f64) {
     assert!((vecs.determinant().to_f64() - 1.0).abs() < 10.0 * tol_val);
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
-    #[test]
-    fn eigen_matches_reference(
-        a in 0.5f64..2.0, b in 0.5f64..2.0, c in 0.5f64..2.0,
-        ax in -1.0f64..1.0, ay in -1.0f64..1.0, az in 0.1f64..1.0, angle in -3.0f64..3.0,
-    ) {
-        let t = rotated_box(a, b, c, [ax, ay, az], angle);
-        let l = sym_eigenvalues(&t);
-        prop_assume!((l[1] - l[0]).min(l[2] - l[1]) > 0.05 * l[2]);
-        check_eigen::<f64>(&t, 1e-13, 5e-14);
-        check_eigen::<f32>(&t, 4e-6, 2e-5);
+host_tests::per_type! {
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        #[test]
+        fn eigen_matches_reference(
+            a in 0.5f64..2.0, b in 0.5f64..2.0, c in 0.5f64..2.0,
+            ax in -1.0f64..1.0, ay in -1.0f64..1.0, az in 0.1f64..1.0, angle in -3.0f64..3.0,
+        ) {
+            let t = rotated_box(a, b, c, [ax, ay, az], angle);
+            let l = sym_eigenvalues(&t);
+            prop_assume!((l[1] - l[0]).min(l[2] - l[1]) > 0.05 * l[2]);
+            check_eigen::<T>(&t);
+        }
     }
 
+    /// Bad tensors, masses and axes give typed errors.
+    #[test]
+    fn validation_errors_are_typed() {
+        validation_errors::<T>();
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
     #[test]
     fn inertia_reconstructs_and_inverts(
         a in 0.5f64..2.0, b in 0.5f64..2.0, c in 0.5f64..2.0,
         ax in -1.0f64..1.0, ay in -1.0f64..1.0, az in 0.1f64..1.0, angle in -3.0f64..3.0,
     ) {
         let t = rotated_box(a, b, c, [ax, ay, az], angle);
-        let i = Inertia::<f64>::try_from_tensor(to_mat(&t)).unwrap();
+        let i = Inertia::<f64>::try_from_tensor(mat3(&t)).unwrap();
         // I = R(P) diag(λ) R(P)ᵀ with R(P) from the principal quaternion.
         let p = i.principal_rotation();
         let r = p.to_rotation_matrix();
         let back = r * Mat3::from_diagonal(i.principal_moments()) * r.transpose();
-        prop_assert!((back - to_mat(&t)).max_abs() < 1e-13 * 8.0);
+        prop_assert!((back - mat3(&t)).max_abs() < 1e-13 * 8.0);
         let id = i.inverse() * i.tensor();
         prop_assert!((id - Mat3::IDENTITY).max_abs() < 1e-13);
         // ω = I⁻¹(Iω) round trip.
@@ -94,62 +99,58 @@ proptest! {
     }
 }
 
-#[test]
-fn validation_errors_are_typed() {
-    fn run<T: Real>() {
-        let v = |a: f64, b: f64, c: f64| Vec3::new(T::from_f64(a), T::from_f64(b), T::from_f64(c));
-        let np = Err(Error::NonPhysicalInertia);
-        // Triangle inequality I_a ≤ I_b + I_c violated.
-        assert_eq!(
-            Inertia::try_from_principal(v(8.0, 4.0, 3.0)).map(|_| ()),
-            np
-        );
-        // Flat lamina: equality is physical.
-        assert!(Inertia::try_from_principal(v(1.0, 2.0, 3.0)).is_ok());
-        // Thin rod (zero moment) and negative moment: not positive definite.
-        assert_eq!(
-            Inertia::try_from_principal(v(1.0, 1.0, 0.0)).map(|_| ()),
-            np
-        );
-        assert_eq!(
-            Inertia::try_from_principal(v(-1.0, 1.0, 1.0)).map(|_| ()),
-            np
-        );
-        // Indefinite with positive diagonal (off-diagonal too large).
-        let r = Inertia::try_from_components(v(1.0, 1.0, 1.0), v(0.9, 0.9, 0.9));
-        assert_eq!(r.map(|_| ()), np);
-        // Non-symmetric.
-        let t = Mat3::from_rows(
-            [T::from_f64(2.0), T::from_f64(0.1), T::ZERO],
-            [T::ZERO, T::from_f64(2.0), T::ZERO],
-            [T::ZERO, T::ZERO, T::from_f64(2.0)],
-        );
-        assert_eq!(Inertia::try_from_tensor(t).map(|_| ()), np);
-        // Non-finite.
-        let nan = T::from_f64(f64::NAN);
-        assert_eq!(
-            Inertia::try_from_principal(Vec3::new(nan, T::ONE, T::ONE)).map(|_| ()),
-            Err(Error::NonFinite)
-        );
-        assert_eq!(
-            Inertia::try_from_components(
-                v(1.0, 1.0, 1.0),
-                Vec3::new(T::ZERO, T::from_f64(f64::INFINITY), T::ZERO)
-            )
-            .map(|_| ()),
-            Err(Error::NonFinite)
-        );
-        // Radius of gyration: bad masses.
-        let i = Inertia::try_from_principal(v(2.0, 3.0, 4.0)).unwrap();
-        assert_eq!(i.radii_of_gyration(T::ZERO), Err(Error::InvalidArgument));
-        assert_eq!(i.radii_of_gyration(nan), Err(Error::NonFinite));
-        assert_eq!(
-            i.radius_of_gyration_about(Vec3::ZERO, T::ONE),
-            Err(Error::ZeroNorm)
-        );
-    }
-    run::<f32>();
-    run::<f64>();
+/// The checks of `validation_errors_are_typed`.
+fn validation_errors<T: Tolerance>() {
+    let v = |a: f64, b: f64, c: f64| Vec3::new(T::from_f64(a), T::from_f64(b), T::from_f64(c));
+    let np = Err(Error::NonPhysicalInertia);
+    // Triangle inequality I_a ≤ I_b + I_c violated.
+    assert_eq!(
+        Inertia::try_from_principal(v(8.0, 4.0, 3.0)).map(|_| ()),
+        np
+    );
+    // Flat lamina: equality is physical.
+    assert!(Inertia::try_from_principal(v(1.0, 2.0, 3.0)).is_ok());
+    // Thin rod (zero moment) and negative moment: not positive definite.
+    assert_eq!(
+        Inertia::try_from_principal(v(1.0, 1.0, 0.0)).map(|_| ()),
+        np
+    );
+    assert_eq!(
+        Inertia::try_from_principal(v(-1.0, 1.0, 1.0)).map(|_| ()),
+        np
+    );
+    // Indefinite with positive diagonal (off-diagonal too large).
+    let r = Inertia::try_from_components(v(1.0, 1.0, 1.0), v(0.9, 0.9, 0.9));
+    assert_eq!(r.map(|_| ()), np);
+    // Non-symmetric.
+    let t = Mat3::from_rows(
+        [T::from_f64(2.0), T::from_f64(0.1), T::ZERO],
+        [T::ZERO, T::from_f64(2.0), T::ZERO],
+        [T::ZERO, T::ZERO, T::from_f64(2.0)],
+    );
+    assert_eq!(Inertia::try_from_tensor(t).map(|_| ()), np);
+    // Non-finite.
+    let nan = T::from_f64(f64::NAN);
+    assert_eq!(
+        Inertia::try_from_principal(Vec3::new(nan, T::ONE, T::ONE)).map(|_| ()),
+        Err(Error::NonFinite)
+    );
+    assert_eq!(
+        Inertia::try_from_components(
+            v(1.0, 1.0, 1.0),
+            Vec3::new(T::ZERO, T::from_f64(f64::INFINITY), T::ZERO)
+        )
+        .map(|_| ()),
+        Err(Error::NonFinite)
+    );
+    // Radius of gyration: bad masses.
+    let i = Inertia::try_from_principal(v(2.0, 3.0, 4.0)).unwrap();
+    assert_eq!(i.radii_of_gyration(T::ZERO), Err(Error::InvalidArgument));
+    assert_eq!(i.radii_of_gyration(nan), Err(Error::NonFinite));
+    assert_eq!(
+        i.radius_of_gyration_about(Vec3::ZERO, T::ONE),
+        Err(Error::ZeroNorm)
+    );
 }
 
 /// Solid box of mass M and sides (a, b, c): I₁ = M(b² + c²)/12, so k₁ = √((b² + c²)/12).

@@ -9,37 +9,33 @@
 // Reference values are quoted with all the digits of their source.
 #![allow(clippy::excessive_precision)]
 
-use gyrostat::Error;
-use gyrostat::Real;
 use gyrostat::dynamics::elliptic::{
     amplitude, carlson_rf, carlson_rj, complete_k, incomplete_f, incomplete_pi, sn_cn_dn,
 };
+use gyrostat::{Error, Real};
 use host_tests::ref_exact;
+use host_tests::tolerance::Tolerance;
 
 const PARAMS: [f64; 9] = [0.0, 1e-6, 0.1, 0.5, 0.8, 0.9, 0.99, 0.9999, 1.0 - 1e-6];
 
-trait Tol: Real {
-    /// sn/cn/dn absolute error bound over |u| ≤ 4K, m ≤ 1 − 1e-6.
-    const SNCNDN: f64;
-    /// K relative error bound; F relative error bound divided by (1 + its condition number).
-    const REL: f64;
-    /// identity residual bound (sn² + cn² − 1, dn² + m sn² − 1).
-    const IDENT: f64;
-}
-impl Tol for f32 {
-    const SNCNDN: f64 = 4e-6;
-    const REL: f64 = 4e-7;
-    const IDENT: f64 = 5e-7;
-}
-impl Tol for f64 {
-    const SNCNDN: f64 = 5e-13;
-    // The quadrature reference's own accuracy near m → 1 (the library is checked to 4e-16
-    // against arbitrary-precision values in `known_values`).
-    const REL: f64 = 1e-14;
-    const IDENT: f64 = 1e-15;
+/// sn/cn/dn absolute error bound over |u| ≤ 4K, m ≤ 1 − 1e-6.
+fn sncndn_bound<T: Tolerance>() -> f64 {
+    T::per_type(4e-6, 5e-13)
 }
 
-fn identities<T: Tol>() {
+/// K relative error bound; F relative error bound divided by (1 + its condition number). f64:
+/// the quadrature reference's own accuracy near m → 1 (the library is checked to 4e-16 against
+/// arbitrary-precision values in `known_values`).
+fn rel_bound<T: Tolerance>() -> f64 {
+    T::per_type(4e-7, 1e-14)
+}
+
+/// Identity residual bound (sn² + cn² − 1, dn² + m sn² − 1).
+fn identity_bound<T: Tolerance>() -> f64 {
+    T::per_type(5e-7, 1e-15)
+}
+
+fn identities<T: Tolerance>() {
     let mut worst: f64 = 0.0;
     for &m in &PARAMS {
         for i in -200..=200 {
@@ -52,20 +48,8 @@ fn identities<T: Tol>() {
             assert!(d > 0.0);
         }
     }
-    println!(
-        "{}: identity residual {worst:.2e}",
-        core::any::type_name::<T>()
-    );
-    assert!(worst <= T::IDENT, "{worst}");
-}
-
-#[test]
-fn jacobi_identities_f32() {
-    identities::<f32>();
-}
-#[test]
-fn jacobi_identities_f64() {
-    identities::<f64>();
+    println!("{}: identity residual {worst:.2e}", T::NAME);
+    assert!(worst <= identity_bound::<T>(), "{worst}");
 }
 
 #[test]
@@ -144,7 +128,7 @@ fn domain_errors() {
     assert_eq!(amplitude(1.0f64, 1.0), Err(Error::InvalidArgument));
 }
 
-fn against_reference<T: Tol>() {
+fn against_reference<T: Tolerance>() {
     let (mut ek, mut esn, mut ef): (f64, f64, f64) = (0.0, 0.0, 0.0);
     for &m in &PARAMS {
         let mt = T::from_f64(m).to_f64();
@@ -178,20 +162,23 @@ fn against_reference<T: Tol>() {
     }
     println!(
         "{}: K rel {ek:.2e}, sn/cn/dn abs {esn:.2e}, F rel {ef:.2e}",
-        core::any::type_name::<T>()
+        T::NAME
     );
-    assert!(ek <= T::REL, "K {ek}");
-    assert!(ef <= T::REL, "F {ef}");
-    assert!(esn <= T::SNCNDN, "sncndn {esn}");
+    assert!(ek <= rel_bound::<T>(), "K {ek}");
+    assert!(ef <= rel_bound::<T>(), "F {ef}");
+    assert!(esn <= sncndn_bound::<T>(), "sncndn {esn}");
 }
 
-#[test]
-fn against_quadrature_reference_f32() {
-    against_reference::<f32>();
-}
-#[test]
-fn against_quadrature_reference_f64() {
-    against_reference::<f64>();
+host_tests::per_type! {
+    #[test]
+    fn jacobi_identities() {
+        identities::<T>();
+    }
+
+    #[test]
+    fn against_quadrature_reference() {
+        against_reference::<T>();
+    }
 }
 
 #[test]

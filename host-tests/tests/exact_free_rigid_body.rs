@@ -13,7 +13,10 @@
 use gyrostat::dynamics::free_rigid_body::{FreeRigidBody, Regime};
 use gyrostat::dynamics::{Inertia, State};
 use gyrostat::{Axis, Error, Mat3, Quat, Real, UnitQuat, Vec3};
+use host_tests::cast::vec3;
 use host_tests::ref_exact::{self, RigidState};
+use host_tests::reference::quat_angle;
+use host_tests::tolerance::Tolerance;
 
 /// The free body with principal moments `moments` (the body frame is the principal frame).
 fn free_body<T: Real>(
@@ -126,38 +129,18 @@ fn cases() -> Vec<Case> {
     ]
 }
 
-fn to_vec<T: Real>(a: [f64; 3]) -> Vec3<T> {
-    Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]))
-}
-
-/// Rotation angle between two attitudes (sign-insensitive), computed as
-/// `4·atan2(|a − s b|, |a + s b|)`, `s = sign(a·b)`, which keeps full relative accuracy for tiny
-/// angles (unlike `acos` of the dot product).
-fn angle_between(a: [f64; 4], b: [f64; 4]) -> f64 {
-    let d: f64 = a.iter().zip(b.iter()).map(|(x, y)| x * y).sum();
-    let s = if d < 0.0 { -1.0 } else { 1.0 };
-    let diff = a
-        .iter()
-        .zip(b.iter())
-        .map(|(x, y)| (x - s * y).powi(2))
-        .sum::<f64>()
-        .sqrt();
-    let sum = a
-        .iter()
-        .zip(b.iter())
-        .map(|(x, y)| (x + s * y).powi(2))
-        .sum::<f64>()
-        .sqrt();
-    4.0 * diff.atan2(sum)
-}
-
-/// `tol_q_sep` applies to motions with `1 − m < 1e-3` (passages close to the saddle), where the
-/// attitude is most sensitive to rounding (see the module docs of `free_rigid_body`).
-fn compare<T: Real>(tol_j: f64, tol_q: f64, tol_q_sep: f64) {
+/// The comparison of `closed_form_matches_integration`. Bounds (module docs), f64 / f32: body
+/// momentum 2e-13 / 2e-6 (measured 9.4e-14 / 9.4e-7); attitude 5e-13 / 5e-6 rad (measured
+/// 2.2e-13 / 3.0e-6); the attitude of motions with `1 − m < 1e-3` (passages close to the saddle,
+/// where ψ is a difference of Π values of order 10⁴) 5e-13 / 4e-5 rad (measured 1.4e-13 / 1.9e-5).
+fn compare<T: Tolerance>() {
+    let tol_j = T::per_type(2e-6, 2e-13);
+    let tol_q = T::per_type(5e-6, 5e-13);
+    let tol_q_sep = T::per_type(4e-5, 5e-13);
     let times: Vec<f64> = (1..=40).map(|k| k as f64 * 0.5).collect();
     for c in cases() {
-        let it = to_vec::<T>(c.inertia);
-        let jt = to_vec::<T>(c.j0);
+        let it = vec3::<T>(c.inertia);
+        let jt = vec3::<T>(c.j0);
         let qt = UnitQuat::try_new(Quat::new(
             T::from_f64(c.q0[0]),
             T::from_f64(c.q0[1]),
@@ -192,7 +175,7 @@ fn compare<T: Real>(tol_j: f64, tol_q: f64, tol_q_sep: f64) {
             for (a, b) in j.iter().zip(r.j.iter()) {
                 ej = ej.max((a - b).abs() / jn);
             }
-            eq = eq.max(angle_between(q, r.q));
+            eq = eq.max(quat_angle(q, r.q));
             let w = body.body_rates_at(T::from_f64(*t));
             let wr = [
                 r.j[0] / inertia[0],
@@ -206,7 +189,7 @@ fn compare<T: Real>(tol_j: f64, tol_q: f64, tol_q_sep: f64) {
         }
         println!(
             "{} {:28} {:?}: |ΔJ|/|J| {ej:.2e}, attitude {eq:.2e} rad",
-            core::any::type_name::<T>(),
+            T::NAME,
             c.name,
             body.regime()
         );
@@ -217,17 +200,27 @@ fn compare<T: Real>(tol_j: f64, tol_q: f64, tol_q_sep: f64) {
     }
 }
 
-#[test]
-fn closed_form_matches_integration_f64() {
-    // Measured: J ≤ 9.4e-14, attitude ≤ 2.2e-13 rad (1.4e-13 for the near-saddle flip).
-    compare::<f64>(2e-13, 5e-13, 5e-13);
-}
+host_tests::per_type! {
+    /// The closed form against the tiny-step RK4 reference over t ≤ 20, 13 cases (see
+    /// `compare` for the bounds).
+    #[test]
+    fn closed_form_matches_integration() {
+        compare::<T>();
+    }
 
-#[test]
-fn closed_form_matches_integration_f32() {
-    // Measured: J ≤ 9.4e-7, attitude ≤ 3.0e-6 rad; the near-saddle flip (1 − m = 1e-4)
-    // 1.9e-5 rad (ψ is a difference of Π values of order 10⁴ there).
-    compare::<f32>(2e-6, 5e-6, 4e-5);
+    /// The flip interval 2K(m)/λ against the measured sign-change interval of the reference
+    /// (relative: f64 1e-8, the measurement's resolution; f32 5e-7).
+    #[test]
+    fn flip_interval_matches_measured() {
+        flip::<T>();
+    }
+
+    /// A body with a full tensor against the matrix-based body-rate reference (see
+    /// `full_tensor`).
+    #[test]
+    fn full_tensor_matches_body_rate_reference() {
+        full_tensor::<T>();
+    }
 }
 
 #[test]
@@ -240,11 +233,12 @@ fn reference_converges() {
     let a = ref_exact::integrate_rigid([1.0, 2.0, 3.0], s0, &[20.0], 5e-4)[0];
     let b = ref_exact::integrate_rigid([1.0, 2.0, 3.0], s0, &[20.0], 2.5e-4)[0];
     let d = (0..3).map(|k| (a.j[k] - b.j[k]).abs()).fold(0.0, f64::max);
-    let dq = angle_between(a.q, b.q);
+    let dq = quat_angle(a.q, b.q);
     assert!(d < 1e-11 && dq < 1e-11, "{d} {dq}");
 }
 
-fn flip<T: Real>(rel_tol: f64) {
+fn flip<T: Tolerance>() {
+    let rel_tol = T::per_type(5e-7, 1e-8);
     // Near the intermediate axis of (1, 2, 3), for several distances from the separatrix.
     for (j0, label) in [
         ([0.05, 2.0, 0.05], "near intermediate"),
@@ -253,7 +247,7 @@ fn flip<T: Real>(rel_tol: f64) {
         ([1e-3, 2.0, 1e-3], "very near the saddle"),
     ] {
         let inertia = [1.0, 2.0, 3.0];
-        let body = free_body(to_vec::<T>(inertia), to_vec::<T>(j0), UnitQuat::IDENTITY).unwrap();
+        let body = free_body(vec3::<T>(inertia), vec3::<T>(j0), UnitQuat::IDENTITY).unwrap();
         let Some(flip) = body.flip_interval() else {
             // 1e-3 from the saddle is within f32 rounding of the separatrix
             // (|J² − 2E·I₂| ≤ 8ε·J²): typed as such, no flip interval.
@@ -270,7 +264,7 @@ fn flip<T: Real>(rel_tol: f64) {
             ref_exact::measured_sign_change_interval(inertia, s0, 1, 8.0 * flip, 1e-3);
         println!(
             "{} {label}: flip 2K/λ = {flip:.9}, measured {measured:.9} over {n} intervals",
-            core::any::type_name::<T>()
+            T::NAME
         );
         assert!(n >= 4);
         assert!(
@@ -278,16 +272,6 @@ fn flip<T: Real>(rel_tol: f64) {
             "{label}: {flip} vs {measured}"
         );
     }
-}
-
-#[test]
-fn flip_interval_matches_measured_f64() {
-    flip::<f64>(1e-8);
-}
-
-#[test]
-fn flip_interval_matches_measured_f32() {
-    flip::<f32>(5e-7);
 }
 
 #[test]
@@ -336,7 +320,7 @@ fn separatrix_is_typed_and_finite() {
             .max((j.y - r.j[1]).abs())
             .max((j.z - r.j[2]).abs());
         assert!(e < 1e-8 * jn, "t={t}: {e}");
-        assert!(angle_between([q.w(), q.x(), q.y(), q.z()], r.q) < 1e-8);
+        assert!(quat_angle([q.w(), q.x(), q.y(), q.z()], r.q) < 1e-8);
     }
     // f32 too: no NaN.
     let b32 = free_body(
@@ -447,59 +431,53 @@ mod properties {
     }
 }
 
-/// A body with a full (non-diagonal) tensor: the closed form, solved in the principal frame and
+/// The check of `full_tensor_matches_body_rate_reference`. A body with a full (non-diagonal)
+/// tensor: the closed form, solved in the principal frame and
 /// mapped back, against the independent matrix-based reference that integrates the body-rate
 /// Euler equations with the full tensor (`host_tests::ref_dynamics::euler_rk4`, 40 000 steps
 /// over 8 s; its own error is below 1e-13). Compared: attitude matrix, body rate and lab
 /// momentum, max abs. Tolerances: f64 1e-12 (measured 3.0e-14: the eigen-decomposition's rounding
 /// carried through the mapping and the phases); f32 1e-5 (the eigenvectors of the f32 tensor
 /// carry ~ε·‖I‖/gap ≈ 4e-7, amplified by the phase growth; measured 1.9e-6).
-#[test]
-fn full_tensor_matches_body_rate_reference() {
-    use host_tests::ref_dynamics::{euler_rk4, quat_to_matrix};
-    use host_tests::reference::{IDENTITY, M3, mat_dist, mat_vec};
+fn full_tensor<T: Tolerance>() {
+    use host_tests::ref_dynamics::euler_rk4;
+    use host_tests::reference::{IDENTITY, M3, mat_dist, mat_vec, quat_matrix};
     const I_FULL: M3 = [[3.0, -0.4, 0.25], [-0.4, 4.0, 0.3], [0.25, 0.3, 5.0]];
     const W0: [f64; 3] = [0.4, -0.3, 0.8];
-    fn check<T: Real>(tol: f64) {
-        let tensor = Mat3::from_rows(
-            I_FULL[0].map(T::from_f64),
-            I_FULL[1].map(T::from_f64),
-            I_FULL[2].map(T::from_f64),
+    let tol = T::per_type(1e-5, 1e-12);
+    let tensor = Mat3::from_rows(
+        I_FULL[0].map(T::from_f64),
+        I_FULL[1].map(T::from_f64),
+        I_FULL[2].map(T::from_f64),
+    );
+    let inertia = Inertia::try_from_tensor(tensor).unwrap();
+    assert!(!inertia.is_diagonal());
+    let j0 = Vec3::from_array(mat_vec(&I_FULL, &W0).map(T::from_f64));
+    let body = FreeRigidBody::try_new(&inertia, &State::new(UnitQuat::IDENTITY, j0)).unwrap();
+    let mut worst = 0.0f64;
+    for t_end in [1.0, 4.0, 8.0] {
+        let (r_ref, w_ref) = euler_rk4(
+            &I_FULL,
+            &IDENTITY,
+            W0,
+            t_end,
+            (5000.0 * t_end) as usize,
+            &|_, _, _| [0.0; 3],
+            &|_| ([0.0; 3], [0.0; 3]),
         );
-        let inertia = Inertia::try_from_tensor(tensor).unwrap();
-        assert!(!inertia.is_diagonal());
-        let j0 = Vec3::from_array(mat_vec(&I_FULL, &W0).map(T::from_f64));
-        let body = FreeRigidBody::try_new(&inertia, &State::new(UnitQuat::IDENTITY, j0)).unwrap();
-        let mut worst = 0.0f64;
-        for t_end in [1.0, 4.0, 8.0] {
-            let (r_ref, w_ref) = euler_rk4(
-                &I_FULL,
-                &IDENTITY,
-                W0,
-                t_end,
-                (5000.0 * t_end) as usize,
-                &|_, _, _| [0.0; 3],
-                &|_| ([0.0; 3], [0.0; 3]),
-            );
-            let s = body.state_at(T::from_f64(t_end));
-            let q = s.attitude.to_array().map(|c| c.to_f64());
-            let w = body.body_rates_at(T::from_f64(t_end)).to_array();
-            let dw = (0..3)
-                .map(|k| (w[k].to_f64() - w_ref[k]).abs())
-                .fold(0.0, f64::max);
-            let jl = s.attitude.rotate(s.momentum).to_array();
-            let l0 = mat_vec(&I_FULL, &W0);
-            let dl = (0..3)
-                .map(|k| (jl[k].to_f64() - l0[k]).abs())
-                .fold(0.0, f64::max);
-            worst = worst
-                .max(mat_dist(&quat_to_matrix(q), &r_ref))
-                .max(dw)
-                .max(dl);
-        }
-        println!("{}: full tensor {worst:.2e}", core::any::type_name::<T>());
-        assert!(worst <= tol, "{worst}");
+        let s = body.state_at(T::from_f64(t_end));
+        let q = s.attitude.to_array().map(|c| c.to_f64());
+        let w = body.body_rates_at(T::from_f64(t_end)).to_array();
+        let dw = (0..3)
+            .map(|k| (w[k].to_f64() - w_ref[k]).abs())
+            .fold(0.0, f64::max);
+        let jl = s.attitude.rotate(s.momentum).to_array();
+        let l0 = mat_vec(&I_FULL, &W0);
+        let dl = (0..3)
+            .map(|k| (jl[k].to_f64() - l0[k]).abs())
+            .fold(0.0, f64::max);
+        worst = worst.max(mat_dist(&quat_matrix(q), &r_ref)).max(dw).max(dl);
     }
-    check::<f64>(1e-12);
-    check::<f32>(1e-5);
+    println!("{}: full tensor {worst:.2e}", T::NAME);
+    assert!(worst <= tol, "{worst}");
 }

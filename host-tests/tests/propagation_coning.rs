@@ -17,15 +17,9 @@ use gyrostat::propagation::coning::coning2_update;
 use gyrostat::propagation::exponential::apply_rotation_vector;
 use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
 use gyrostat::{Quat, UnitQuat, Vec3};
-use host_tests::ref_propagation::{Coning, Q, body_error, fit_slope};
-
-fn to_q(q: UnitQuat<f64>) -> Q {
-    q.to_array()
-}
-
-fn v3(a: [f64; 3]) -> Vec3<f64> {
-    Vec3::new(a[0], a[1], a[2])
-}
+use host_tests::cast::{q64, unit_quat, vec3};
+use host_tests::ref_propagation::{Coning, body_error, fit_slope};
+use host_tests::reference::quat_angle;
 
 fn start(c: &Coning) -> UnitQuat<f64> {
     let a = c.attitude(0.0);
@@ -42,7 +36,7 @@ fn measure(c: &Coning, rule: ConingRule, per_cycle: usize, cycles: usize) -> f64
     for cyc in 0..cycles {
         for i in 0..per_cycle {
             let k = (cyc * per_cycle + i) as f64;
-            integ.push(v3(c.increment(k * h, (k + 1.0) * h))).unwrap();
+            integ.push(vec3(c.increment(k * h, (k + 1.0) * h))).unwrap();
         }
         assert_eq!(
             integ.pending(),
@@ -51,7 +45,7 @@ fn measure(c: &Coning, rule: ConingRule, per_cycle: usize, cycles: usize) -> f64
         );
         let t = (cyc + 1) as f64 * period;
         ts.push(t);
-        ys.push(body_error(c.attitude(t), to_q(integ.attitude()))[2]);
+        ys.push(body_error(c.attitude(t), q64(integ.attitude()))[2]);
     }
     fit_slope(&ts, &ys)
 }
@@ -189,14 +183,14 @@ fn two_speed_accumulator_drift_is_one_plus_previous_at_sample_rate() {
     for cyc in 0..100 {
         for i in 0..per {
             let k = (cyc * per + i) as f64;
-            acc.push(v3(c.increment(k * h, (k + 1.0) * h))).unwrap();
+            acc.push(vec3(c.increment(k * h, (k + 1.0) * h))).unwrap();
             if acc.count() == per_update {
                 q = apply_rotation_vector(q, acc.take(), Normalization::Exact);
             }
         }
         let t = (cyc + 1) as f64 * period;
         ts.push(t);
-        ys.push(body_error(c.attitude(t), to_q(q))[2]);
+        ys.push(body_error(c.attitude(t), q64(q))[2]);
     }
     check(
         "two-speed, 8 samples/update",
@@ -205,42 +199,30 @@ fn two_speed_accumulator_drift_is_one_plus_previous_at_sample_rate() {
     );
 }
 
-/// The hot-path `coning2_update` (f32 and f64) is the TwoSample rule with fast renormalisation:
-/// over one coning period it tracks the closed form as well as the f64 integrator.
-#[test]
-fn coning2_update_tracks_closed_form_f32_and_f64() {
-    let c = Coning {
-        alpha: 0.1,
-        omega_c: 3.0,
-    };
-    let n = 200;
-    let h = 2.0 * std::f64::consts::PI / c.omega_c / n as f64;
-    let a0 = c.attitude(0.0);
-    let mut q64 = start(&c);
-    let mut q32 = UnitQuat::try_new(Quat::new(
-        a0[0] as f32,
-        a0[1] as f32,
-        a0[2] as f32,
-        a0[3] as f32,
-    ))
-    .unwrap();
-    for k in (0..n).step_by(2) {
-        let kf = k as f64;
-        let d1 = c.increment(kf * h, (kf + 1.0) * h);
-        let d2 = c.increment((kf + 1.0) * h, (kf + 2.0) * h);
-        q64 = coning2_update(q64, v3(d1), v3(d2));
-        let f = |d: [f64; 3]| Vec3::new(d[0] as f32, d[1] as f32, d[2] as f32);
-        q32 = coning2_update(q32, f(d1), f(d2));
+host_tests::per_type! {
+    /// The hot-path `coning2_update` is the TwoSample rule with fast renormalisation: over one
+    /// coning period it tracks the closed form. Bounds: f64 5e-8 (the algorithmic drift
+    /// α²Ω(ΩT)⁴/960·period ≈ 1.4e-8 rad, plus transverse periodic error of the same order);
+    /// f32 2e-6 (~100 updates of a few ulp, 6e-8, each).
+    #[test]
+    fn coning2_update_tracks_closed_form() {
+        let c = Coning {
+            alpha: 0.1,
+            omega_c: 3.0,
+        };
+        let n = 200;
+        let h = 2.0 * std::f64::consts::PI / c.omega_c / n as f64;
+        let mut q = unit_quat::<T>(c.attitude(0.0));
+        for k in (0..n).step_by(2) {
+            let kf = k as f64;
+            let d1 = c.increment(kf * h, (kf + 1.0) * h);
+            let d2 = c.increment((kf + 1.0) * h, (kf + 2.0) * h);
+            q = coning2_update(q, vec3(d1), vec3(d2));
+        }
+        let e = quat_angle(c.attitude(n as f64 * h), q64(q));
+        println!("one period, 100 updates: {} error {e:e} rad", T::NAME);
+        assert!(e < T::per_type(2e-6, 5e-8), "{e}");
     }
-    let truth = c.attitude(n as f64 * h);
-    let e64 = host_tests::ref_propagation::angle_between(truth, to_q(q64));
-    let q32a = q32.to_array().map(f64::from);
-    let e32 = host_tests::ref_propagation::angle_between(truth, q32a);
-    println!("one period, 100 updates: f64 error {e64:e} rad, f32 error {e32:e} rad");
-    // f64: the algorithmic drift α²Ω(ΩT)⁴/960·period ≈ 1.4e-8 rad, plus transverse periodic
-    // error of the same order. f32: ~100 updates of a few ulp (6e-8) each.
-    assert!(e64 < 5e-8, "{e64}");
-    assert!(e32 < 2e-6, "{e32}");
 }
 
 /// A trailing partial group is integrated with the highest-order rule that fits it, and the

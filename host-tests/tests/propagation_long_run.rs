@@ -13,7 +13,7 @@ use gyrostat::propagation::coning::coning2_update;
 use gyrostat::propagation::exponential::step_constant_rate_unchecked;
 use gyrostat::propagation::normalization::norm_deviation;
 use gyrostat::{UnitQuat, Vec3};
-use host_tests::ref_propagation::angle_between;
+use host_tests::reference::quat_angle;
 
 const W: [f64; 3] = [0.3, -0.2, 0.5];
 const DT: f64 = 1e-3;
@@ -43,7 +43,7 @@ fn run(norm: Normalization, two_sample: bool) -> (f64, Vec<(usize, f64)>) {
         }
         worst_norm = worst_norm.max(f64::from(norm_deviation(q).abs()));
         if [1_000, 10_000, 100_000, 1_000_000].contains(&k) {
-            let e = angle_between(truth(k as f64 * DT), q.to_array().map(f64::from));
+            let e = quat_angle(truth(k as f64 * DT), q.to_array().map(f64::from));
             log.push((k, e));
         }
     }

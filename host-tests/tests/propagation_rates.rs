@@ -12,7 +12,8 @@ use gyrostat::propagation::rate_samples::{
 };
 use gyrostat::propagation::{Normalization, RateIntegrator, RateMethod};
 use gyrostat::{Quat, UnitQuat, Vec3};
-use host_tests::ref_propagation::{Coning, angle_between};
+use host_tests::ref_propagation::Coning;
+use host_tests::reference::quat_angle;
 
 const CONE: Coning = Coning {
     alpha: 0.6,
@@ -43,7 +44,7 @@ fn error_of(method: RateMethod, n: usize) -> f64 {
         }
     }
     assert_eq!(reached, n + 1, "one attitude per sample time");
-    angle_between(CONE.attitude(T_END), last.to_array())
+    quat_angle(CONE.attitude(T_END), last.to_array())
 }
 
 fn order(errs: &[f64]) -> f64 {
@@ -94,7 +95,7 @@ fn cf4_swapped_exponentials_drop_to_order_2() {
                 cf4_step(q, w1, w2, h)
             };
         }
-        angle_between(CONE.attitude(T_END), q.to_array())
+        quat_angle(CONE.attitude(T_END), q.to_array())
     };
     check_order("cf4 exact nodes", |n| run(n, false), 4.0);
     check_order("cf4 swapped", |n| run(n, true), 2.0);
@@ -110,7 +111,7 @@ fn cf4_swapped_exponentials_drop_to_order_2() {
                 h,
             );
         }
-        angle_between(CONE.attitude(T_END), q.to_array())
+        quat_angle(CONE.attitude(T_END), q.to_array())
     };
     check_order("magnus4 exact nodes", magnus, 4.0);
 }
@@ -162,7 +163,7 @@ fn constant_rate_is_exact_for_lie_group_methods() {
                 q = *last;
             }
         }
-        let e = angle_between(exact(100).to_array(), q.to_array());
+        let e = quat_angle(exact(100).to_array(), q.to_array());
         assert!(e < tol, "{method:?}: {e}");
     }
     // RK4 step alone, one step: local error O((|ω|h)⁵).
@@ -204,7 +205,7 @@ fn short_records_are_finished() {
         }
         let _ = i32.finish();
         assert_eq!(count, n, "n = {n}");
-        let e = angle_between(CONE.attitude((n - 1) as f64 * h), last.to_array());
+        let e = quat_angle(CONE.attitude((n - 1) as f64 * h), last.to_array());
         // n = 2: one linear-interpolation step, error O(h³ Ω³ α) ≈ 1e-6.
         assert!(e < 1e-5, "n = {n}: {e}");
     }

@@ -6,7 +6,8 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::sync::OnceLock;
 
-use host_tests::ref_rotation::{euler_matrix, quat_matrix, rot_dist, rotvec_matrix};
+use host_tests::ref_rotation::{euler_matrix, rot_dist, rotvec_matrix};
+use host_tests::reference::quat_matrix;
 
 /// Builds the example once (same profile as this test) and returns its path.
 fn binary() -> &'static PathBuf {

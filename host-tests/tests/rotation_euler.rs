@@ -6,11 +6,10 @@ use gyrostat::rotation::{
     Euler, EulerSequence, Frame, GimbalPolicy, PolarAxisAngle, Pole, gimbal_lock_threshold,
 };
 use gyrostat::{Quat, Real, UnitQuat};
-use host_tests::ref_rotation::{
-    all_sequences, euler_matrix, is_proper, poles, quat_matrix, rot_dist,
-};
-use host_tests::tolerance::Contract;
-use host_tests::widen::q64;
+use host_tests::cast::q64;
+use host_tests::ref_rotation::{all_sequences, euler_matrix, is_proper, poles, rot_dist};
+use host_tests::reference::quat_matrix;
+use host_tests::tolerance::Tolerance;
 
 /// Outer-angle pairs for the sweep: generic values, values at ±π, zeros, equal values.
 const OUTER: [(f64, f64); 10] = [
@@ -37,10 +36,8 @@ fn distances() -> Vec<f64> {
     d
 }
 
-/// Quaternion → Euler → rotation, all 24 conventions, every distance from the pole including 0,
-/// every policy: the geodesic error of the rebuilt rotation is within the contract; gimbal lock
-/// is flagged exactly when within the threshold and never far from the pole.
-fn sweep<T: Contract>() -> f64 {
+/// The sweep of `quat_to_euler_contract`; returns the worst error.
+fn sweep<T: Tolerance>() -> f64 {
     let mut worst: f64 = 0.0;
     for seq_s in all_sequences() {
         let seq = EulerSequence::parse(&seq_s).unwrap();
@@ -116,27 +113,33 @@ fn sweep<T: Contract>() -> f64 {
     worst
 }
 
-#[test]
-fn quat_to_euler_contract_f64() {
-    let w = sweep::<f64>();
-    println!("worst f64 quat→Euler→rotation error: {w:e}");
+host_tests::per_type! {
+    /// Quaternion → Euler → rotation, all 24 conventions, every distance from the pole
+    /// including 0, every policy: the geodesic error of the rebuilt rotation is within the
+    /// contract; gimbal lock is flagged exactly when within the threshold and never far from
+    /// the pole.
+    #[test]
+    fn quat_to_euler_contract() {
+        let w = sweep::<T>();
+        println!("worst {} quat→Euler→rotation error: {w:e}", T::NAME);
+    }
+
+    /// An Euler triple set exactly at the pole (b = 0 or π for proper sequences, ±π/2 for
+    /// Tait–Bryan, as constants of the type) and converted in that type is reported as gimbal
+    /// lock in every convention.
+    #[test]
+    fn exact_pole_is_flagged() {
+        exact_pole::<T>();
+    }
+
+    /// Euler → quaternion against the reference matrices, random-ish angles, all conventions.
+    #[test]
+    fn euler_to_quat_contract() {
+        euler_to_quat::<T>();
+    }
 }
 
-#[test]
-fn quat_to_euler_contract_f32() {
-    let w = sweep::<f32>();
-    println!("worst f32 quat→Euler→rotation error: {w:e}");
-}
-
-/// An Euler triple set exactly at the pole (b = 0 or π for proper sequences, ±π/2 for
-/// Tait–Bryan, as constants of the type) and converted in that type is reported as gimbal lock
-/// in every convention, f32 and f64.
-#[test]
-fn exact_pole_is_flagged() {
-    exact_pole::<f32>();
-    exact_pole::<f64>();
-}
-
+/// The check of `exact_pole_is_flagged`.
 fn exact_pole<T: Real>() {
     for seq_s in all_sequences() {
         let seq = EulerSequence::parse(&seq_s).unwrap();
@@ -154,8 +157,8 @@ fn exact_pole<T: Real>() {
     }
 }
 
-/// Euler → quaternion against the reference matrices, random-ish angles, all conventions.
-fn euler_to_quat<T: Contract>() {
+/// The check of `euler_to_quat_contract`.
+fn euler_to_quat<T: Tolerance>() {
     let mut worst: f64 = 0.0;
     let vals = [
         -3.1,
@@ -184,13 +187,7 @@ fn euler_to_quat<T: Contract>() {
             }
         }
     }
-    println!("worst Euler→quat error: {worst:e}");
-}
-
-#[test]
-fn euler_to_quat_contract() {
-    euler_to_quat::<f32>();
-    euler_to_quat::<f64>();
+    println!("worst {} Euler→quat error: {worst:e}", T::NAME);
 }
 
 /// Round trip of the angles themselves away from the poles (where they are unique): the

@@ -8,104 +8,137 @@ use gyrostat::rotation::{
     AxisAngle, Dcm, Euler, EulerSequence, Gibbs, GimbalPolicy, Mrp, PolarAxisAngle, RotationVector,
 };
 use gyrostat::{Error, Mat3, Quat, Real, Su2, UnitQuat, Vec3};
+use host_tests::cast::{m64, q64, unit_quat, v64};
 use host_tests::ref_rotation::{
-    all_sequences, euler_matrix, gibbs_matrix, mrp_matrix, quat_matrix, rot_dist, rotvec_matrix,
+    all_sequences, euler_matrix, gibbs_matrix, mrp_matrix, rot_dist, rotvec_matrix,
 };
-use host_tests::reference::{mat_dist, rodrigues, su2_matrix, u2_dist, u2_mul};
-use host_tests::tolerance::Contract;
-use host_tests::widen::{m64, q64, v64};
+use host_tests::reference::{mat_dist, quat_matrix, rodrigues, su2_matrix, u2_dist, u2_mul};
+use host_tests::tolerance::Tolerance;
 use proptest::prelude::*;
 
-fn quat<T: Real>(q: [f64; 4]) -> UnitQuat<T> {
-    UnitQuat::try_new(Quat::from_array(q.map(T::from_f64))).unwrap()
-}
-
-/// Rotation vector ↔ quaternion, MRP ↔ quaternion, Gibbs, axis-angle, DCM: at small angles
-/// (series regime), generic angles, and next to 180°, against the reference matrices.
-fn representations_against_reference<T: Contract>() {
-    let axes = [[1.0, 0.0, 0.0], [0.3, -0.5, 0.8], [-0.1, 0.2, -0.9]];
-    let angles = [
-        0.0,
-        1e-12,
-        1e-8,
-        1e-5,
-        1e-3,
-        0.05,
-        0.3,
-        1.0,
-        2.0,
-        3.0,
-        core::f64::consts::PI - 3e-6,
-        core::f64::consts::PI - 6e-10,
-    ];
-    let tol = T::CONTRACT;
-    for ax in axes {
-        let n = (ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]).sqrt();
-        for &t in &angles {
-            let rv = [ax[0] / n * t, ax[1] / n * t, ax[2] / n * t];
-            let rv_t = Vec3::from_array(rv.map(T::from_f64));
-            // rotvec → quat, compared with Rodrigues of the (rounded) input.
-            let q = RotationVector::try_new(rv_t).unwrap().to_unit_quat();
-            let r_ref = rotvec_matrix(v64(rv_t));
-            let e = rot_dist(&r_ref, &quat_matrix(q64(q)));
-            assert!(e <= tol, "rotvec→quat {ax:?} {t}: {e:e}");
-            // quat → rotvec.
-            let back = RotationVector::from_unit_quat(q);
-            let e = rot_dist(&quat_matrix(q64(q)), &rotvec_matrix(v64(back.vector())));
-            assert!(e <= tol, "quat→rotvec {ax:?} {t}: {e:e}");
-            // quat → MRP → matrix, MRP → quat.
-            let m = Mrp::from_unit_quat(q);
-            assert!(m.vector().norm().to_f64() <= 1.0 + 1e-6);
-            let e = rot_dist(&quat_matrix(q64(q)), &mrp_matrix(v64(m.vector())));
-            assert!(e <= tol, "quat→mrp {ax:?} {t}: {e:e}");
-            let e = rot_dist(
-                &mrp_matrix(v64(m.vector())),
-                &quat_matrix(q64(m.to_unit_quat())),
-            );
-            assert!(e <= tol, "mrp→quat {ax:?} {t}: {e:e}");
-            // Axis-angle.
-            let aa = AxisAngle::from(q);
-            let e = rot_dist(
-                &quat_matrix(q64(q)),
-                &rodrigues(v64(aa.axis()), aa.angle().to_f64()),
-            );
-            assert!(e <= tol, "quat→axis-angle {ax:?} {t}: {e:e}");
-            // DCM both ways.
-            let d = Dcm::from(q);
-            assert!(mat_dist(&m64(d.matrix()), &quat_matrix(q64(q))) <= 4.0 * tol);
-            let e = rot_dist(&quat_matrix(q64(q)), &quat_matrix(q64(d.to_unit_quat())));
-            assert!(e <= 4.0 * tol, "dcm→quat {ax:?} {t}: {e:e}");
-            // Gibbs (away from 180°).
-            if t < 3.0 {
-                let g = Gibbs::try_from_unit_quat(q).unwrap();
-                let e = rot_dist(&quat_matrix(q64(q)), &gibbs_matrix(v64(g.vector())));
-                assert!(e <= 10.0 * tol, "gibbs {ax:?} {t}: {e:e}");
+host_tests::per_type! {
+    /// Rotation vector ↔ quaternion, MRP ↔ quaternion, Gibbs, axis-angle, DCM: at small angles
+    /// (series regime), generic angles, and next to 180°, against the reference matrices.
+    #[test]
+    fn representations_against_reference() {
+        let axes = [[1.0, 0.0, 0.0], [0.3, -0.5, 0.8], [-0.1, 0.2, -0.9]];
+        let angles = [
+            0.0,
+            1e-12,
+            1e-8,
+            1e-5,
+            1e-3,
+            0.05,
+            0.3,
+            1.0,
+            2.0,
+            3.0,
+            core::f64::consts::PI - 3e-6,
+            core::f64::consts::PI - 6e-10,
+        ];
+        let tol = T::CONTRACT;
+        for ax in axes {
+            let n = (ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]).sqrt();
+            for &t in &angles {
+                let rv = [ax[0] / n * t, ax[1] / n * t, ax[2] / n * t];
+                let rv_t = Vec3::from_array(rv.map(T::from_f64));
+                // rotvec → quat, compared with Rodrigues of the (rounded) input.
+                let q = RotationVector::try_new(rv_t).unwrap().to_unit_quat();
+                let r_ref = rotvec_matrix(v64(rv_t));
+                let e = rot_dist(&r_ref, &quat_matrix(q64(q)));
+                assert!(e <= tol, "rotvec→quat {ax:?} {t}: {e:e}");
+                // quat → rotvec.
+                let back = RotationVector::from_unit_quat(q);
+                let e = rot_dist(&quat_matrix(q64(q)), &rotvec_matrix(v64(back.vector())));
+                assert!(e <= tol, "quat→rotvec {ax:?} {t}: {e:e}");
+                // quat → MRP → matrix, MRP → quat.
+                let m = Mrp::from_unit_quat(q);
+                assert!(m.vector().norm().to_f64() <= 1.0 + 1e-6);
+                let e = rot_dist(&quat_matrix(q64(q)), &mrp_matrix(v64(m.vector())));
+                assert!(e <= tol, "quat→mrp {ax:?} {t}: {e:e}");
                 let e = rot_dist(
-                    &gibbs_matrix(v64(g.vector())),
-                    &quat_matrix(q64(g.to_unit_quat())),
+                    &mrp_matrix(v64(m.vector())),
+                    &quat_matrix(q64(m.to_unit_quat())),
                 );
-                assert!(e <= tol, "gibbs→quat {ax:?} {t}: {e:e}");
+                assert!(e <= tol, "mrp→quat {ax:?} {t}: {e:e}");
+                // Axis-angle.
+                let aa = AxisAngle::from(q);
+                let e = rot_dist(
+                    &quat_matrix(q64(q)),
+                    &rodrigues(v64(aa.axis()), aa.angle().to_f64()),
+                );
+                assert!(e <= tol, "quat→axis-angle {ax:?} {t}: {e:e}");
+                // DCM both ways.
+                let d = Dcm::from(q);
+                assert!(mat_dist(&m64(d.matrix()), &quat_matrix(q64(q))) <= 4.0 * tol);
+                let e = rot_dist(&quat_matrix(q64(q)), &quat_matrix(q64(d.to_unit_quat())));
+                assert!(e <= 4.0 * tol, "dcm→quat {ax:?} {t}: {e:e}");
+                // Gibbs (away from 180°).
+                if t < 3.0 {
+                    let g = Gibbs::try_from_unit_quat(q).unwrap();
+                    let e = rot_dist(&quat_matrix(q64(q)), &gibbs_matrix(v64(g.vector())));
+                    assert!(e <= 10.0 * tol, "gibbs {ax:?} {t}: {e:e}");
+                    let e = rot_dist(
+                        &gibbs_matrix(v64(g.vector())),
+                        &quat_matrix(q64(g.to_unit_quat())),
+                    );
+                    assert!(e <= tol, "gibbs→quat {ax:?} {t}: {e:e}");
+                }
             }
         }
+        // Small-angle series: no snapping to the identity.
+        let tiny = RotationVector::try_new(Vec3::new(T::from_f64(1e-20), T::ZERO, T::ZERO)).unwrap();
+        let q = tiny.to_unit_quat();
+        assert!((q.x().to_f64() - 5e-21).abs() < 5e-21 * 1e-6);
+        let back = RotationVector::from_unit_quat(q).vector().x.to_f64();
+        assert!((back - 1e-20).abs() < 1e-20 * 1e-6);
+        let m = Mrp::from_unit_quat(q).vector().x.to_f64();
+        assert!((m - 2.5e-21).abs() < 2.5e-21 * 1e-6);
     }
-    // Small-angle series: no snapping to the identity.
-    let tiny = RotationVector::try_new(Vec3::new(T::from_f64(1e-20), T::ZERO, T::ZERO)).unwrap();
-    let q = tiny.to_unit_quat();
-    assert!((q.x().to_f64() - 5e-21).abs() < 5e-21 * 1e-6);
-    let back = RotationVector::from_unit_quat(q).vector().x.to_f64();
-    assert!((back - 1e-20).abs() < 1e-20 * 1e-6);
-    let m = Mrp::from_unit_quat(q).vector().x.to_f64();
-    assert!((m - 2.5e-21).abs() < 2.5e-21 * 1e-6);
-}
 
-#[test]
-fn representations_f32() {
-    representations_against_reference::<f32>();
-}
+    /// The slerp contract: attitudes 1e-3 rad apart, t = 0.3, error ≤ 1e-6 rad in f32 (and 1e-14
+    /// in f64) against the reference point `a·exp(0.3·φ)` computed with matrices.
+    #[test]
+    fn slerp_contract() {
+        let a0 = [0.3, -0.4, 0.5, 0.7];
+        for (dir, sep) in [
+            ([0.0, 0.0, 1.0], 1e-3),
+            ([0.6, 0.8, 0.0], 1e-3),
+            ([1.0, 0.0, 0.0], 1e-6),
+            ([0.0, 1.0, 0.0], 2.0),
+            ([0.0, 0.6, 0.8], 3.1),
+        ] {
+            let a = unit_quat::<T>(a0);
+            let step = Vec3::from_array(dir.map(|x| T::from_f64(x * sep)));
+            let b = a * UnitQuat::exp(step).unwrap();
+            let b = -b; // the other hemisphere: slerp must still take the short way
+            let want = host_tests::reference::mat_mul(
+                &quat_matrix(q64(a)),
+                &rotvec_matrix(v64(step).map(|x| 0.3 * x)),
+            );
+            let got = a.slerp(b, T::from_f64(0.3));
+            let e = rot_dist(&quat_matrix(q64(got)), &want);
+            assert!(e <= T::CONTRACT, "slerp {dir:?} {sep}: {e:e}");
+            // Endpoints.
+            assert!(
+                rot_dist(&quat_matrix(q64(a.slerp(b, T::ZERO))), &quat_matrix(q64(a))) <= T::CONTRACT
+            );
+            assert!(
+                rot_dist(&quat_matrix(q64(a.slerp(b, T::ONE))), &quat_matrix(q64(b))) <= T::CONTRACT
+            );
+            // nlerp: same endpoints, near the geodesic for small separations.
+            let n = a.nlerp(b, T::from_f64(0.3));
+            let e = rot_dist(&quat_matrix(q64(n)), &want);
+            assert!(e <= T::CONTRACT + sep.powi(3), "nlerp {sep}: {e:e}");
+        }
+    }
 
-#[test]
-fn representations_f64() {
-    representations_against_reference::<f64>();
+    proptest! {
+        #[test]
+        fn round_trip_every_representation(q in unit_quat_strategy(), s in 0usize..24) {
+            round_trips::<T>(q, s)?;
+        }
+    }
 }
 
 #[test]
@@ -143,7 +176,7 @@ fn mrp_shadow_set() {
 
 #[test]
 fn dcm_checks_and_orthonormalises() {
-    let q = quat::<f64>([0.4, -0.2, 0.7, 0.1]);
+    let q = unit_quat::<f64>([0.4, -0.2, 0.7, 0.1]);
     let r = q.to_rotation_matrix();
     assert!(Dcm::try_from_matrix(r, Dcm::default_tolerance()).is_ok());
     // A reflection is not a rotation.
@@ -200,7 +233,7 @@ fn dcm_checks_and_orthonormalises() {
         [-0.1, 0.3, 0.2, 0.9],
         [0.0, 0.0, 0.0, 1.0],
     ] {
-        let q = quat::<f64>(q);
+        let q = unit_quat::<f64>(q);
         let back = Dcm::from(q).to_unit_quat();
         assert!(q.angle_to(back) < 1e-15);
     }
@@ -324,21 +357,21 @@ fn canonical_sign_and_ties() {
         assert_eq!(c.to_array(), want, "{q:?}");
     }
     // SU(2) keeps the sign: −q is a different spinor.
-    let q = quat::<f64>([-0.5, 0.5, 0.5, 0.5]);
+    let q = unit_quat::<f64>([-0.5, 0.5, 0.5, 0.5]);
     assert_eq!(UnitQuat::from(Su2::from(q)), q);
 }
 
 /// Geodesic angle: accurate for tiny separations (where 2·acos(|dot|) returns 0) and at π.
 #[test]
 fn geodesic_angle() {
-    let a = quat::<f64>([0.3, -0.4, 0.5, 0.7]);
+    let a = unit_quat::<f64>([0.3, -0.4, 0.5, 0.7]);
     for t in [1e-12, 1e-8, 1e-3, 1.0, 3.0, core::f64::consts::PI] {
         let b = a * UnitQuat::exp(Vec3::new(0.0, t, 0.0)).unwrap();
         let got = a.angle_to(b);
         assert!((got - t).abs() <= 1e-15 * t.max(1.0), "{t}: {got}");
         assert!((a.angle_to(-b) - got).abs() < 1e-16 * got.max(1.0));
     }
-    let a32 = quat::<f32>([0.3, -0.4, 0.5, 0.7]);
+    let a32 = unit_quat::<f32>([0.3, -0.4, 0.5, 0.7]);
     let b32 = a32 * UnitQuat::exp(Vec3::new(0.0f32, 1e-6, 0.0)).unwrap();
     assert!((a32.angle_to(b32) - 1e-6).abs() < 2e-7);
 }
@@ -360,59 +393,13 @@ fn similarity_transform() {
     assert!((axis - g.rotate(n)).norm() < 1e-14);
 }
 
-/// The slerp contract: attitudes 1e-3 rad apart, t = 0.3, error ≤ 1e-6 rad in f32 (and 1e-14
-/// in f64) against the reference point `a·exp(0.3·φ)` computed with matrices.
-fn slerp_contract<T: Contract>() {
-    let a0 = [0.3, -0.4, 0.5, 0.7];
-    for (dir, sep) in [
-        ([0.0, 0.0, 1.0], 1e-3),
-        ([0.6, 0.8, 0.0], 1e-3),
-        ([1.0, 0.0, 0.0], 1e-6),
-        ([0.0, 1.0, 0.0], 2.0),
-        ([0.0, 0.6, 0.8], 3.1),
-    ] {
-        let a = quat::<T>(a0);
-        let step = Vec3::from_array(dir.map(|x| T::from_f64(x * sep)));
-        let b = a * UnitQuat::exp(step).unwrap();
-        let b = -b; // the other hemisphere: slerp must still take the short way
-        let want = host_tests::reference::mat_mul(
-            &quat_matrix(q64(a)),
-            &rotvec_matrix(v64(step).map(|x| 0.3 * x)),
-        );
-        let got = a.slerp(b, T::from_f64(0.3));
-        let e = rot_dist(&quat_matrix(q64(got)), &want);
-        assert!(e <= T::CONTRACT, "slerp {dir:?} {sep}: {e:e}");
-        // Endpoints.
-        assert!(
-            rot_dist(&quat_matrix(q64(a.slerp(b, T::ZERO))), &quat_matrix(q64(a))) <= T::CONTRACT
-        );
-        assert!(
-            rot_dist(&quat_matrix(q64(a.slerp(b, T::ONE))), &quat_matrix(q64(b))) <= T::CONTRACT
-        );
-        // nlerp: same endpoints, near the geodesic for small separations.
-        let n = a.nlerp(b, T::from_f64(0.3));
-        let e = rot_dist(&quat_matrix(q64(n)), &want);
-        assert!(e <= T::CONTRACT + sep.powi(3), "nlerp {sep}: {e:e}");
-    }
-}
-
-#[test]
-fn slerp_f32() {
-    slerp_contract::<f32>();
-}
-
-#[test]
-fn slerp_f64() {
-    slerp_contract::<f64>();
-}
-
 fn unit_quat_strategy() -> impl Strategy<Value = [f64; 4]> {
     prop::array::uniform4(-1.0f64..1.0)
         .prop_filter("non-zero", |q| q.iter().map(|c| c * c).sum::<f64>() > 1e-3)
 }
 
-fn round_trips<T: Contract>(q: [f64; 4], seq_idx: usize) -> Result<(), TestCaseError> {
-    let q = quat::<T>(q);
+fn round_trips<T: Tolerance>(q: [f64; 4], seq_idx: usize) -> Result<(), TestCaseError> {
+    let q = unit_quat::<T>(q);
     let r = quat_matrix(q64(q));
     let tol = T::CONTRACT;
     let check = |name: &str, p: UnitQuat<T>, tol: f64| -> Result<(), TestCaseError> {
@@ -454,15 +441,6 @@ fn round_trips<T: Contract>(q: [f64; 4], seq_idx: usize) -> Result<(), TestCaseE
 }
 
 proptest! {
-    #[test]
-    fn round_trip_every_representation_f64(q in unit_quat_strategy(), s in 0usize..24) {
-        round_trips::<f64>(q, s)?;
-    }
-
-    #[test]
-    fn round_trip_every_representation_f32(q in unit_quat_strategy(), s in 0usize..24) {
-        round_trips::<f32>(q, s)?;
-    }
 
     /// Random attitudes moved to within 1e-9…1e-2 of a pole of a random convention (or onto
     /// it): the Euler contract holds.
