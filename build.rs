@@ -13,7 +13,7 @@ fn main() {
         return;
     }
     println!("cargo:rustc-link-arg-examples=-Tlink.x");
-    // (flash, ram) of the QEMU board each target runs on; see EMBEDDED-NOTES / README.
+    // (flash, ram) of the QEMU board each target runs on (README, "Firmware under QEMU").
     let (flash, ram) = if target.starts_with("thumbv6m") {
         ("256K", "16K") // microbit (nRF51, Cortex-M0)
     } else if target.starts_with("thumbv7m") {

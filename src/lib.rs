@@ -44,7 +44,7 @@
 //! |-------------|--------------|
 //! | *(none)*    | everything; math from `libm`, except f32 `sin`/`cos` from gyrostat's own f32 kernel ([`real`]) |
 //! | `micromath` | micromath's fast f32 `sin`/`cos`/`atan2`/`sqrt` instead of libm (see [`real`] for the measured errors) |
-//! | `defmt`     | `defmt::Format` for every public type ([`interop`]) |
+//! | `defmt`     | `defmt::Format` for the foundation types, [`Error`] and the propagation types ([`interop`] lists them) |
 //! | `nalgebra`  | `From`/`Into` nalgebra's `UnitQuaternion`, `Quaternion`, `Vector3`, `Matrix3` (no std) |
 //! | `mint`      | `From`/`Into` mint's types, so glam, cgmath and others convert for free |
 //!

@@ -1,4 +1,4 @@
-//! Independent f64 reference for the dynamics issue.
+//! Independent f64 reference for rigid-body dynamics.
 //!
 //! Written without gyrostat and differently from it on purpose:
 //! - the attitude is a 3×3 rotation matrix `R` (body axes as columns, body → lab) integrated by

@@ -1,4 +1,4 @@
-//! Independent closed forms for attitude propagation (issue: propagation).
+//! Independent closed forms for attitude propagation.
 //!
 //! Plain f64 `std` code that never calls gyrostat. Quaternions here are `[w, x, y, z]` arrays
 //! (Hamilton, scalar first, attitude maps body → lab, as the crate), written out by hand.

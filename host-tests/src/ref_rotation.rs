@@ -1,7 +1,7 @@
-//! Independent f64 reference for the rotations issue: Euler matrices as products of elementary
-//! rotation matrices (scipy's definition), quaternion matrices from explicit Hamilton sandwich
-//! products, representation maps through axis and angle (Rodrigues), and an accurate geodesic
-//! distance between rotation matrices.
+//! Independent f64 reference for rotations: Euler matrices as products of elementary
+//! rotation matrices (scipy's definition), representation maps through axis and angle
+//! (Rodrigues), and an accurate geodesic distance between rotation matrices. Quaternion matrices
+//! come from explicit Hamilton sandwich products ([`crate::reference::quat_matrix`]).
 //!
 //! Nothing here calls gyrostat. Everything goes through 3×3 matrices, so that gyrostat's
 //! quaternion kernels (Bernardes–Viollet, Shepperd, exp/log series) are checked against a

@@ -92,7 +92,7 @@ fn firmware_output_matches_f64_reference() {
 
             let u_ref = u2_mul(&su2_matrix(a1, t1), &su2_matrix(a2, t2));
             let [w, x, y, z] = l.q;
-            // U = w·1 − i(x σx + y σy + z σz), DESIGN.md / seed (6.6.4).
+            // U = w·1 − i(x σx + y σy + z σz): the crate convention, seed (6.6.4).
             let u_fw = [
                 [C::new(w, -z), C::new(-y, -x)],
                 [C::new(y, -x), C::new(w, z)],

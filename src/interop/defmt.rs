@@ -1,4 +1,5 @@
-//! `defmt::Format` for every public type (feature `defmt`).
+//! `defmt::Format` for the foundation types and the error (feature `defmt`); the propagation
+//! types implement it beside their definitions (see [`crate::interop`]).
 
 use defmt::{Format, Formatter, write};
 

@@ -10,8 +10,9 @@ use crate::{Quat, Real, UnitQuat};
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Normalization {
-    /// `q / |q|` ([`UnitQuat::renormalize`]): exact to rounding for any norm; costs a square
-    /// root (via `hypot`) and a division.
+    /// `q / |q|` ([`UnitQuat::renormalize`]): exact to rounding; costs a square root and a
+    /// division (a plain square root of `|q|²`: the norm of a propagated attitude is near 1, so
+    /// no overflow-safe `hypot` is needed).
     Exact,
     /// `q · (3 − |q|²)/2` ([`UnitQuat::renormalize_fast`]): one Newton step for `1/|q|`, no square
     /// root. If `|q|² = 1 + δ` the result has `|q|² = 1 − 3δ²/4 + O(δ³)`, so it suits per-update
