@@ -3,9 +3,12 @@
 //! Widening (`q64`, `v64`, `m64`, `u2_64`) is exact for f32 and f64. Narrowing (`vec3`, `mat3`,
 //! `unit_quat`) rounds each f64 input to the type under test, so a test hands the reference the
 //! rounded inputs (widen them back) when it compares at the type's own rounding level.
+//! [`body_hamiltonian`] builds the library's model of a reference model.
 
+use gyrostat::dynamics::{BodyHamiltonian, Inertia, Quartic};
 use gyrostat::{Mat3, Quat, Real, Su2, UnitQuat, Vec3};
 
+use crate::ref_dynamics::RefModel;
 use crate::reference::{C, M3, Q, U2, V3};
 
 /// `[w, x, y, z]` in f64.
@@ -46,4 +49,18 @@ pub fn mat3<T: Real>(a: &M3) -> Mat3<T> {
 /// The quaternion `q` in `T`, normalised there (panics on a zero quaternion: test input).
 pub fn unit_quat<T: Real>(q: Q) -> UnitQuat<T> {
     UnitQuat::try_new(Quat::from_array(q.map(T::from_f64))).expect("a non-zero test quaternion")
+}
+
+/// The gyrostat model of the reference model `m` in `T` (principal axes = body axes; a quartic
+/// term from whichever of `t4`, `t22` is non-zero).
+pub fn body_hamiltonian<T: Real>(m: &RefModel) -> BodyHamiltonian<T> {
+    let quartic = if m.t4 != 0.0 {
+        Quartic::Octahedral(T::from_f64(m.t4))
+    } else if m.t22 != 0.0 {
+        Quartic::Cubic(T::from_f64(m.t22))
+    } else {
+        Quartic::None
+    };
+    let inertia = Inertia::try_from_principal(vec3(m.moments)).expect("physical test moments");
+    BodyHamiltonian::try_new(inertia, vec3(m.spin), quartic).expect("a valid test model")
 }

@@ -106,6 +106,17 @@ pub struct RefModel {
 }
 
 impl RefModel {
+    /// The model with principal moments `moments`, rotor spin `spin` and quartic coefficients
+    /// `t4` (octahedral), `t22` (cubic).
+    pub const fn new(moments: V3, spin: V3, t4: f64, t22: f64) -> Self {
+        Self {
+            moments,
+            spin,
+            t4,
+            t22,
+        }
+    }
+
     /// The energy.
     pub fn energy(&self, j: V3) -> f64 {
         let mut e = 0.0;

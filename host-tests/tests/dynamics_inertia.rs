@@ -17,6 +17,15 @@ fn rotated_box(a: f64, b: f64, c: f64, axis: [f64; 3], angle: f64) -> M3 {
     mat_mul(&mat_mul(&r, &d), &transpose(&r))
 }
 
+/// Rotated boxes with sides in [0.5, 2] and any orientation.
+fn rotated_boxes() -> impl Strategy<Value = M3> {
+    (
+        (0.5f64..2.0, 0.5f64..2.0, 0.5f64..2.0),
+        (-1.0f64..1.0, -1.0f64..1.0, 0.1f64..1.0, -3.0f64..3.0),
+    )
+        .prop_map(|((a, b, c), (ax, ay, az, angle))| rotated_box(a, b, c, [ax, ay, az], angle))
+}
+
 /// Eigenvalues and eigenvectors against the trigonometric reference (Smith 1961).
 ///
 /// Tolerances (relative to the largest moment): eigenvalues f32 4e-6 (Jacobi rounding ≈ a few
@@ -59,11 +68,7 @@ host_tests::per_type! {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(200))]
         #[test]
-        fn eigen_matches_reference(
-            a in 0.5f64..2.0, b in 0.5f64..2.0, c in 0.5f64..2.0,
-            ax in -1.0f64..1.0, ay in -1.0f64..1.0, az in 0.1f64..1.0, angle in -3.0f64..3.0,
-        ) {
-            let t = rotated_box(a, b, c, [ax, ay, az], angle);
+        fn eigen_matches_reference(t in rotated_boxes()) {
             let l = sym_eigenvalues(&t);
             prop_assume!((l[1] - l[0]).min(l[2] - l[1]) > 0.05 * l[2]);
             check_eigen::<T>(&t);
@@ -73,18 +78,63 @@ host_tests::per_type! {
     /// Bad tensors, masses and axes give typed errors.
     #[test]
     fn validation_errors_are_typed() {
-        validation_errors::<T>();
+        let v = |a: f64, b: f64, c: f64| Vec3::new(T::from_f64(a), T::from_f64(b), T::from_f64(c));
+        let np = Err(Error::NonPhysicalInertia);
+        // Triangle inequality I_a ≤ I_b + I_c violated.
+        assert_eq!(
+            Inertia::try_from_principal(v(8.0, 4.0, 3.0)).map(|_| ()),
+            np
+        );
+        // Flat lamina: equality is physical.
+        assert!(Inertia::try_from_principal(v(1.0, 2.0, 3.0)).is_ok());
+        // Thin rod (zero moment) and negative moment: not positive definite.
+        assert_eq!(
+            Inertia::try_from_principal(v(1.0, 1.0, 0.0)).map(|_| ()),
+            np
+        );
+        assert_eq!(
+            Inertia::try_from_principal(v(-1.0, 1.0, 1.0)).map(|_| ()),
+            np
+        );
+        // Indefinite with positive diagonal (off-diagonal too large).
+        let r = Inertia::try_from_components(v(1.0, 1.0, 1.0), v(0.9, 0.9, 0.9));
+        assert_eq!(r.map(|_| ()), np);
+        // Non-symmetric.
+        let t = Mat3::from_rows(
+            [T::from_f64(2.0), T::from_f64(0.1), T::ZERO],
+            [T::ZERO, T::from_f64(2.0), T::ZERO],
+            [T::ZERO, T::ZERO, T::from_f64(2.0)],
+        );
+        assert_eq!(Inertia::try_from_tensor(t).map(|_| ()), np);
+        // Non-finite.
+        let nan = T::from_f64(f64::NAN);
+        assert_eq!(
+            Inertia::try_from_principal(Vec3::new(nan, T::ONE, T::ONE)).map(|_| ()),
+            Err(Error::NonFinite)
+        );
+        assert_eq!(
+            Inertia::try_from_components(
+                v(1.0, 1.0, 1.0),
+                Vec3::new(T::ZERO, T::from_f64(f64::INFINITY), T::ZERO)
+            )
+            .map(|_| ()),
+            Err(Error::NonFinite)
+        );
+        // Radius of gyration: bad masses.
+        let i = Inertia::try_from_principal(v(2.0, 3.0, 4.0)).unwrap();
+        assert_eq!(i.radii_of_gyration(T::ZERO), Err(Error::InvalidArgument));
+        assert_eq!(i.radii_of_gyration(nan), Err(Error::NonFinite));
+        assert_eq!(
+            i.radius_of_gyration_about(Vec3::ZERO, T::ONE),
+            Err(Error::ZeroNorm)
+        );
     }
 }
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
     #[test]
-    fn inertia_reconstructs_and_inverts(
-        a in 0.5f64..2.0, b in 0.5f64..2.0, c in 0.5f64..2.0,
-        ax in -1.0f64..1.0, ay in -1.0f64..1.0, az in 0.1f64..1.0, angle in -3.0f64..3.0,
-    ) {
-        let t = rotated_box(a, b, c, [ax, ay, az], angle);
+    fn inertia_reconstructs_and_inverts(t in rotated_boxes()) {
         let i = Inertia::<f64>::try_from_tensor(mat3(&t)).unwrap();
         // I = R(P) diag(λ) R(P)ᵀ with R(P) from the principal quaternion.
         let p = i.principal_rotation();
@@ -97,60 +147,6 @@ proptest! {
         let w = Vec3::new(0.3, -1.2, 0.7);
         prop_assert!((i.solve(i.mul_vec(w)) - w).norm() < 1e-13);
     }
-}
-
-/// The checks of `validation_errors_are_typed`.
-fn validation_errors<T: Tolerance>() {
-    let v = |a: f64, b: f64, c: f64| Vec3::new(T::from_f64(a), T::from_f64(b), T::from_f64(c));
-    let np = Err(Error::NonPhysicalInertia);
-    // Triangle inequality I_a ≤ I_b + I_c violated.
-    assert_eq!(
-        Inertia::try_from_principal(v(8.0, 4.0, 3.0)).map(|_| ()),
-        np
-    );
-    // Flat lamina: equality is physical.
-    assert!(Inertia::try_from_principal(v(1.0, 2.0, 3.0)).is_ok());
-    // Thin rod (zero moment) and negative moment: not positive definite.
-    assert_eq!(
-        Inertia::try_from_principal(v(1.0, 1.0, 0.0)).map(|_| ()),
-        np
-    );
-    assert_eq!(
-        Inertia::try_from_principal(v(-1.0, 1.0, 1.0)).map(|_| ()),
-        np
-    );
-    // Indefinite with positive diagonal (off-diagonal too large).
-    let r = Inertia::try_from_components(v(1.0, 1.0, 1.0), v(0.9, 0.9, 0.9));
-    assert_eq!(r.map(|_| ()), np);
-    // Non-symmetric.
-    let t = Mat3::from_rows(
-        [T::from_f64(2.0), T::from_f64(0.1), T::ZERO],
-        [T::ZERO, T::from_f64(2.0), T::ZERO],
-        [T::ZERO, T::ZERO, T::from_f64(2.0)],
-    );
-    assert_eq!(Inertia::try_from_tensor(t).map(|_| ()), np);
-    // Non-finite.
-    let nan = T::from_f64(f64::NAN);
-    assert_eq!(
-        Inertia::try_from_principal(Vec3::new(nan, T::ONE, T::ONE)).map(|_| ()),
-        Err(Error::NonFinite)
-    );
-    assert_eq!(
-        Inertia::try_from_components(
-            v(1.0, 1.0, 1.0),
-            Vec3::new(T::ZERO, T::from_f64(f64::INFINITY), T::ZERO)
-        )
-        .map(|_| ()),
-        Err(Error::NonFinite)
-    );
-    // Radius of gyration: bad masses.
-    let i = Inertia::try_from_principal(v(2.0, 3.0, 4.0)).unwrap();
-    assert_eq!(i.radii_of_gyration(T::ZERO), Err(Error::InvalidArgument));
-    assert_eq!(i.radii_of_gyration(nan), Err(Error::NonFinite));
-    assert_eq!(
-        i.radius_of_gyration_about(Vec3::ZERO, T::ONE),
-        Err(Error::ZeroNorm)
-    );
 }
 
 /// Solid box of mass M and sides (a, b, c): I₁ = M(b² + c²)/12, so k₁ = √((b² + c²)/12).

@@ -7,52 +7,20 @@ use gyrostat::dynamics::{
     BodyHamiltonian, DriftMonitor, Gyrostat, Inertia, Integrator, Quartic, State, Wheel,
 };
 use gyrostat::{Error, UnitQuat, Vec3};
-use host_tests::cast::{m64, q64, v64, vec3};
+use host_tests::cast::{body_hamiltonian, m64, q64, v64, vec3};
 use host_tests::ref_dynamics::RefModel;
 use host_tests::reference::{norm, qrotate};
 
 /// Rigid, gyro-rotor and both quartic models (principal axes), coefficients small enough that
 /// the quartic term is a perturbation of the quadratic one at the rates below.
 const MODELS: [RefModel; 4] = [
-    RefModel {
-        moments: [6.0, 4.0, 3.0],
-        spin: [0.0; 3],
-        t4: 0.0,
-        t22: 0.0,
-    },
-    RefModel {
-        moments: [2.0, 3.0, 4.0],
-        spin: [0.3, -0.2, 0.5],
-        t4: 0.0,
-        t22: 0.0,
-    },
-    RefModel {
-        moments: [2.0, 3.0, 4.0],
-        spin: [0.0; 3],
-        t4: 0.01,
-        t22: 0.0,
-    },
-    RefModel {
-        moments: [6.0, 4.0, 3.0],
-        spin: [0.1, 0.0, -0.2],
-        t4: 0.0,
-        t22: 0.002,
-    },
+    RefModel::new([6.0, 4.0, 3.0], [0.0; 3], 0.0, 0.0),
+    RefModel::new([2.0, 3.0, 4.0], [0.3, -0.2, 0.5], 0.0, 0.0),
+    RefModel::new([2.0, 3.0, 4.0], [0.0; 3], 0.01, 0.0),
+    RefModel::new([6.0, 4.0, 3.0], [0.1, 0.0, -0.2], 0.0, 0.002),
 ];
 
 const RATES: [[f64; 3]; 3] = [[0.5, 1.0, 0.3], [-0.2, 0.05, 0.4], [0.0, 0.0, 0.7]];
-
-fn model<T: gyrostat::Real>(m: &RefModel) -> BodyHamiltonian<T> {
-    let quartic = if m.t4 != 0.0 {
-        Quartic::Octahedral(T::from_f64(m.t4))
-    } else if m.t22 != 0.0 {
-        Quartic::Cubic(T::from_f64(m.t22))
-    } else {
-        Quartic::None
-    };
-    let i = Inertia::try_from_principal(vec3(m.moments)).unwrap();
-    BodyHamiltonian::try_new(i, vec3(m.spin), quartic).unwrap()
-}
 
 host_tests::per_type! {
     /// `momentum_from_omega` returns the J whose reference gradient is the given rate: the
@@ -64,7 +32,7 @@ host_tests::per_type! {
         let tol = T::per_type(2e-6, 1e-13);
         let mut worst = 0.0f64;
         for m in &MODELS {
-            let h = model::<T>(m);
+            let h = body_hamiltonian::<T>(m);
             for w in RATES {
                 let j = h.momentum_from_omega(vec3(w)).unwrap();
                 let w_ref = m.gradient(v64(j));
@@ -85,7 +53,7 @@ host_tests::per_type! {
         let tol = T::per_type(2e-6, 1e-8);
         let d = 1e-5;
         for m in &MODELS {
-            let h = model::<T>(m);
+            let h = body_hamiltonian::<T>(m);
             for j in [[0.9, 0.5, -0.7], [2.0, -1.0, 0.3]] {
                 let got = m64(&h.hessian(vec3(j)));
                 let jt = v64(vec3::<T>(j));
@@ -117,7 +85,7 @@ host_tests::per_type! {
             Wheel::try_new(vec3([1.0, 1.0, 1.0]), T::from_f64(0.03)).unwrap(),
         ];
         for m in &MODELS {
-            let g = Gyrostat::new(model::<T>(m), wheels);
+            let g = Gyrostat::new(body_hamiltonian::<T>(m), wheels);
             for w in RATES {
                 let speeds = [T::from_f64(10.0), T::from_f64(-20.0)];
                 let s = g.state_from_omega(UnitQuat::IDENTITY, vec3(w), speeds).unwrap();
@@ -137,7 +105,7 @@ host_tests::per_type! {
     fn drift_monitor_matches_direct_computation() {
         let tol = T::per_type(1e-6, 1e-14);
         let m = &MODELS[1];
-        let body = Gyrostat::from(model::<T>(m));
+        let body = Gyrostat::from(body_hamiltonian::<T>(m));
         let mut largest = 0.0f64;
         for integ in [Integrator::Strang, Integrator::Rk4] {
             let mut s = State::new(UnitQuat::IDENTITY, vec3([0.9, 0.5, -0.7]));

@@ -2,24 +2,14 @@
 //! reference, Casimir and energy behaviour over long runs, the spherical gyro-rotor (6.9.6) and
 //! the quartic models (6.8.20).
 
-use gyrostat::dynamics::{
-    BodyHamiltonian, FreeRigidBody, Gyrostat, Inertia, Integrator, Quartic, State, lab_momentum,
-};
+use gyrostat::dynamics::{FreeRigidBody, Gyrostat, Inertia, Integrator, State, lab_momentum};
 use gyrostat::{Real, UnitQuat};
-use host_tests::cast::vec3;
+use host_tests::cast::{body_hamiltonian, vec3};
 use host_tests::ref_dynamics::{RefModel, lie_poisson_rk4, linear_fit, log_log_slope};
 use host_tests::reference::{IDENTITY, M3, cross, dot, mat_dist, norm, quat_matrix, rodrigues};
 
 fn model<T: Real>(m: &RefModel) -> Gyrostat<T> {
-    let quartic = if m.t4 != 0.0 {
-        Quartic::Octahedral(T::from_f64(m.t4))
-    } else if m.t22 != 0.0 {
-        Quartic::Cubic(T::from_f64(m.t22))
-    } else {
-        Quartic::None
-    };
-    let i = Inertia::try_from_principal(vec3(m.moments)).unwrap();
-    Gyrostat::from(BodyHamiltonian::try_new(i, vec3(m.spin), quartic).unwrap())
+    Gyrostat::from(body_hamiltonian(m))
 }
 
 fn run<T: Real>(h: &Gyrostat<T>, integ: Integrator, j0: [f64; 3], dt: f64, n: usize) -> State<T> {
@@ -42,31 +32,11 @@ fn err_vs_ref<T: Real>(s: &State<T>, r: &M3, j: [f64; 3]) -> f64 {
 }
 
 /// The asymmetric rotor of Fig. 6.8.1, `(I₁, I₂, I₃) = (6, 4, 3)`.
-const RIGID: RefModel = RefModel {
-    moments: [6.0, 4.0, 3.0],
-    spin: [0.0; 3],
-    t4: 0.0,
-    t22: 0.0,
-};
+const RIGID: RefModel = RefModel::new([6.0, 4.0, 3.0], [0.0; 3], 0.0, 0.0);
 /// An asymmetric gyro-rotor (6.9.2b).
-const GYRO: RefModel = RefModel {
-    moments: [2.0, 3.0, 4.0],
-    spin: [0.3, -0.2, 0.5],
-    t4: 0.0,
-    t22: 0.0,
-};
-const OCTA: RefModel = RefModel {
-    moments: [2.0, 3.0, 4.0],
-    spin: [0.0; 3],
-    t4: 0.05,
-    t22: 0.0,
-};
-const CUBIC: RefModel = RefModel {
-    moments: [2.0, 3.0, 4.0],
-    spin: [0.0; 3],
-    t4: 0.0,
-    t22: 0.08,
-};
+const GYRO: RefModel = RefModel::new([2.0, 3.0, 4.0], [0.3, -0.2, 0.5], 0.0, 0.0);
+const OCTA: RefModel = RefModel::new([2.0, 3.0, 4.0], [0.0; 3], 0.05, 0.0);
+const CUBIC: RefModel = RefModel::new([2.0, 3.0, 4.0], [0.0; 3], 0.0, 0.08);
 const J0: [f64; 3] = [0.9, 0.5, -0.7];
 
 /// Measures the global error at T = 4 for dt = 0.1·2⁻ᵏ and fits the order.
@@ -168,12 +138,7 @@ host_tests::per_type! {
         let (i, s) = (2.0, [0.3, -0.4, 1.2]);
         let sn = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
         let rate = sn / i;
-        let m = RefModel {
-            moments: [i; 3],
-            spin: s,
-            t4: 0.0,
-            t22: 0.0,
-        };
+        let m = RefModel::new([i; 3], s, 0.0, 0.0);
         let h = model::<T>(&m);
         let dirs = [
             [0.3, -0.4, 1.2],    // along +S
@@ -298,6 +263,24 @@ fn energy_windows(m: &RefModel, integ: Integrator, dt: f64, n: usize, w: usize) 
     out
 }
 
+/// The energy windows of [`energy_windows`] with the least-squares growth of their maxima over
+/// the run: `(windows, fitted growth over the run, largest window)`.
+fn energy_growth(
+    m: &RefModel,
+    integ: Integrator,
+    dt: f64,
+    n: usize,
+    w: usize,
+) -> (Vec<f64>, f64, f64) {
+    let t: Vec<f64> = (0..w)
+        .map(|i| (i as f64 + 0.5) / w as f64 * n as f64 * dt)
+        .collect();
+    let ew = energy_windows(m, integ, dt, n, w);
+    let (slope, _) = linear_fit(&t, &ew);
+    let level = ew.iter().cloned().fold(0.0, f64::max);
+    (ew, slope * n as f64 * dt, level)
+}
+
 /// Over 10⁶ steps the splitting's energy error is bounded (no secular growth) while RK4's grows
 /// linearly. Measured as a least-squares fit of the per-window maximum |ΔE/E| against time:
 /// for RK4 the fitted growth over the run exceeds 5× the first window's error; for Strang and
@@ -305,14 +288,8 @@ fn energy_windows(m: &RefModel, integ: Integrator, dt: f64, n: usize, w: usize) 
 #[test]
 fn energy_bounded_for_splitting_growing_for_rk4() {
     let (dt, n, w) = (0.1, 1_000_000, 20);
-    let t: Vec<f64> = (0..w)
-        .map(|i| (i as f64 + 0.5) / w as f64 * n as f64 * dt)
-        .collect();
     for integ in [Integrator::Strang, Integrator::Yoshida4, Integrator::Rk4] {
-        let ew = energy_windows(&RIGID, integ, dt, n, w);
-        let (slope, _) = linear_fit(&t, &ew);
-        let growth = slope * n as f64 * dt;
-        let level = ew.iter().cloned().fold(0.0, f64::max);
+        let (ew, growth, level) = energy_growth(&RIGID, integ, dt, n, w);
         println!(
             "{integ:?}: first window {:.3e}, last {:.3e}, fitted growth over run {growth:.3e}",
             ew[0],
@@ -335,14 +312,8 @@ fn energy_bounded_for_splitting_growing_for_rk4() {
 #[test]
 fn energy_bounded_for_gyro_and_quartic_models() {
     let (dt, n, w) = (0.05, 200_000, 10);
-    let t: Vec<f64> = (0..w)
-        .map(|i| (i as f64 + 0.5) / w as f64 * n as f64 * dt)
-        .collect();
     for m in [GYRO, OCTA, CUBIC] {
-        let ew = energy_windows(&m, Integrator::Strang, dt, n, w);
-        let (slope, _) = linear_fit(&t, &ew);
-        let growth = slope * n as f64 * dt;
-        let level = ew.iter().cloned().fold(0.0, f64::max);
+        let (_, growth, level) = energy_growth(&m, Integrator::Strang, dt, n, w);
         println!("{m:?}: level {level:.3e}, fitted growth {growth:.3e}");
         assert!(level > 0.0 && growth.abs() < 0.1 * level);
     }

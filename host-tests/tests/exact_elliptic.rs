@@ -35,23 +35,6 @@ fn identity_bound<T: Tolerance>() -> f64 {
     T::per_type(5e-7, 1e-15)
 }
 
-fn identities<T: Tolerance>() {
-    let mut worst: f64 = 0.0;
-    for &m in &PARAMS {
-        for i in -200..=200 {
-            let u = i as f64 * 0.173;
-            let (s, c, d) = sn_cn_dn(T::from_f64(u), T::from_f64(m)).unwrap();
-            let (s, c, d) = (s.to_f64(), c.to_f64(), d.to_f64());
-            let mm = T::from_f64(m).to_f64();
-            worst = worst.max((s * s + c * c - 1.0).abs());
-            worst = worst.max((d * d + mm * s * s - 1.0).abs());
-            assert!(d > 0.0);
-        }
-    }
-    println!("{}: identity residual {worst:.2e}", T::NAME);
-    assert!(worst <= identity_bound::<T>(), "{worst}");
-}
-
 #[test]
 fn known_values() {
     use core::f64::consts::FRAC_PI_2;
@@ -128,56 +111,69 @@ fn domain_errors() {
     assert_eq!(amplitude(1.0f64, 1.0), Err(Error::InvalidArgument));
 }
 
-fn against_reference<T: Tolerance>() {
-    let (mut ek, mut esn, mut ef): (f64, f64, f64) = (0.0, 0.0, 0.0);
-    for &m in &PARAMS {
-        let mt = T::from_f64(m).to_f64();
-        let k_ref = ref_exact::ell_k(mt);
-        let k = complete_k(T::from_f64(m)).unwrap().to_f64();
-        ek = ek.max((k - k_ref).abs() / k_ref);
-        for i in -40..=40 {
-            let u = T::from_f64(i as f64 / 10.0 * k_ref).to_f64();
-            let (s, c, d) = sn_cn_dn(T::from_f64(u), T::from_f64(m)).unwrap();
-            let (sr, cr, dr) = ref_exact::sn_cn_dn(u, mt);
-            esn = esn
-                .max((s.to_f64() - sr).abs())
-                .max((c.to_f64() - cr).abs())
-                .max((d.to_f64() - dr).abs());
-        }
-        for i in -12..=12 {
-            let phi = T::from_f64(i as f64 * 0.31).to_f64();
-            let f = incomplete_f(T::from_f64(phi), T::from_f64(m))
-                .unwrap()
-                .to_f64();
-            let f_ref = ref_exact::ell_f(phi, mt);
-            if f_ref != 0.0 {
-                // Relative error divided by (1 + condition number |φ F'(φ)/F|): the reduction
-                // φ − kπ and the rounding of φ itself are amplified by that much (up to ~250
-                // near φ = π/2 + kπ for m = 1 − 10⁻⁶) in any implementation.
-                let dn = (1.0 - mt * phi.sin().powi(2)).sqrt();
-                let cond = (phi / dn / f_ref).abs();
-                ef = ef.max((f - f_ref).abs() / f_ref.abs() / (1.0 + cond));
-            }
-        }
-    }
-    println!(
-        "{}: K rel {ek:.2e}, sn/cn/dn abs {esn:.2e}, F rel {ef:.2e}",
-        T::NAME
-    );
-    assert!(ek <= rel_bound::<T>(), "K {ek}");
-    assert!(ef <= rel_bound::<T>(), "F {ef}");
-    assert!(esn <= sncndn_bound::<T>(), "sncndn {esn}");
-}
-
 host_tests::per_type! {
+    /// The Jacobi identities `sn² + cn² = 1`, `dn² + m sn² = 1` and `dn > 0` over
+    /// |u| ≤ 35, every parameter of `PARAMS` (bound: `identity_bound`).
     #[test]
     fn jacobi_identities() {
-        identities::<T>();
+        let mut worst: f64 = 0.0;
+        for &m in &PARAMS {
+            for i in -200..=200 {
+                let u = i as f64 * 0.173;
+                let (s, c, d) = sn_cn_dn(T::from_f64(u), T::from_f64(m)).unwrap();
+                let (s, c, d) = (s.to_f64(), c.to_f64(), d.to_f64());
+                let mm = T::from_f64(m).to_f64();
+                worst = worst.max((s * s + c * c - 1.0).abs());
+                worst = worst.max((d * d + mm * s * s - 1.0).abs());
+                assert!(d > 0.0);
+            }
+        }
+        println!("{}: identity residual {worst:.2e}", T::NAME);
+        assert!(worst <= identity_bound::<T>(), "{worst}");
     }
 
+    /// `K`, `sn, cn, dn` and `F` against the quadrature reference (bounds: `rel_bound`,
+    /// `sncndn_bound`).
     #[test]
     fn against_quadrature_reference() {
-        against_reference::<T>();
+        let (mut ek, mut esn, mut ef): (f64, f64, f64) = (0.0, 0.0, 0.0);
+        for &m in &PARAMS {
+            let mt = T::from_f64(m).to_f64();
+            let k_ref = ref_exact::ell_k(mt);
+            let k = complete_k(T::from_f64(m)).unwrap().to_f64();
+            ek = ek.max((k - k_ref).abs() / k_ref);
+            for i in -40..=40 {
+                let u = T::from_f64(i as f64 / 10.0 * k_ref).to_f64();
+                let (s, c, d) = sn_cn_dn(T::from_f64(u), T::from_f64(m)).unwrap();
+                let (sr, cr, dr) = ref_exact::sn_cn_dn(u, mt);
+                esn = esn
+                    .max((s.to_f64() - sr).abs())
+                    .max((c.to_f64() - cr).abs())
+                    .max((d.to_f64() - dr).abs());
+            }
+            for i in -12..=12 {
+                let phi = T::from_f64(i as f64 * 0.31).to_f64();
+                let f = incomplete_f(T::from_f64(phi), T::from_f64(m))
+                    .unwrap()
+                    .to_f64();
+                let f_ref = ref_exact::ell_f(phi, mt);
+                if f_ref != 0.0 {
+                    // Relative error divided by (1 + condition number |φ F'(φ)/F|): the reduction
+                    // φ − kπ and the rounding of φ itself are amplified by that much (up to ~250
+                    // near φ = π/2 + kπ for m = 1 − 10⁻⁶) in any implementation.
+                    let dn = (1.0 - mt * phi.sin().powi(2)).sqrt();
+                    let cond = (phi / dn / f_ref).abs();
+                    ef = ef.max((f - f_ref).abs() / f_ref.abs() / (1.0 + cond));
+                }
+            }
+        }
+        println!(
+            "{}: K rel {ek:.2e}, sn/cn/dn abs {esn:.2e}, F rel {ef:.2e}",
+            T::NAME
+        );
+        assert!(ek <= rel_bound::<T>(), "K {ek}");
+        assert!(ef <= rel_bound::<T>(), "F {ef}");
+        assert!(esn <= sncndn_bound::<T>(), "sncndn {esn}");
     }
 }
 

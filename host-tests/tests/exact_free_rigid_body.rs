@@ -16,7 +16,6 @@ use gyrostat::{Axis, Error, Mat3, Quat, Real, UnitQuat, Vec3};
 use host_tests::cast::vec3;
 use host_tests::ref_exact::{self, RigidState};
 use host_tests::reference::quat_angle;
-use host_tests::tolerance::Tolerance;
 
 /// The free body with principal moments `moments` (the body frame is the principal frame).
 fn free_body<T: Real>(
@@ -129,97 +128,169 @@ fn cases() -> Vec<Case> {
     ]
 }
 
-/// The comparison of `closed_form_matches_integration`. Bounds (module docs), f64 / f32: body
-/// momentum 2e-13 / 2e-6 (measured 9.4e-14 / 9.4e-7); attitude 5e-13 / 5e-6 rad (measured
-/// 2.2e-13 / 3.0e-6); the attitude of motions with `1 − m < 1e-3` (passages close to the saddle,
-/// where ψ is a difference of Π values of order 10⁴) 5e-13 / 4e-5 rad (measured 1.4e-13 / 1.9e-5).
-fn compare<T: Tolerance>() {
-    let tol_j = T::per_type(2e-6, 2e-13);
-    let tol_q = T::per_type(5e-6, 5e-13);
-    let tol_q_sep = T::per_type(4e-5, 5e-13);
-    let times: Vec<f64> = (1..=40).map(|k| k as f64 * 0.5).collect();
-    for c in cases() {
-        let it = vec3::<T>(c.inertia);
-        let jt = vec3::<T>(c.j0);
-        let qt = UnitQuat::try_new(Quat::new(
-            T::from_f64(c.q0[0]),
-            T::from_f64(c.q0[1]),
-            T::from_f64(c.q0[2]),
-            T::from_f64(c.q0[3]),
-        ))
-        .unwrap();
-        let body = free_body(it, jt, qt).unwrap();
-        // The reference starts from exactly the (rounded) inputs the library got.
-        let inertia = [it.x.to_f64(), it.y.to_f64(), it.z.to_f64()];
-        let s0 = RigidState {
-            j: [jt.x.to_f64(), jt.y.to_f64(), jt.z.to_f64()],
-            q: [
-                qt.w().to_f64(),
-                qt.x().to_f64(),
-                qt.y().to_f64(),
-                qt.z().to_f64(),
-            ],
-        };
-        let jn = (s0.j.iter().map(|x| x * x).sum::<f64>()).sqrt();
-        let refs = ref_exact::integrate_rigid(inertia, s0, &times, 5e-4);
-        let (mut ej, mut eq): (f64, f64) = (0.0, 0.0);
-        for (t, r) in times.iter().zip(refs.iter()) {
-            let (q, j) = parts(body.state_at(T::from_f64(*t)));
-            let j = [j.x.to_f64(), j.y.to_f64(), j.z.to_f64()];
-            let q = [
-                q.w().to_f64(),
-                q.x().to_f64(),
-                q.y().to_f64(),
-                q.z().to_f64(),
-            ];
-            for (a, b) in j.iter().zip(r.j.iter()) {
-                ej = ej.max((a - b).abs() / jn);
-            }
-            eq = eq.max(quat_angle(q, r.q));
-            let w = body.body_rates_at(T::from_f64(*t));
-            let wr = [
-                r.j[0] / inertia[0],
-                r.j[1] / inertia[1],
-                r.j[2] / inertia[2],
-            ];
-            let wv = [w.x.to_f64(), w.y.to_f64(), w.z.to_f64()];
-            for ((a, b), ik) in wv.iter().zip(wr.iter()).zip(inertia.iter()) {
-                assert!((a - b).abs() <= tol_j * jn / ik * 2.0, "{}: omega", c.name);
-            }
-        }
-        println!(
-            "{} {:28} {:?}: |ΔJ|/|J| {ej:.2e}, attitude {eq:.2e} rad",
-            T::NAME,
-            c.name,
-            body.regime()
-        );
-        let near_sep = body.parameter_m().is_some_and(|m| 1.0 - m.to_f64() < 1e-3);
-        let tq = if near_sep { tol_q_sep } else { tol_q };
-        assert!(ej <= tol_j, "{}: body momentum error {ej}", c.name);
-        assert!(eq <= tq, "{}: attitude error {eq}", c.name);
-    }
-}
-
 host_tests::per_type! {
-    /// The closed form against the tiny-step RK4 reference over t ≤ 20, 13 cases (see
-    /// `compare` for the bounds).
+    /// The closed form against the tiny-step RK4 reference over t ≤ 20, 13 cases. Bounds, f64 /
+    /// f32: body momentum 2e-13 / 2e-6 (measured 9.4e-14 / 9.4e-7); attitude 5e-13 / 5e-6 rad
+    /// (measured 2.2e-13 / 3.0e-6); the attitude of motions with `1 − m < 1e-3` (passages close
+    /// to the saddle, where ψ is a difference of Π values of order 10⁴) 5e-13 / 4e-5 rad
+    /// (measured 1.4e-13 / 1.9e-5).
     #[test]
     fn closed_form_matches_integration() {
-        compare::<T>();
+        let tol_j = T::per_type(2e-6, 2e-13);
+        let tol_q = T::per_type(5e-6, 5e-13);
+        let tol_q_sep = T::per_type(4e-5, 5e-13);
+        let times: Vec<f64> = (1..=40).map(|k| k as f64 * 0.5).collect();
+        for c in cases() {
+            let it = vec3::<T>(c.inertia);
+            let jt = vec3::<T>(c.j0);
+            let qt = UnitQuat::try_new(Quat::new(
+                T::from_f64(c.q0[0]),
+                T::from_f64(c.q0[1]),
+                T::from_f64(c.q0[2]),
+                T::from_f64(c.q0[3]),
+            ))
+            .unwrap();
+            let body = free_body(it, jt, qt).unwrap();
+            // The reference starts from exactly the (rounded) inputs the library got.
+            let inertia = [it.x.to_f64(), it.y.to_f64(), it.z.to_f64()];
+            let s0 = RigidState {
+                j: [jt.x.to_f64(), jt.y.to_f64(), jt.z.to_f64()],
+                q: [
+                    qt.w().to_f64(),
+                    qt.x().to_f64(),
+                    qt.y().to_f64(),
+                    qt.z().to_f64(),
+                ],
+            };
+            let jn = (s0.j.iter().map(|x| x * x).sum::<f64>()).sqrt();
+            let refs = ref_exact::integrate_rigid(inertia, s0, &times, 5e-4);
+            let (mut ej, mut eq): (f64, f64) = (0.0, 0.0);
+            for (t, r) in times.iter().zip(refs.iter()) {
+                let (q, j) = parts(body.state_at(T::from_f64(*t)));
+                let j = [j.x.to_f64(), j.y.to_f64(), j.z.to_f64()];
+                let q = [
+                    q.w().to_f64(),
+                    q.x().to_f64(),
+                    q.y().to_f64(),
+                    q.z().to_f64(),
+                ];
+                for (a, b) in j.iter().zip(r.j.iter()) {
+                    ej = ej.max((a - b).abs() / jn);
+                }
+                eq = eq.max(quat_angle(q, r.q));
+                let w = body.body_rates_at(T::from_f64(*t));
+                let wr = [
+                    r.j[0] / inertia[0],
+                    r.j[1] / inertia[1],
+                    r.j[2] / inertia[2],
+                ];
+                let wv = [w.x.to_f64(), w.y.to_f64(), w.z.to_f64()];
+                for ((a, b), ik) in wv.iter().zip(wr.iter()).zip(inertia.iter()) {
+                    assert!((a - b).abs() <= tol_j * jn / ik * 2.0, "{}: omega", c.name);
+                }
+            }
+            println!(
+                "{} {:28} {:?}: |ΔJ|/|J| {ej:.2e}, attitude {eq:.2e} rad",
+                T::NAME,
+                c.name,
+                body.regime()
+            );
+            let near_sep = body.parameter_m().is_some_and(|m| 1.0 - m.to_f64() < 1e-3);
+            let tq = if near_sep { tol_q_sep } else { tol_q };
+            assert!(ej <= tol_j, "{}: body momentum error {ej}", c.name);
+            assert!(eq <= tq, "{}: attitude error {eq}", c.name);
+        }
     }
 
     /// The flip interval 2K(m)/λ against the measured sign-change interval of the reference
     /// (relative: f64 1e-8, the measurement's resolution; f32 5e-7).
     #[test]
     fn flip_interval_matches_measured() {
-        flip::<T>();
+        let rel_tol = T::per_type(5e-7, 1e-8);
+        // Near the intermediate axis of (1, 2, 3), for several distances from the separatrix.
+        for (j0, label) in [
+            ([0.05, 2.0, 0.05], "near intermediate"),
+            ([0.2, 2.0, 0.5], "major side"),
+            ([0.5, 2.0, 0.2], "minor side"),
+            ([1e-3, 2.0, 1e-3], "very near the saddle"),
+        ] {
+            let inertia = [1.0, 2.0, 3.0];
+            let body = free_body(vec3::<T>(inertia), vec3::<T>(j0), UnitQuat::IDENTITY).unwrap();
+            let Some(flip) = body.flip_interval() else {
+                // 1e-3 from the saddle is within f32 rounding of the separatrix
+                // (|J² − 2E·I₂| ≤ 8ε·J²): typed as such, no flip interval.
+                assert_eq!(body.regime(), Regime::Separatrix, "{label}");
+                assert_eq!(core::mem::size_of::<T>(), 4);
+                continue;
+            };
+            let flip = flip.to_f64();
+            let s0 = RigidState {
+                j: j0,
+                q: [1.0, 0.0, 0.0, 0.0],
+            };
+            let (measured, n) =
+                ref_exact::measured_sign_change_interval(inertia, s0, 1, 8.0 * flip, 1e-3);
+            println!(
+                "{} {label}: flip 2K/λ = {flip:.9}, measured {measured:.9} over {n} intervals",
+                T::NAME
+            );
+            assert!(n >= 4);
+            assert!(
+                (flip - measured).abs() <= rel_tol * measured,
+                "{label}: {flip} vs {measured}"
+            );
+        }
     }
 
-    /// A body with a full tensor against the matrix-based body-rate reference (see
-    /// `full_tensor`).
+    /// A body with a full (non-diagonal) tensor: the closed form, solved in the principal frame
+    /// and mapped back, against the independent matrix-based reference that integrates the
+    /// body-rate Euler equations with the full tensor (`host_tests::ref_dynamics::euler_rk4`,
+    /// 40 000 steps over 8 s; its own error is below 1e-13). Compared: attitude matrix, body rate
+    /// and lab momentum, max abs. Bounds: f64 1e-12 (measured 3.0e-14: the eigen-decomposition's
+    /// rounding carried through the mapping and the phases); f32 1e-5 (the eigenvectors of the
+    /// f32 tensor carry ~ε·‖I‖/gap ≈ 4e-7, amplified by the phase growth; measured 1.9e-6).
     #[test]
     fn full_tensor_matches_body_rate_reference() {
-        full_tensor::<T>();
+        use host_tests::ref_dynamics::euler_rk4;
+        use host_tests::reference::{IDENTITY, M3, mat_dist, mat_vec, quat_matrix};
+        const I_FULL: M3 = [[3.0, -0.4, 0.25], [-0.4, 4.0, 0.3], [0.25, 0.3, 5.0]];
+        const W0: [f64; 3] = [0.4, -0.3, 0.8];
+        let tol = T::per_type(1e-5, 1e-12);
+        let tensor = Mat3::from_rows(
+            I_FULL[0].map(T::from_f64),
+            I_FULL[1].map(T::from_f64),
+            I_FULL[2].map(T::from_f64),
+        );
+        let inertia = Inertia::try_from_tensor(tensor).unwrap();
+        assert!(!inertia.is_diagonal());
+        let j0 = Vec3::from_array(mat_vec(&I_FULL, &W0).map(T::from_f64));
+        let body = FreeRigidBody::try_new(&inertia, &State::new(UnitQuat::IDENTITY, j0)).unwrap();
+        let mut worst = 0.0f64;
+        for t_end in [1.0, 4.0, 8.0] {
+            let (r_ref, w_ref) = euler_rk4(
+                &I_FULL,
+                &IDENTITY,
+                W0,
+                t_end,
+                (5000.0 * t_end) as usize,
+                &|_, _, _| [0.0; 3],
+                &|_| ([0.0; 3], [0.0; 3]),
+            );
+            let s = body.state_at(T::from_f64(t_end));
+            let q = s.attitude.to_array().map(|c| c.to_f64());
+            let w = body.body_rates_at(T::from_f64(t_end)).to_array();
+            let dw = (0..3)
+                .map(|k| (w[k].to_f64() - w_ref[k]).abs())
+                .fold(0.0, f64::max);
+            let jl = s.attitude.rotate(s.momentum).to_array();
+            let l0 = mat_vec(&I_FULL, &W0);
+            let dl = (0..3)
+                .map(|k| (jl[k].to_f64() - l0[k]).abs())
+                .fold(0.0, f64::max);
+            worst = worst.max(mat_dist(&quat_matrix(q), &r_ref)).max(dw).max(dl);
+        }
+        println!("{}: full tensor {worst:.2e}", T::NAME);
+        assert!(worst <= tol, "{worst}");
     }
 }
 
@@ -235,43 +306,6 @@ fn reference_converges() {
     let d = (0..3).map(|k| (a.j[k] - b.j[k]).abs()).fold(0.0, f64::max);
     let dq = quat_angle(a.q, b.q);
     assert!(d < 1e-11 && dq < 1e-11, "{d} {dq}");
-}
-
-fn flip<T: Tolerance>() {
-    let rel_tol = T::per_type(5e-7, 1e-8);
-    // Near the intermediate axis of (1, 2, 3), for several distances from the separatrix.
-    for (j0, label) in [
-        ([0.05, 2.0, 0.05], "near intermediate"),
-        ([0.2, 2.0, 0.5], "major side"),
-        ([0.5, 2.0, 0.2], "minor side"),
-        ([1e-3, 2.0, 1e-3], "very near the saddle"),
-    ] {
-        let inertia = [1.0, 2.0, 3.0];
-        let body = free_body(vec3::<T>(inertia), vec3::<T>(j0), UnitQuat::IDENTITY).unwrap();
-        let Some(flip) = body.flip_interval() else {
-            // 1e-3 from the saddle is within f32 rounding of the separatrix
-            // (|J² − 2E·I₂| ≤ 8ε·J²): typed as such, no flip interval.
-            assert_eq!(body.regime(), Regime::Separatrix, "{label}");
-            assert_eq!(core::mem::size_of::<T>(), 4);
-            continue;
-        };
-        let flip = flip.to_f64();
-        let s0 = RigidState {
-            j: j0,
-            q: [1.0, 0.0, 0.0, 0.0],
-        };
-        let (measured, n) =
-            ref_exact::measured_sign_change_interval(inertia, s0, 1, 8.0 * flip, 1e-3);
-        println!(
-            "{} {label}: flip 2K/λ = {flip:.9}, measured {measured:.9} over {n} intervals",
-            T::NAME
-        );
-        assert!(n >= 4);
-        assert!(
-            (flip - measured).abs() <= rel_tol * measured,
-            "{label}: {flip} vs {measured}"
-        );
-    }
 }
 
 #[test]
@@ -429,55 +463,4 @@ mod properties {
             }
         }
     }
-}
-
-/// The check of `full_tensor_matches_body_rate_reference`. A body with a full (non-diagonal)
-/// tensor: the closed form, solved in the principal frame and
-/// mapped back, against the independent matrix-based reference that integrates the body-rate
-/// Euler equations with the full tensor (`host_tests::ref_dynamics::euler_rk4`, 40 000 steps
-/// over 8 s; its own error is below 1e-13). Compared: attitude matrix, body rate and lab
-/// momentum, max abs. Tolerances: f64 1e-12 (measured 3.0e-14: the eigen-decomposition's rounding
-/// carried through the mapping and the phases); f32 1e-5 (the eigenvectors of the f32 tensor
-/// carry ~ε·‖I‖/gap ≈ 4e-7, amplified by the phase growth; measured 1.9e-6).
-fn full_tensor<T: Tolerance>() {
-    use host_tests::ref_dynamics::euler_rk4;
-    use host_tests::reference::{IDENTITY, M3, mat_dist, mat_vec, quat_matrix};
-    const I_FULL: M3 = [[3.0, -0.4, 0.25], [-0.4, 4.0, 0.3], [0.25, 0.3, 5.0]];
-    const W0: [f64; 3] = [0.4, -0.3, 0.8];
-    let tol = T::per_type(1e-5, 1e-12);
-    let tensor = Mat3::from_rows(
-        I_FULL[0].map(T::from_f64),
-        I_FULL[1].map(T::from_f64),
-        I_FULL[2].map(T::from_f64),
-    );
-    let inertia = Inertia::try_from_tensor(tensor).unwrap();
-    assert!(!inertia.is_diagonal());
-    let j0 = Vec3::from_array(mat_vec(&I_FULL, &W0).map(T::from_f64));
-    let body = FreeRigidBody::try_new(&inertia, &State::new(UnitQuat::IDENTITY, j0)).unwrap();
-    let mut worst = 0.0f64;
-    for t_end in [1.0, 4.0, 8.0] {
-        let (r_ref, w_ref) = euler_rk4(
-            &I_FULL,
-            &IDENTITY,
-            W0,
-            t_end,
-            (5000.0 * t_end) as usize,
-            &|_, _, _| [0.0; 3],
-            &|_| ([0.0; 3], [0.0; 3]),
-        );
-        let s = body.state_at(T::from_f64(t_end));
-        let q = s.attitude.to_array().map(|c| c.to_f64());
-        let w = body.body_rates_at(T::from_f64(t_end)).to_array();
-        let dw = (0..3)
-            .map(|k| (w[k].to_f64() - w_ref[k]).abs())
-            .fold(0.0, f64::max);
-        let jl = s.attitude.rotate(s.momentum).to_array();
-        let l0 = mat_vec(&I_FULL, &W0);
-        let dl = (0..3)
-            .map(|k| (jl[k].to_f64() - l0[k]).abs())
-            .fold(0.0, f64::max);
-        worst = worst.max(mat_dist(&quat_matrix(q), &r_ref)).max(dw).max(dl);
-    }
-    println!("{}: full tensor {worst:.2e}", T::NAME);
-    assert!(worst <= tol, "{worst}");
 }

@@ -129,65 +129,55 @@ host_tests::per_type! {
     /// lock in every convention.
     #[test]
     fn exact_pole_is_flagged() {
-        exact_pole::<T>();
+        for seq_s in all_sequences() {
+            let seq = EulerSequence::parse(&seq_s).unwrap();
+            for pole in poles(&seq_s) {
+                for &(a, c) in &OUTER {
+                    let q = Euler::new(seq, [a, pole, c].map(T::from_f64)).to_unit_quat();
+                    let sol = q.to_euler(seq, GimbalPolicy::ZeroThird);
+                    assert!(
+                        sol.singularity.is_some(),
+                        "{seq_s} pole {pole} ({a}, {c}): distance {:e}",
+                        sol.distance_to_pole.to_f64()
+                    );
+                }
+            }
+        }
     }
 
     /// Euler → quaternion against the reference matrices, random-ish angles, all conventions.
     #[test]
     fn euler_to_quat_contract() {
-        euler_to_quat::<T>();
-    }
-}
-
-/// The check of `exact_pole_is_flagged`.
-fn exact_pole<T: Real>() {
-    for seq_s in all_sequences() {
-        let seq = EulerSequence::parse(&seq_s).unwrap();
-        for pole in poles(&seq_s) {
-            for &(a, c) in &OUTER {
-                let q = Euler::new(seq, [a, pole, c].map(T::from_f64)).to_unit_quat();
-                let sol = q.to_euler(seq, GimbalPolicy::ZeroThird);
-                assert!(
-                    sol.singularity.is_some(),
-                    "{seq_s} pole {pole} ({a}, {c}): distance {:e}",
-                    sol.distance_to_pole.to_f64()
-                );
-            }
-        }
-    }
-}
-
-/// The check of `euler_to_quat_contract`.
-fn euler_to_quat<T: Tolerance>() {
-    let mut worst: f64 = 0.0;
-    let vals = [
-        -3.1,
-        -2.0,
-        -0.9,
-        -1e-7,
-        0.0,
-        0.4,
-        core::f64::consts::FRAC_PI_2,
-        2.5,
-        3.1,
-        core::f64::consts::PI,
-    ];
-    for seq_s in all_sequences() {
-        let seq = EulerSequence::parse(&seq_s).unwrap();
-        for &a in &vals {
-            for &b in &vals {
-                for &c in &vals {
-                    let ang = [a, b, c].map(T::from_f64);
-                    let q = Euler::new(seq, ang).to_unit_quat();
-                    let r_ref = euler_matrix(&seq_s, ang.map(|x| x.to_f64()));
-                    let err = rot_dist(&r_ref, &quat_matrix(q64(q)));
-                    assert!(err <= T::CONTRACT, "{seq_s} {a} {b} {c}: {err:e}");
-                    worst = worst.max(err);
+        let mut worst: f64 = 0.0;
+        let vals = [
+            -3.1,
+            -2.0,
+            -0.9,
+            -1e-7,
+            0.0,
+            0.4,
+            core::f64::consts::FRAC_PI_2,
+            2.5,
+            3.1,
+            core::f64::consts::PI,
+        ];
+        for seq_s in all_sequences() {
+            let seq = EulerSequence::parse(&seq_s).unwrap();
+            for &a in &vals {
+                for &b in &vals {
+                    for &c in &vals {
+                        let ang = [a, b, c].map(T::from_f64);
+                        let q = Euler::new(seq, ang).to_unit_quat();
+                        let r_ref = euler_matrix(&seq_s, ang.map(|x| x.to_f64()));
+                        let err = rot_dist(&r_ref, &quat_matrix(q64(q)));
+                        assert!(err <= T::CONTRACT, "{seq_s} {a} {b} {c}: {err:e}");
+                        worst = worst.max(err);
+                    }
                 }
             }
         }
+        println!("worst {} Euler→quat error: {worst:e}", T::NAME);
     }
-    println!("worst {} Euler→quat error: {worst:e}", T::NAME);
 }
 
 /// Round trip of the angles themselves away from the poles (where they are unique): the
