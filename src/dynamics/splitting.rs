@@ -197,24 +197,17 @@ fn piece<T: Real>(
     h: T,
 ) -> (UnitQuat<T>, Vec3<T>) {
     let inertia = model.inertia();
-    let ai = model.half_inverse()[axis];
     if inertia.is_diagonal() {
-        // Quartic one-axis rates: octahedral +4t₄Jᵢ³, cubic (reduced) −2t₂₂Jᵢ³.
-        let k = match model.quartic() {
-            Quartic::None => T::ZERO,
-            Quartic::Octahedral(t4) => T::from_f64(4.0) * t4,
-            Quartic::Cubic(t22) => -T::TWO * t22,
-        };
-        principal_axis_flow(axis, ai, k, q, j, s, h)
+        principal_axis_flow(axis, model, q, j, s[axis], h)
     } else {
         let n = inertia.principal_axes().col(axis.index());
-        general_axis_flow(n, ai, q, j, s, h)
+        general_axis_flow(n, model.half_inverse()[axis], q, j, s, h)
     }
 }
 
 /// `(sin θ/2, cos θ/2, 1 − cos θ, sin θ)` for `θ = rate·h`, the last two from the half angle
 /// (`2 sin²(θ/2)`, `2 sin(θ/2) cos(θ/2)`): see [`principal_axis_flow`] for why.
-#[inline]
+#[inline(always)]
 fn rotation_terms<T: Real>(rate: T, h: T) -> (T, T, T, T) {
     let (s2, c2) = (rate * h * T::HALF).sin_cos();
     (s2, c2, T::TWO * s2 * s2, T::TWO * s2 * c2)
@@ -238,20 +231,24 @@ fn casimir<T: Real>(
     }
 }
 
-/// The exact flow of the one-axis piece `Hᵢ(Jᵢ) = Aᵢ(Jᵢ − Sᵢ)² + (k/4) Jᵢ⁴` about the body axis
-/// `axis` (diagonal tensor): `Jᵢ` fixed, rate `ωᵢ = H′ᵢ(Jᵢ) = 2Aᵢ(Jᵢ − Sᵢ) + k Jᵢ³`,
-/// `J ← R_i(−θ) J`, `q ← q ⊗ (cos θ/2, sin θ/2 eᵢ)`, `θ = ωᵢ h`.
+/// The exact flow of the one-axis piece `Hᵢ(Jᵢ)` about the body axis `axis` (diagonal tensor),
+/// `si` the rotor momentum along it: `Jᵢ` fixed, rate `ωᵢ = H′ᵢ(Jᵢ)`, `J ← R_i(−θ) J`, `q ← q ⊗ (cos θ/2, sin θ/2 eᵢ)`, `θ = ωᵢ h`.
 #[inline]
 fn principal_axis_flow<T: Real>(
     axis: Axis,
-    ai: T,
-    k: T,
+    model: &BodyHamiltonian<T>,
     q: UnitQuat<T>,
     j: Vec3<T>,
-    s: Vec3<T>,
+    si: T,
     h: T,
 ) -> (UnitQuat<T>, Vec3<T>) {
-    let (ji, si) = (j[axis], s[axis]);
+    let (ai, ji) = (model.half_inverse()[axis], j[axis]);
+    // Quartic one-axis rates: octahedral +4t₄Jᵢ³, cubic (reduced) −2t₂₂Jᵢ³.
+    let k = match model.quartic() {
+        Quartic::None => T::ZERO,
+        Quartic::Octahedral(t4) => T::from_f64(4.0) * t4,
+        Quartic::Cubic(t22) => -T::TWO * t22,
+    };
     let rate = T::TWO * ai * (ji - si) + k * ji * ji * ji;
     // The plane rotation by −θ is applied as J + (s·J⊥′ − v·J⊥) with v = 1 − cos θ = 2s₂² and
     // s = sin θ = 2s₂c₂ (s₂, c₂ of the half angle). Forming cos θ itself would round a number
