@@ -290,7 +290,8 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     /// One step from time `t` with an input: a [`Control`] held over the step (see
     /// [`Gyrostat::control`]) or a law `f(t, state) → Control` evaluated at the integrator's
     /// stages. See [`crate::dynamics::splitting`] for the order of the splitting methods with
-    /// state-dependent laws.
+    /// state-dependent laws. The input is a trait ([`ControlLaw`]), so a closure states its
+    /// state argument's type: `|t, s: &State<T, N>| …`.
     ///
     /// # Errors
     /// As [`Gyrostat::step`], plus [`Error::NonFinite`] for a non-finite `t` and for an input
