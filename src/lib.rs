@@ -64,6 +64,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+mod compensated;
 pub mod dynamics;
 mod error;
 pub mod interop;

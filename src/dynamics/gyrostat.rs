@@ -37,8 +37,7 @@ use crate::dynamics::hamiltonian::BodyHamiltonian;
 use crate::dynamics::inertia::Inertia;
 use crate::dynamics::monitors::{Invariants, lab_momentum, momentum_norm};
 use crate::dynamics::splitting::Stages;
-use crate::dynamics::state::{Control, ControlLaw, State, WheelCommand};
-use crate::dynamics::{rk4, splitting};
+use crate::dynamics::state::{CompensatedState, Control, ControlLaw, State, WheelCommand};
 use crate::{Error, Real, UnitQuat, Vec3};
 
 /// The integration method of a step.
@@ -267,31 +266,33 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
 
     /// One torque-free step of length `dt`, the wheels coasting.
     ///
+    /// `state` is a [`State`] (the plain step) or a [`CompensatedState`] (the compensated step,
+    /// see [`crate::dynamics::compensated`]); the result is of the same type.
+    ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite `dt` or a non-finite result (a step far too long
     /// for the dynamics); [`Error::InvalidArgument`] for `dt ≤ 0`.
-    pub fn step(
+    pub fn step<S: StepState<T, N>>(
         &self,
         integrator: Integrator,
-        state: &State<T, N>,
+        state: &S,
         dt: T,
-    ) -> Result<State<T, N>, Error> {
+    ) -> Result<S, Error> {
         check_step(T::ZERO, dt)?;
+        let mut torque_free = Control::ZERO;
         let next = match Stages::of(integrator, dt) {
-            Some(stages) => splitting::free(self, state, stages.as_slice()),
-            None => {
-                let mut torque_free = Control::ZERO;
-                rk4::step(self, state, T::ZERO, dt, &mut torque_free)
-            }
+            Some(stages) => state.free(self, stages.as_slice()),
+            None => state.rk4(self, T::ZERO, dt, &mut torque_free),
         };
-        finish(next)
+        next.finish()
     }
 
     /// One step from time `t` with an input: a [`Control`] held over the step (see
     /// [`Gyrostat::control`]) or a law `f(t, state) → Control` evaluated at the integrator's
     /// stages. See [`crate::dynamics::splitting`] for the order of the splitting methods with
     /// state-dependent laws. The input is a trait ([`ControlLaw`]), so a closure states its
-    /// state argument's type: `|t, s: &State<T, N>| …`.
+    /// state argument's type: `|t, s: &State<T, N>| …`. `state` is a [`State`] or a
+    /// [`CompensatedState`] (the law then sees its rounded [`CompensatedState::state`]).
     ///
     /// # Errors
     /// As [`Gyrostat::step`], plus [`Error::NonFinite`] for a non-finite `t` and for an input
@@ -311,20 +312,119 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     /// assert!((s2.momentum.z - 1.0).abs() < 1e-6);
     /// # Ok::<(), gyrostat::Error>(())
     /// ```
-    pub fn step_with<L: ControlLaw<T, N>>(
+    pub fn step_with<S: StepState<T, N>, L: ControlLaw<T, N>>(
         &self,
         integrator: Integrator,
-        state: &State<T, N>,
+        state: &S,
         t: T,
         dt: T,
         mut input: L,
-    ) -> Result<State<T, N>, Error> {
+    ) -> Result<S, Error> {
         check_step(t, dt)?;
         let next = match Stages::of(integrator, dt) {
-            Some(stages) => splitting::kicked(self, state, t, stages.as_slice(), &mut input),
-            None => rk4::step(self, state, t, dt, &mut input),
+            Some(stages) => state.kicked(self, t, stages.as_slice(), &mut input),
+            None => state.rk4(self, t, dt, &mut input),
         };
-        finish(next)
+        next.finish()
+    }
+}
+
+/// A state that [`Gyrostat::step`] and [`Gyrostat::step_with`] advance: [`State`] (the plain
+/// step) or [`CompensatedState`] (the compensated step, [`crate::dynamics::compensated`]).
+/// Sealed: implemented for these two types only.
+pub trait StepState<T: Real, const N: usize>: sealed::Advance<T, N> {}
+
+impl<T: Real, const N: usize> StepState<T, N> for State<T, N> {}
+impl<T: Real, const N: usize> StepState<T, N> for CompensatedState<T, N> {}
+
+mod sealed {
+    use super::{CompensatedState, ControlLaw, Error, Gyrostat, Real, State};
+    use crate::dynamics::{compensated, rk4, splitting};
+
+    /// The steps of a state type (crate-internal: the methods of [`super::StepState`]).
+    pub trait Advance<T: Real, const N: usize>: Sized {
+        /// The torque-free splitting of Strang stages `stages`. Not renormalised.
+        fn free(&self, body: &Gyrostat<T, N>, stages: &[T]) -> Self;
+        /// The kicked splitting of Strang stages `stages` from time `t`. Not renormalised.
+        fn kicked<L: ControlLaw<T, N>>(
+            &self,
+            body: &Gyrostat<T, N>,
+            t: T,
+            stages: &[T],
+            input: &mut L,
+        ) -> Self;
+        /// One RK4 step. Not renormalised.
+        fn rk4<L: ControlLaw<T, N>>(
+            &self,
+            body: &Gyrostat<T, N>,
+            t: T,
+            h: T,
+            input: &mut L,
+        ) -> Self;
+        /// Renormalises the attitude and rejects a non-finite result.
+        fn finish(self) -> Result<Self, Error>;
+    }
+
+    impl<T: Real, const N: usize> Advance<T, N> for State<T, N> {
+        #[inline]
+        fn free(&self, body: &Gyrostat<T, N>, stages: &[T]) -> Self {
+            splitting::free(body, self, stages)
+        }
+        #[inline]
+        fn kicked<L: ControlLaw<T, N>>(
+            &self,
+            body: &Gyrostat<T, N>,
+            t: T,
+            stages: &[T],
+            input: &mut L,
+        ) -> Self {
+            splitting::kicked(body, self, t, stages, input)
+        }
+        #[inline]
+        fn rk4<L: ControlLaw<T, N>>(
+            &self,
+            body: &Gyrostat<T, N>,
+            t: T,
+            h: T,
+            input: &mut L,
+        ) -> Self {
+            rk4::step(body, self, t, h, input)
+        }
+        #[inline]
+        fn finish(self) -> Result<Self, Error> {
+            super::finish(self)
+        }
+    }
+
+    impl<T: Real, const N: usize> Advance<T, N> for CompensatedState<T, N> {
+        #[inline]
+        fn free(&self, body: &Gyrostat<T, N>, stages: &[T]) -> Self {
+            compensated::free(body, self, stages)
+        }
+        #[inline]
+        fn kicked<L: ControlLaw<T, N>>(
+            &self,
+            body: &Gyrostat<T, N>,
+            t: T,
+            stages: &[T],
+            input: &mut L,
+        ) -> Self {
+            compensated::kicked(body, self, t, stages, input)
+        }
+        #[inline]
+        fn rk4<L: ControlLaw<T, N>>(
+            &self,
+            body: &Gyrostat<T, N>,
+            t: T,
+            h: T,
+            input: &mut L,
+        ) -> Self {
+            compensated::rk4_step(body, self, t, h, input)
+        }
+        #[inline]
+        fn finish(self) -> Result<Self, Error> {
+            compensated::finish(self)
+        }
     }
 }
 

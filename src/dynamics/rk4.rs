@@ -7,11 +7,11 @@ use crate::dynamics::gyrostat::Gyrostat;
 use crate::dynamics::state::{ControlLaw, State};
 use crate::{Quat, Real, UnitQuat, Vec3};
 
-/// The time derivative of a state.
-struct Rate<T, const N: usize> {
-    attitude: Quat<T>,
-    momentum: Vec3<T>,
-    wheel_speeds: [T; N],
+/// The time derivative of a state, or (from [`increment`]) the change of a state over a step.
+pub(crate) struct Rate<T, const N: usize> {
+    pub(crate) attitude: Quat<T>,
+    pub(crate) momentum: Vec3<T>,
+    pub(crate) wheel_speeds: [T; N],
 }
 
 /// One RK4 step of length `h` from time `t`. Not renormalised.
@@ -22,13 +22,34 @@ pub(crate) fn step<T: Real, const N: usize, L: ControlLaw<T, N>>(
     h: T,
     input: &mut L,
 ) -> State<T, N> {
+    let d = increment(body, x, t, h, input);
+    let mut wheel_speeds = x.wheel_speeds;
+    for (w, dw) in wheel_speeds.iter_mut().zip(d.wheel_speeds.iter()) {
+        *w += *dw;
+    }
+    State {
+        attitude: UnitQuat::new_unchecked(x.attitude.into_quat() + d.attitude),
+        momentum: x.momentum + d.momentum,
+        wheel_speeds,
+    }
+}
+
+/// The change of the state over one RK4 step, `(h/6)(k₁ + 2k₂ + 2k₃ + k₄)`: [`step`] adds it
+/// to the state; the compensated step adds it to the carried pairs.
+pub(crate) fn increment<T: Real, const N: usize, L: ControlLaw<T, N>>(
+    body: &Gyrostat<T, N>,
+    x: &State<T, N>,
+    t: T,
+    h: T,
+    input: &mut L,
+) -> Rate<T, N> {
     let half = h * T::HALF;
     let k1 = rate(body, t, x, input);
     let k2 = rate(body, t + half, &advance(x, &k1, half), input);
     let k3 = rate(body, t + half, &advance(x, &k2, half), input);
     let k4 = rate(body, t + h, &advance(x, &k3, h), input);
     let sixth = h / T::from_f64(6.0);
-    let mut wheel_speeds = x.wheel_speeds;
+    let mut wheel_speeds = [T::ZERO; N];
     for ((((w, d1), d2), d3), d4) in wheel_speeds
         .iter_mut()
         .zip(k1.wheel_speeds.iter())
@@ -36,13 +57,13 @@ pub(crate) fn step<T: Real, const N: usize, L: ControlLaw<T, N>>(
         .zip(k3.wheel_speeds.iter())
         .zip(k4.wheel_speeds.iter())
     {
-        *w += sixth * (*d1 + T::TWO * (*d2 + *d3) + *d4);
+        *w = sixth * (*d1 + T::TWO * (*d2 + *d3) + *d4);
     }
     let dq = k1.attitude + (k2.attitude + k3.attitude).scale(T::TWO) + k4.attitude;
     let dj = k1.momentum + (k2.momentum + k3.momentum) * T::TWO + k4.momentum;
-    State {
-        attitude: UnitQuat::new_unchecked(x.attitude.into_quat() + dq.scale(sixth)),
-        momentum: x.momentum + dj * sixth,
+    Rate {
+        attitude: dq.scale(sixth),
+        momentum: dj * sixth,
         wheel_speeds,
     }
 }

@@ -24,6 +24,10 @@
 //! Casimir `½t₂₂|J|⁴`, whose flow leaves `J` fixed and turns the attitude about `J` at the rate
 //! `2t₂₂|J|²·|J|` (it commutes with every other piece). Every piece is again an exact rotation.
 //!
+//! In f32 these plain flows round `J` and `q` at every sub-step; over long runs that makes them
+//! less accurate than a plain f32 RK4 at the same step. [`crate::dynamics::compensated`] has the
+//! cause and the compensated flows a [`crate::dynamics::CompensatedState`] runs through.
+//!
 //! A non-diagonal inertia tensor is handled by rotating about its principal axes expressed in
 //! the body frame (the columns of [`crate::dynamics::Inertia::principal_axes`]): the same exact
 //! one-axis flows, with the Rodrigues form for a general axis.

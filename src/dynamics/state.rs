@@ -4,11 +4,15 @@
 //! momentum and the speeds of `N` reaction wheels. A rigid body (or a gyro-rotor with constant
 //! spins) is the case `N = 0`, the default, so `State<T>` is the rigid-body state.
 //!
+//! [`CompensatedState`] is the same state with the rounding errors of its attitude, momentum and
+//! wheel speeds carried beside it, for compensated integration (see
+//! [`crate::dynamics::compensated`]): the step takes and returns either type.
+//!
 //! The inputs of a step are a [`Control`] (external torque and wheel torques), either held over
 //! the step (the firmware form: one value per control cycle) or produced by a law `f(t, state)`
 //! evaluated at the integrator's stages (the host form); both are a [`ControlLaw`].
 
-use crate::{Real, UnitQuat, Vec3};
+use crate::{Quat, Real, UnitQuat, Vec3};
 
 /// The state of a body with `N` reaction wheels (`N = 0`: a rigid body).
 ///
@@ -49,6 +53,93 @@ impl<T: Real, const N: usize> State<T, N> {
         self.attitude.as_quat().is_finite()
             && self.momentum.is_finite()
             && self.wheel_speeds.iter().all(|w| w.is_finite())
+    }
+}
+
+/// A [`State`] with the rounding errors of its components carried beside it: the state of a
+/// compensated integration ([`crate::dynamics::compensated`]).
+///
+/// Each component is a pair: the value rounded to `T` ([`CompensatedState::state`], what the
+/// caller reads and what a control law sees) and its low-order part, the rounding error of the
+/// last update (below half an ulp of the value). [`crate::dynamics::Gyrostat::step`] and
+/// [`crate::dynamics::Gyrostat::step_with`] take and return it like a [`State`]; every
+/// rotation, kick and renormalisation then adds its increment to the pair without losing its
+/// rounding, so f32 runs do not drift from the rounding bias described in
+/// [`crate::dynamics::compensated`]. The attitude is the direction of `q + q_lo`; its norm is 1
+/// within a few ulp.
+///
+/// ```
+/// use gyrostat::dynamics::{CompensatedState, Gyrostat, Inertia, Integrator, State};
+/// use gyrostat::{UnitQuat, Vec3};
+/// let body = Gyrostat::rigid(Inertia::try_from_principal(Vec3::new(6.0f32, 4.0, 3.0))?);
+/// let mut s = CompensatedState::new(State::new(UnitQuat::IDENTITY, Vec3::new(3.9, 0.5, 0.4)));
+/// for _ in 0..1000 {
+///     s = body.step(Integrator::Suzuki4, &s, 0.004)?;
+/// }
+/// let j = s.state().momentum;
+/// assert!((j.norm() - Vec3::new(3.9f32, 0.5, 0.4).norm()).abs() < 1e-6);
+/// # Ok::<(), gyrostat::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CompensatedState<T, const N: usize = 0> {
+    pub(crate) state: State<T, N>,
+    pub(crate) attitude_lo: Quat<T>,
+    pub(crate) momentum_lo: Vec3<T>,
+    pub(crate) wheel_speeds_lo: [T; N],
+}
+
+impl<T: Real, const N: usize> CompensatedState<T, N> {
+    /// Starts a compensated integration at `state` (every low-order part zero).
+    #[inline]
+    pub const fn new(state: State<T, N>) -> Self {
+        Self {
+            state,
+            attitude_lo: Quat::ZERO,
+            momentum_lo: Vec3::ZERO,
+            wheel_speeds_lo: [T::ZERO; N],
+        }
+    }
+
+    /// The state, each component rounded to `T`.
+    #[inline]
+    pub const fn state(&self) -> &State<T, N> {
+        &self.state
+    }
+
+    /// The low-order part of the attitude quaternion: the attitude is the direction of
+    /// `state().attitude + attitude_low()`.
+    #[inline]
+    pub const fn attitude_low(&self) -> Quat<T> {
+        self.attitude_lo
+    }
+
+    /// The low-order part of the body momentum `J`.
+    #[inline]
+    pub const fn momentum_low(&self) -> Vec3<T> {
+        self.momentum_lo
+    }
+
+    /// The low-order parts of the wheel speeds.
+    #[inline]
+    pub const fn wheel_speeds_low(&self) -> [T; N] {
+        self.wheel_speeds_lo
+    }
+
+    /// `true` when every component and low-order part is finite.
+    #[inline]
+    pub fn is_finite(&self) -> bool {
+        self.state.is_finite()
+            && self.attitude_lo.is_finite()
+            && self.momentum_lo.is_finite()
+            && self.wheel_speeds_lo.iter().all(|w| w.is_finite())
+    }
+}
+
+impl<T: Real, const N: usize> From<State<T, N>> for CompensatedState<T, N> {
+    /// [`CompensatedState::new`].
+    #[inline]
+    fn from(state: State<T, N>) -> Self {
+        Self::new(state)
     }
 }
 
