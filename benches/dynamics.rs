@@ -1,10 +1,11 @@
 //! Cost of one step of each dynamics integrator (f32 and f64): rigid body with a diagonal and
-//! with a full tensor, and a gyrostat with 4 reaction wheels and an external torque; and of one
-//! evaluation of the exact free rigid body.
+//! with a full tensor, and a gyrostat with 4 reaction wheels and an external torque, each on a
+//! plain `State` and on a `CompensatedState` (`…_compensated` rows); and of one evaluation of
+//! the exact free rigid body.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use gyrostat::dynamics::{
-    FreeRigidBody, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
+    CompensatedState, FreeRigidBody, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
 };
 use gyrostat::{Mat3, Real, UnitQuat, Vec3};
 use std::hint::black_box;
@@ -46,6 +47,18 @@ fn bench_type<T: Real>(c: &mut Criterion, ty: &str) {
                 s = full.step(integ, black_box(&s), dt).unwrap();
             })
         });
+        g.bench_function(format!("rigid_diag_compensated/{name}"), |b| {
+            let mut s = CompensatedState::new(s0);
+            b.iter(|| {
+                s = diag.step(integ, black_box(&s), dt).unwrap();
+            })
+        });
+        g.bench_function(format!("rigid_full_compensated/{name}"), |b| {
+            let mut s = CompensatedState::new(s0);
+            b.iter(|| {
+                s = full.step(integ, black_box(&s), dt).unwrap();
+            })
+        });
     }
     let a = 1.0 / 3.0f64.sqrt();
     let wheels = [
@@ -64,6 +77,18 @@ fn bench_type<T: Real>(c: &mut Criterion, ty: &str) {
                 .unwrap();
             b.iter(|| {
                 let held = gyro.control(&s, dt, tau, &cmd);
+                s = gyro
+                    .step_with(integ, black_box(&s), T::ZERO, dt, held)
+                    .unwrap();
+            })
+        });
+        g.bench_function(format!("gyrostat4_torque_compensated/{name}"), |b| {
+            let mut s = CompensatedState::new(
+                gyro.state_from_omega(UnitQuat::IDENTITY, v([0.1, 0.5, 0.2]), [T::ZERO; 4])
+                    .unwrap(),
+            );
+            b.iter(|| {
+                let held = gyro.control(s.state(), dt, tau, &cmd);
                 s = gyro
                     .step_with(integ, black_box(&s), T::ZERO, dt, held)
                     .unwrap();

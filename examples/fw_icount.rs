@@ -284,7 +284,8 @@ mod firmware {
         }
         {
             use gyrostat::dynamics::{
-                FreeRigidBody, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
+                CompensatedState, FreeRigidBody, Gyrostat, Inertia, Integrator, State, Wheel,
+                WheelCommand,
             };
             let principal = Inertia::try_from_principal(Vec3::new(6.0f32, 4.0, 3.0));
             let full = Inertia::try_from_components(
@@ -342,6 +343,41 @@ mod firmware {
                             let h = black_box(h);
                             let held = g.control(gs, h, black_box(tau), &cmd);
                             g.step_with(Integrator::Strang, gs, 0.0, h, held)
+                        }
+                    );
+                }
+                // The same steps on a CompensatedState (rounding errors carried).
+                let cs = CompensatedState::new(s);
+                count!(table, "dyn_rk4_step_compensated_f32", heavy, || body.step(
+                    Integrator::Rk4,
+                    black_box(&cs),
+                    black_box(h)
+                ));
+                count!(table, "dyn_strang_step_compensated_f32", heavy, || body
+                    .step(Integrator::Strang, black_box(&cs), black_box(h)));
+                count!(table, "dyn_yoshida4_step_compensated_f32", heavy, || body
+                    .step(Integrator::Yoshida4, black_box(&cs), black_box(h)));
+                count!(table, "dyn_suzuki4_step_compensated_f32", heavy, || body
+                    .step(Integrator::Suzuki4, black_box(&cs), black_box(h)));
+                count!(
+                    table,
+                    "dyn_strang_step_full_tensor_compensated_f32",
+                    heavy,
+                    || full_body.step(Integrator::Strang, black_box(&cs), black_box(h))
+                );
+                if let Ok(gs) =
+                    g.state_from_omega(UnitQuat::IDENTITY, Vec3::new(0.1, 0.5, 0.2), [0.0; 4])
+                {
+                    let gc = CompensatedState::new(gs);
+                    count!(
+                        table,
+                        "dyn_gyrostat_4_wheels_strang_step_compensated_f32",
+                        heavy,
+                        || {
+                            let gc = black_box(&gc);
+                            let h = black_box(h);
+                            let held = g.control(gc.state(), h, black_box(tau), &cmd);
+                            g.step_with(Integrator::Strang, gc, 0.0, h, held)
                         }
                     );
                 }
