@@ -119,7 +119,8 @@ mod firmware {
         }
         {
             use gyrostat::dynamics::{
-                Control, FreeRigidBody, Gyrostat, Inertia, Integrator, State, Wheel, WheelCommand,
+                CompensatedState, Control, FreeRigidBody, Gyrostat, Inertia, Integrator, State,
+                Wheel, WheelCommand,
             };
             let moments = black_box(Vec3::new(6.0f32, 4.0, 3.0));
             let j0 = black_box(Vec3::new(0.3f32, 4.0, 0.05));
@@ -138,6 +139,15 @@ mod firmware {
                         black_box(0.01),
                         Control::torque(v),
                     ));
+                    let cs = CompensatedState::new(s);
+                    sink(body.step(black_box(integ), &cs, black_box(0.01)));
+                    sink(body.step_with(
+                        black_box(integ),
+                        &cs,
+                        black_box(0.0),
+                        black_box(0.01),
+                        Control::torque(v),
+                    ));
                 }
                 let g = Gyrostat::new(*body.model(), [w]);
                 if let Ok(gs) = g.state_from_omega(q, v, [0.0]) {
@@ -147,6 +157,8 @@ mod firmware {
                     ] {
                         let held = g.control(&gs, black_box(0.01), v, &command);
                         sink(g.step_with(Integrator::Strang, &gs, 0.0, black_box(0.01), held));
+                        let gc = CompensatedState::new(gs);
+                        sink(g.step_with(Integrator::Strang, &gc, 0.0, black_box(0.01), held));
                     }
                 }
                 if let Ok(exact) = FreeRigidBody::try_new(&inertia, &s) {
@@ -154,10 +166,16 @@ mod firmware {
                     sink(exact.flip_interval());
                 }
             }
-            if let Ok(diagonal) = Inertia::try_from_principal(moments)
-                && let Ok(exact) = FreeRigidBody::try_new(&diagonal, &State::new(q, j0))
-            {
-                sink(exact.try_state_at(black_box(7.5)));
+            if let Ok(diagonal) = Inertia::try_from_principal(moments) {
+                let body = Gyrostat::rigid(diagonal);
+                let s = State::new(q, j0);
+                for integ in Integrator::ALL {
+                    sink(body.step(black_box(integ), &s, black_box(0.01)));
+                    sink(body.step(black_box(integ), &CompensatedState::new(s), black_box(0.01)));
+                }
+                if let Ok(exact) = FreeRigidBody::try_new(&diagonal, &s) {
+                    sink(exact.try_state_at(black_box(7.5)));
+                }
             }
         }
         // f64 (soft float on every Cortex-M) goes through the same paths.
