@@ -136,9 +136,9 @@ fn reference(case: &Case, n: usize) -> (M3, [f64; 3]) {
 }
 
 /// The targets of the compensated f32 step: on every case, the f32 Yoshida4 and Suzuki4 errors
-/// are at most half the error of a plain f32 RK4 at the same step (measured 0.01–0.15×; the
-/// plain splittings, printed beside them, are 3–110× RK4's). The compensated RK4 and Strang are
-/// printed for information (Strang's larger truncation error shows at this step).
+/// are at most half the error of a plain f32 RK4 at the same step (measured 0.004–0.11×; the
+/// plain splittings, printed beside them, are 3–110× RK4's). The compensated RK4 (0.004–0.12×)
+/// and Strang are printed for information (Strang's larger truncation error shows at this step).
 #[test]
 fn compensated_splittings_beat_plain_rk4_in_f32() {
     for case in &CASES {
@@ -169,10 +169,9 @@ fn compensated_splittings_beat_plain_rk4_in_f32() {
 
 /// Over 10⁶ steps the compensated splittings keep `|J|` within 1e-6 relative in f32 (measured
 /// ≤ 2.1e-7 on these cases, against 1e-5…1e-3 for the plain steps: see BENCHMARKS.md). The
-/// lab-frame momentum `q J q*` is left with the random walk of the roundings of the
-/// increments, about `u·θ` per sub-step (`u = 2⁻²⁴`, `θ` the sub-step angle, up to 8e-3 here):
-/// `u·θ·√(2.1·10⁷ sub-steps) ≈ 2.2e-6`; bound 1e-5 (measured ≤ 3.6e-6, prolate top, whose spin
-/// rate 1.5 rad/s gives the largest angles).
+/// lab-frame momentum `q J q*` is left with the roundings of the increments, about `u·θ` per
+/// sub-step (`u = 2⁻²⁴`, `θ` the sub-step angle, up to 8e-3 here), a random walk of
+/// `u·θ·√(2.1·10⁷ sub-steps) ≈ 2.2e-6` at most; bound 1e-5 (measured ≤ 2.1e-7).
 #[test]
 fn compensated_momentum_drift_over_1e6_steps() {
     for integ in [Integrator::Yoshida4, Integrator::Suzuki4] {
@@ -228,8 +227,8 @@ fn momentum_drift(case: &Case, integ: Integrator, n: usize) -> (f64, f64) {
 /// Energy over 10⁶ steps at `dt = 0.1` (the asymmetric rotor (6, 4, 3)), evaluated in f64 from
 /// the rounded state. The plain f32 splittings drift (Yoshida4: 2.5e-4 relative, growing about
 /// linearly); the compensated ones keep the error at the random walk of the increments'
-/// roundings, `u·θ·√(1.3·10⁷ sub-steps)` with `θ ≤ 0.034` here, about 7e-6 in `|J|` and twice
-/// that in the energy: bound 1.5e-5 (measured ≤ 4.4e-6), and at least 20× below the plain
+/// roundings, at most `u·θ·√(1.3·10⁷ sub-steps)` with `θ ≤ 0.034` here, about 7e-6 in `|J|` and
+/// twice that in the energy: bound 1.5e-5 (measured ≤ 1.0e-6), and at least 20× below the plain
 /// step's error. (Strang's level is its bounded truncation error, 4.7e-5, the same in f64.) The
 /// truncation-level oscillation of Yoshida4 and Suzuki4 (2e-8 in f64) is below this f32 floor.
 #[test]
@@ -544,12 +543,14 @@ mod replica {
         c(-0.5) + x2 * (c(1.0 / 24.0) + x2 * (c(-1.0 / 720.0) + x2 * c(1.0 / 40_320.0)))
     }
 
-    /// `x ← x + d` (plain) or `(x, e) ← Fast2Sum(x, d + e)`.
-    fn add(x: &mut f32, e: &mut f32, d: f32, sw: Switches) {
+    /// `x ← x + (large + small)` (plain) or the compensated pair sum
+    /// `(s, r) = Fast2Sum(x, large)`, `(x, e) ← Fast2Sum(s, r + (small + e))`.
+    fn add(x: &mut f32, e: &mut f32, large: f32, small: f32, sw: Switches) {
         if sw.compensated {
-            (*x, *e) = fast_two_sum(*x, d + *e);
+            let (s, r) = fast_two_sum(*x, large);
+            (*x, *e) = fast_two_sum(s, r + (small + *e));
         } else {
-            *x += d;
+            *x += large + small;
         }
     }
 
@@ -596,10 +597,10 @@ mod replica {
         let (a, b) = ((i + 1) % 3, (i + 2) % 3);
         let (ja, jb, ea, eb) = (x.j[a], x.j[b], x.j_lo[a], x.j_lo[b]);
         if sw.compensated {
-            let da = (sn * jb - v * ja) + ((sn_lo * jb + sn * eb) - v * ea);
-            let db = -(sn * ja + v * jb) - ((sn_lo * ja + sn * ea) + v * eb);
-            add(&mut x.j[a], &mut x.j_lo[a], da, sw);
-            add(&mut x.j[b], &mut x.j_lo[b], db, sw);
+            let (la, sa) = (sn * jb - v * ja, (sn_lo * jb + sn * eb) - v * ea);
+            let (lb, sb) = (-(sn * ja + v * jb), -((sn_lo * ja + sn * ea) + v * eb));
+            add(&mut x.j[a], &mut x.j_lo[a], la, sa, sw);
+            add(&mut x.j[b], &mut x.j_lo[b], lb, sb, sw);
         } else {
             let da = (sn * jb - v * ja) + sn_lo * jb;
             let db = (sn * ja + v * jb) + sn_lo * ja;
@@ -658,8 +659,7 @@ mod replica {
             }
         };
         let small = vector(x.q, s_lo, x.q_lo, s);
-        let d = [0, 1, 2, 3].map(|k| main[k] + small[k]);
-        add_all(&mut x.q, &mut x.q_lo, d, sw);
+        add_all(&mut x.q, &mut x.q_lo, main, small, sw);
     }
 
     /// `cos ψ` from the third half-turn term.
@@ -693,13 +693,19 @@ mod replica {
         let q_lo = Quat::from_array(x.q_lo);
         let main = q * Quat::from_parts(mm, v);
         let small = q * Quat::from_parts(0.0, v_lo) + q_lo * Quat::from_parts(0.0, v);
-        add_all(&mut x.q, &mut x.q_lo, (main + small).to_array(), sw);
+        add_all(&mut x.q, &mut x.q_lo, main.to_array(), small.to_array(), sw);
     }
 
     /// [`add`] for each component.
-    fn add_all(q: &mut [f32; 4], q_lo: &mut [f32; 4], d: [f32; 4], sw: Switches) {
-        for ((a, e), d) in q.iter_mut().zip(q_lo.iter_mut()).zip(d) {
-            add(a, e, d, sw);
+    fn add_all(
+        q: &mut [f32; 4],
+        q_lo: &mut [f32; 4],
+        large: [f32; 4],
+        small: [f32; 4],
+        sw: Switches,
+    ) {
+        for (((a, e), l), s) in q.iter_mut().zip(q_lo.iter_mut()).zip(large).zip(small) {
+            add(a, e, l, s, sw);
         }
     }
 
@@ -708,7 +714,7 @@ mod replica {
         if sw.increment {
             let r = (1.0 - q.norm_squared()) * 0.5;
             let d = x.q.map(|c| c * r);
-            add_all(&mut x.q, &mut x.q_lo, d, sw);
+            add_all(&mut x.q, &mut x.q_lo, d, [0.0; 4], sw);
         } else {
             let inv = 1.0 / q.norm_squared().sqrt();
             x.q = if sw.stochastic {
@@ -852,7 +858,7 @@ fn cause_experiment() {
             },
         ),
         (
-            "(a)+(b) Fast2Sum within a step",
+            "(a)+(b) compensated sums within a step",
             Switches {
                 increment: true,
                 compensated: true,

@@ -37,13 +37,18 @@
 //!    the carried value (`d = (R − 1)(J + e_J)`, `d = (q + e_q) ⊗ (…)`);
 //! 3. *the carry kept across steps* in the [`CompensatedState`];
 //! 4. *exact half angles*: `ψ = rate·(h/2)` is formed exactly as a pair (Dekker's product) and
-//!    `sin ψ = ψ + ψ³·(…)` by its Taylor series, so that only the small tail is rounded.
+//!    `sin ψ = ψ + ψ³·(…)` by its Taylor series, so that only the small tail is rounded; the
+//!    kicks' `τh` and RK4's `h/6` are exact pairs too.
 //!
-//! With all four, the f32 Yoshida4 and Suzuki4 errors are 0.004–0.12× those of a plain f32 RK4
+//! Each increment is added as a double-f32 sum (`crate::compensated`'s `add_pair`): its small
+//! parts (the low part of `sin ψ`, the carried errors' share) below an ulp of the increment
+//! would otherwise round away the same way every time.
+//!
+//! With all four, the f32 Yoshida4 and Suzuki4 errors are 0.004–0.11× those of a plain f32 RK4
 //! at the same step on the eight cases, 0.16× with a constant torque; `|J|` drifts ≤ 2.1e-7
-//! relative over 10⁶ steps, the energy error is the random walk of the increments' roundings
-//! (4e-6 after 10⁶ steps at `dt = 0.1`, against a drift to 2.5e-4 for the plain step); RK4 on a
-//! compensated state is 0.03–0.6× the plain RK4. Costs are in BENCHMARKS.md (Cortex-M4F
+//! relative over 10⁶ steps and the lab momentum ≤ 2.1e-7; the energy error is the random walk of
+//! the increments' roundings (1.0e-6 after 10⁶ steps at `dt = 0.1`, against a drift to 2.5e-4
+//! for the plain step); RK4 on a compensated state is 0.004–0.12× the plain RK4. Costs are in BENCHMARKS.md (Cortex-M4F
 //! instruction counts beside the plain rows, host times). The plain [`State`] keeps the plain,
 //! cheaper flows: use it for short horizons (a control loop whose state is reset from sensors),
 //! the compensated state for propagating a model for long (a simulator, a predictor without
@@ -56,8 +61,8 @@
 //! [`State`]: crate::dynamics::State
 
 use crate::compensated::{
-    HalfTurn, add_compensated, add_compensated_vec, fast_two_sum, renormalize_compensated,
-    rotate_compensated, two_product,
+    HalfTurn, add_compensated, add_compensated_vec, add_pair, renormalize_compensated,
+    rotate_compensated, sixth_pair, two_product,
 };
 use crate::dynamics::gyrostat::Gyrostat;
 use crate::dynamics::hamiltonian::{BodyHamiltonian, Quartic};
@@ -150,7 +155,8 @@ pub(crate) fn kicked<T: Real, const N: usize, L: ControlLaw<T, N>>(
     x
 }
 
-/// One RK4 step with the increment added to the carried pairs. Not renormalised.
+/// One RK4 step with the increment `(h/6)(k₁ + 2k₂ + 2k₃ + k₄)` added to the carried pairs,
+/// `h/6` taken as an exact pair. Not renormalised.
 pub(crate) fn rk4_step<T: Real, const N: usize, L: ControlLaw<T, N>>(
     body: &Gyrostat<T, N>,
     state: &CompensatedState<T, N>,
@@ -158,13 +164,33 @@ pub(crate) fn rk4_step<T: Real, const N: usize, L: ControlLaw<T, N>>(
     h: T,
     input: &mut L,
 ) -> CompensatedState<T, N> {
-    let d = rk4::increment(body, &state.state, t, h, input);
+    let k = rk4::slopes(body, &state.state, t, h, input);
+    let (h6, h6_lo) = sixth_pair(h);
     let mut x = *state;
     let mut q = x.state.attitude.into_quat();
-    add_compensated(&mut q, &mut x.attitude_lo, d.attitude);
+    add_compensated(
+        &mut q,
+        &mut x.attitude_lo,
+        k.attitude.scale(h6),
+        k.attitude.scale(h6_lo),
+    );
     x.state.attitude = UnitQuat::new_unchecked(q);
-    add_compensated_vec(&mut x.state.momentum, &mut x.momentum_lo, d.momentum);
-    add_wheels(&mut x, &d.wheel_speeds);
+    add_compensated_vec(
+        &mut x.state.momentum,
+        &mut x.momentum_lo,
+        k.momentum * h6,
+        k.momentum * h6_lo,
+    );
+    let mut large = [T::ZERO; N];
+    let mut small = [T::ZERO; N];
+    for ((l, s), dw) in large
+        .iter_mut()
+        .zip(small.iter_mut())
+        .zip(k.wheel_speeds.iter())
+    {
+        (*l, *s) = (*dw * h6, *dw * h6_lo);
+    }
+    add_wheels(&mut x, &large, &small);
     x
 }
 
@@ -183,22 +209,28 @@ pub(crate) fn finish<T: Real, const N: usize>(
     }
 }
 
-/// `Ωᵢ ← Ωᵢ + dᵢ` on the carried wheel speeds.
+/// `Ωᵢ ← Ωᵢ + (largeᵢ + smallᵢ)` on the carried wheel speeds.
 #[inline(always)]
-fn add_wheels<T: Real, const N: usize>(x: &mut CompensatedState<T, N>, d: &[T; N]) {
-    for ((w, lo), dw) in x
+fn add_wheels<T: Real, const N: usize>(
+    x: &mut CompensatedState<T, N>,
+    large: &[T; N],
+    small: &[T; N],
+) {
+    for (((w, lo), l), s) in x
         .state
         .wheel_speeds
         .iter_mut()
         .zip(x.wheel_speeds_lo.iter_mut())
-        .zip(d.iter())
+        .zip(large.iter())
+        .zip(small.iter())
     {
-        (*w, *lo) = fast_two_sum(*w, *dw + *lo);
+        (*w, *lo) = add_pair(*w, *lo, *l, *s);
     }
 }
 
 /// The kick of length `h` on the carried pairs: `J ← J + τ h`, `Ωᵢ ← Ωᵢ + (ḣᵢ/I_wᵢ) h`, the
-/// control at `(t, state)`.
+/// control at `(t, state)`, each product taken exactly (a constant torque's `τh` would otherwise
+/// round the same way at every kick).
 #[inline]
 fn kick<T: Real, const N: usize, L: ControlLaw<T, N>>(
     body: &Gyrostat<T, N>,
@@ -208,16 +240,26 @@ fn kick<T: Real, const N: usize, L: ControlLaw<T, N>>(
     input: &mut L,
 ) {
     let c = input.control(t, &x.state);
-    add_compensated_vec(&mut x.state.momentum, &mut x.momentum_lo, c.torque * h);
-    let mut d = [T::ZERO; N];
-    for ((d, u), wheel) in d
+    let (jx, ex) = two_product(c.torque.x, h);
+    let (jy, ey) = two_product(c.torque.y, h);
+    let (jz, ez) = two_product(c.torque.z, h);
+    add_compensated_vec(
+        &mut x.state.momentum,
+        &mut x.momentum_lo,
+        Vec3::new(jx, jy, jz),
+        Vec3::new(ex, ey, ez),
+    );
+    let mut large = [T::ZERO; N];
+    let mut small = [T::ZERO; N];
+    for (((l, s), u), wheel) in large
         .iter_mut()
+        .zip(small.iter_mut())
         .zip(c.wheel_torques.iter())
         .zip(body.wheels().iter())
     {
-        *d = wheel.acceleration(*u) * h;
+        (*l, *s) = two_product(wheel.acceleration(*u), h);
     }
-    add_wheels(x, &d);
+    add_wheels(x, &large, &small);
 }
 
 /// The Hamiltonian flow for time `h`, rotor momentum `s` held fixed:
@@ -327,15 +369,16 @@ fn principal_axis_flow<T: Real>(
     let sn = T::TWO * turn.sin;
     let (a, b) = plane(axis);
     let (ja, jb, ea, eb) = (c.j[a], c.j[b], c.j_lo[a], c.j_lo[b]);
-    let da = (sn * jb - v * ja) + ((sn_lo * jb + sn * eb) - v * ea);
-    let db = -(sn * ja + v * jb) - ((sn_lo * ja + sn * ea) + v * eb);
-    (c.j[a], c.j_lo[a]) = fast_two_sum(ja, da + ea);
-    (c.j[b], c.j_lo[b]) = fast_two_sum(jb, db + eb);
-    // q: the increment (q + q_lo) ⊗ (m, sin ψ eᵢ), its small parts q ⊗ (0, sin_lo eᵢ) and
-    // q_lo ⊗ (0, sin eᵢ) (q_lo·m is below u²).
-    let d = times_axis(c.q, axis, turn.cos_m1, turn.sin)
-        + times_axis_vector(c.q, turn.sin_lo, c.q_lo, turn.sin, axis);
-    add_compensated(&mut c.q, &mut c.q_lo, d);
+    // Each increment as a large part and a small one (the low parts' share), added as a pair.
+    let (la, sa) = (sn * jb - v * ja, (sn_lo * jb + sn * eb) - v * ea);
+    let (lb, sb) = (-(sn * ja + v * jb), -((sn_lo * ja + sn * ea) + v * eb));
+    (c.j[a], c.j_lo[a]) = add_pair(ja, ea, la, sa);
+    (c.j[b], c.j_lo[b]) = add_pair(jb, eb, lb, sb);
+    // q: the increment (q + q_lo) ⊗ (m, sin ψ eᵢ): large q ⊗ (m, sin ψ eᵢ), small
+    // q ⊗ (0, sin_lo eᵢ) + q_lo ⊗ (0, sin ψ eᵢ) (q_lo·m is below u²).
+    let large = times_axis(c.q, axis, turn.cos_m1, turn.sin);
+    let small = times_axis_vector(c.q, turn.sin_lo, c.q_lo, turn.sin, axis);
+    add_compensated(&mut c.q, &mut c.q_lo, large, small);
 }
 
 /// The compensated flow of `Aᵢ (n·(J − s))²` about a unit body-frame axis `n` (the plain
@@ -350,10 +393,11 @@ fn general_axis_flow<T: Real>(n: Vec3<T>, ai: T, c: &mut Carried<T>, s: Vec3<T>,
     // J ← J − sin θ (n × J) + (1 − cos θ) n × (n × J), on J + J_lo.
     let nj = n.cross(c.j);
     let nj_lo = n.cross(c.j_lo);
-    let d = (n.cross(nj) * v - nj * sn) - (nj * sn_lo + nj_lo * sn);
-    add_compensated_vec(&mut c.j, &mut c.j_lo, d);
-    let main = c.q * Quat::from_parts(turn.cos_m1, n * turn.sin);
+    let large = n.cross(nj) * v - nj * sn;
+    let small = -(nj * sn_lo + nj_lo * sn);
+    add_compensated_vec(&mut c.j, &mut c.j_lo, large, small);
+    let large = c.q * Quat::from_parts(turn.cos_m1, n * turn.sin);
     let small = c.q * Quat::from_parts(T::ZERO, n * turn.sin_lo)
         + c.q_lo * Quat::from_parts(T::ZERO, n * turn.sin);
-    add_compensated(&mut c.q, &mut c.q_lo, main + small);
+    add_compensated(&mut c.q, &mut c.q_lo, large, small);
 }

@@ -7,7 +7,7 @@ use crate::dynamics::gyrostat::Gyrostat;
 use crate::dynamics::state::{ControlLaw, State};
 use crate::{Quat, Real, UnitQuat, Vec3};
 
-/// The time derivative of a state, or (from [`increment`]) the change of a state over a step.
+/// The time derivative of a state, or (from [`slopes`]) a weighted sum of such derivatives.
 pub(crate) struct Rate<T, const N: usize> {
     pub(crate) attitude: Quat<T>,
     pub(crate) momentum: Vec3<T>,
@@ -22,21 +22,22 @@ pub(crate) fn step<T: Real, const N: usize, L: ControlLaw<T, N>>(
     h: T,
     input: &mut L,
 ) -> State<T, N> {
-    let d = increment(body, x, t, h, input);
+    let k = slopes(body, x, t, h, input);
+    let sixth = h / T::from_f64(6.0);
     let mut wheel_speeds = x.wheel_speeds;
-    for (w, dw) in wheel_speeds.iter_mut().zip(d.wheel_speeds.iter()) {
-        *w += *dw;
+    for (w, dw) in wheel_speeds.iter_mut().zip(k.wheel_speeds.iter()) {
+        *w += sixth * *dw;
     }
     State {
-        attitude: UnitQuat::new_unchecked(x.attitude.into_quat() + d.attitude),
-        momentum: x.momentum + d.momentum,
+        attitude: UnitQuat::new_unchecked(x.attitude.into_quat() + k.attitude.scale(sixth)),
+        momentum: x.momentum + k.momentum * sixth,
         wheel_speeds,
     }
 }
 
-/// The change of the state over one RK4 step, `(h/6)(k₁ + 2k₂ + 2k₃ + k₄)`: [`step`] adds it
-/// to the state; the compensated step adds it to the carried pairs.
-pub(crate) fn increment<T: Real, const N: usize, L: ControlLaw<T, N>>(
+/// The weighted slopes of one RK4 step, `k₁ + 2k₂ + 2k₃ + k₄`: the step adds `h/6` times
+/// them ([`step`]; the compensated step with `h/6` as an exact pair).
+pub(crate) fn slopes<T: Real, const N: usize, L: ControlLaw<T, N>>(
     body: &Gyrostat<T, N>,
     x: &State<T, N>,
     t: T,
@@ -48,7 +49,6 @@ pub(crate) fn increment<T: Real, const N: usize, L: ControlLaw<T, N>>(
     let k2 = rate(body, t + half, &advance(x, &k1, half), input);
     let k3 = rate(body, t + half, &advance(x, &k2, half), input);
     let k4 = rate(body, t + h, &advance(x, &k3, h), input);
-    let sixth = h / T::from_f64(6.0);
     let mut wheel_speeds = [T::ZERO; N];
     for ((((w, d1), d2), d3), d4) in wheel_speeds
         .iter_mut()
@@ -57,13 +57,11 @@ pub(crate) fn increment<T: Real, const N: usize, L: ControlLaw<T, N>>(
         .zip(k3.wheel_speeds.iter())
         .zip(k4.wheel_speeds.iter())
     {
-        *w = sixth * (*d1 + T::TWO * (*d2 + *d3) + *d4);
+        *w = *d1 + T::TWO * (*d2 + *d3) + *d4;
     }
-    let dq = k1.attitude + (k2.attitude + k3.attitude).scale(T::TWO) + k4.attitude;
-    let dj = k1.momentum + (k2.momentum + k3.momentum) * T::TWO + k4.momentum;
     Rate {
-        attitude: dq.scale(sixth),
-        momentum: dj * sixth,
+        attitude: k1.attitude + (k2.attitude + k3.attitude).scale(T::TWO) + k4.attitude,
+        momentum: k1.momentum + (k2.momentum + k3.momentum) * T::TWO + k4.momentum,
         wheel_speeds,
     }
 }

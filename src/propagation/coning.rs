@@ -37,6 +37,9 @@
 use heapless::Vec as HVec;
 
 use crate::propagation::Normalization;
+#[cfg(doc)]
+use crate::propagation::compensated::CompensatedAttitude;
+use crate::propagation::compensated::PropagatedAttitude;
 use crate::propagation::exponential::apply_rotation_vector;
 use crate::{Error, Real, UnitQuat, Vec3};
 
@@ -135,12 +138,35 @@ pub fn coning2_update<T: Real>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> Unit
 /// Buffer of the increments of the current update group.
 pub type IncrementBuffer<T> = HVec<Vec3<T>, 4>;
 
+/// The plain update of [`IncrementIntegrator`]: `normalise(q ⊗ exp(φ))` with `φ` the sum of
+/// `samples` for [`ConingRule::Exp`], else the rule that fits their number
+/// ([`rotation_vector_for`]).
+#[inline]
+pub(crate) fn apply_rule<T: Real>(
+    q: UnitQuat<T>,
+    rule: ConingRule,
+    previous: Vec3<T>,
+    samples: &[Vec3<T>],
+    norm: Normalization,
+) -> UnitQuat<T> {
+    let phi = match (rule, samples) {
+        (ConingRule::Exp, [a]) => *a,
+        (ConingRule::Exp, s) => s.iter().fold(Vec3::ZERO, |acc, t| acc + *t),
+        (_, s) => rotation_vector_for(previous, s),
+    };
+    apply_rotation_vector(q, phi, norm)
+}
+
 /// Increment integrator: owns the attitude and the increments of the current update group.
 ///
 /// Plain data (no allocation, fixed capacity), so an interrupt handler can own it. Feed one
 /// increment per sample with [`IncrementIntegrator::push`]; every
 /// [`ConingRule::samples_per_update`] increments it performs one attitude update
 /// `q ← normalise(q ⊗ exp(φ))`.
+///
+/// The attitude it carries is a [`UnitQuat`] (the plain update) or, when it is started from a
+/// [`CompensatedAttitude`], the compensated pair (see [`crate::propagation::compensated`]: the
+/// f32 attitude then does not drift from rounding over hours).
 ///
 /// ```
 /// use gyrostat::{UnitQuat, Vec3};
@@ -151,8 +177,8 @@ pub type IncrementBuffer<T> = HVec<Vec3<T>, 4>;
 /// # Ok::<(), gyrostat::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct IncrementIntegrator<T> {
-    q: UnitQuat<T>,
+pub struct IncrementIntegrator<T, A = UnitQuat<T>> {
+    q: A,
     rule: ConingRule,
     norm: Normalization,
     group: IncrementBuffer<T>,
@@ -160,9 +186,9 @@ pub struct IncrementIntegrator<T> {
     previous: Vec3<T>,
 }
 
-impl<T: Real> IncrementIntegrator<T> {
-    /// Starts at attitude `q0`.
-    pub fn new(q0: UnitQuat<T>, rule: ConingRule, norm: Normalization) -> Self {
+impl<T: Real, A: PropagatedAttitude<T>> IncrementIntegrator<T, A> {
+    /// Starts at attitude `q0`: a [`UnitQuat`] (plain) or a [`CompensatedAttitude`].
+    pub fn new(q0: A, rule: ConingRule, norm: Normalization) -> Self {
         Self {
             q: q0,
             rule,
@@ -189,22 +215,16 @@ impl<T: Real> IncrementIntegrator<T> {
         }
         if self.group.len() >= n {
             self.commit();
-            return Ok(Some(self.q));
+            return Ok(Some(self.q.attitude()));
         }
         Ok(None)
     }
 
-    fn phi(&self) -> Vec3<T> {
-        match (self.rule, self.group.as_slice()) {
-            (ConingRule::Exp, [a]) => *a,
-            (ConingRule::Exp, s) => s.iter().fold(Vec3::ZERO, |acc, t| acc + *t),
-            (_, s) => rotation_vector_for(self.previous, s),
-        }
-    }
-
     fn commit(&mut self) {
         if let Some(last) = self.group.last().copied() {
-            self.q = apply_rotation_vector(self.q, self.phi(), self.norm);
+            self.q = self
+                .q
+                .increments(self.rule, self.previous, self.group.as_slice(), self.norm);
             self.previous = last;
             self.group.clear();
         }
@@ -212,6 +232,11 @@ impl<T: Real> IncrementIntegrator<T> {
 
     /// The attitude after the last completed update group.
     pub fn attitude(&self) -> UnitQuat<T> {
+        self.q.attitude()
+    }
+
+    /// The carried attitude (for a [`CompensatedAttitude`], with its low part).
+    pub fn carried_attitude(&self) -> A {
         self.q
     }
 
@@ -226,9 +251,11 @@ impl<T: Real> IncrementIntegrator<T> {
     /// when nothing is pending.
     pub fn provisional_attitude(&self) -> UnitQuat<T> {
         if self.group.is_empty() {
-            self.q
+            self.q.attitude()
         } else {
-            apply_rotation_vector(self.q, self.phi(), self.norm)
+            self.q
+                .increments(self.rule, self.previous, self.group.as_slice(), self.norm)
+                .attitude()
         }
     }
 
@@ -236,7 +263,7 @@ impl<T: Real> IncrementIntegrator<T> {
     /// it, and returns the attitude after every increment received.
     pub fn flush(&mut self) -> UnitQuat<T> {
         self.commit();
-        self.q
+        self.q.attitude()
     }
 }
 

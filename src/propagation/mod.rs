@@ -30,12 +30,14 @@
 //! inner loop whose input was validated upstream: [`coning::coning2_update`] is the complete
 //! 2-sample update (rotation vector, exponential by series, product, fast renormalisation).
 
+pub mod compensated;
 pub mod coning;
 pub mod exponential;
 pub mod kinematics;
 pub mod normalization;
 pub mod rate_samples;
 
+pub use compensated::{CompensatedAttitude, PropagatedAttitude};
 pub use coning::{ConingAccumulator, ConingRule, IncrementIntegrator};
 pub use normalization::Normalization;
 pub use rate_samples::{RateIntegrator, RateMethod};
