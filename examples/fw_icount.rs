@@ -189,7 +189,10 @@ mod firmware {
             use gyrostat::propagation::rate_samples::{
                 cf4_step, gauss_rates, magnus4_step, midpoint_rate, rk4_step,
             };
-            use gyrostat::propagation::{ConingAccumulator, Normalization};
+            use gyrostat::propagation::{
+                CompensatedAttitude, ConingAccumulator, ConingRule, IncrementIntegrator,
+                Normalization, RateIntegrator, RateMethod,
+            };
             let t1 = Vec3::new(1.0e-3f32, -2.0e-3, 0.5e-3);
             let t2 = Vec3::new(1.2e-3f32, -1.9e-3, 0.6e-3);
             let t3 = Vec3::new(1.4e-3f32, -1.7e-3, 0.7e-3);
@@ -256,6 +259,59 @@ mod firmware {
                     black_box(dt),
                 ))
             });
+            // The compensated attitude, and the integrators carrying a plain or a compensated
+            // attitude (one update each: two increments for coning2, one sample once the rate
+            // window is full; the integrator is copied in through black_box in both).
+            let ca = CompensatedAttitude::new(a);
+            count!(table, "prop_exp_step_fast_compensated_f32", || black_box(
+                ca
+            )
+            .rotated(black_box(w).scale(black_box(dt)), fast));
+            let inc_plain = IncrementIntegrator::new(a, ConingRule::TwoSample, fast);
+            let inc_comp = IncrementIntegrator::new(ca, ConingRule::TwoSample, fast);
+            count!(table, "prop_integrator_coning2_f32", || {
+                let mut x = black_box(&inc_plain).clone();
+                let _ = x.push(black_box(t1));
+                x.push(black_box(t2))
+            });
+            count!(table, "prop_integrator_coning2_compensated_f32", || {
+                let mut x = black_box(&inc_comp).clone();
+                let _ = x.push(black_box(t1));
+                x.push(black_box(t2))
+            });
+            for (method, plain_name, comp_name) in [
+                (
+                    RateMethod::Magnus4,
+                    "prop_integrator_magnus4_f32",
+                    "prop_integrator_magnus4_compensated_f32",
+                ),
+                (
+                    RateMethod::Cf4,
+                    "prop_integrator_cf4_f32",
+                    "prop_integrator_cf4_compensated_f32",
+                ),
+                (
+                    RateMethod::Rk4,
+                    "prop_integrator_rk4_f32",
+                    "prop_integrator_rk4_compensated_f32",
+                ),
+            ] {
+                if let (Ok(mut plain), Ok(mut comp)) = (
+                    RateIntegrator::new(a, method, fast, dt),
+                    RateIntegrator::new(ca, method, fast, dt),
+                ) {
+                    for v in win {
+                        let _ = plain.push(v);
+                        let _ = comp.push(v);
+                    }
+                    count!(table, plain_name, || black_box(&plain)
+                        .clone()
+                        .push(black_box(t3)));
+                    count!(table, comp_name, || black_box(&comp)
+                        .clone()
+                        .push(black_box(t3)));
+                }
+            }
         }
 
         {
