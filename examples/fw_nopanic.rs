@@ -68,8 +68,8 @@ mod firmware {
             };
             use gyrostat::propagation::normalization::norm_deviation;
             use gyrostat::propagation::{
-                ConingAccumulator, ConingRule, IncrementIntegrator, Normalization, RateIntegrator,
-                RateMethod,
+                CompensatedAttitude, ConingAccumulator, ConingRule, IncrementIntegrator,
+                Normalization, RateIntegrator, RateMethod,
             };
             let d = black_box(Vec3::new(1e-3f32, -2e-3, 5e-4));
             let dt = black_box(1e-3f32);
@@ -89,12 +89,34 @@ mod firmware {
                     sink(integ.provisional_attitude());
                 }
                 sink(integ.flush());
+                let ca = CompensatedAttitude::new(q);
+                let mut integ = IncrementIntegrator::new(ca, black_box(rule), norm);
+                for _ in 0..black_box(7) {
+                    sink(integ.push(d));
+                    sink(integ.provisional_attitude());
+                }
+                sink(integ.flush());
+            }
+            for n in [
+                Normalization::Exact,
+                Normalization::Fast,
+                Normalization::None,
+            ] {
+                sink(CompensatedAttitude::new(q).rotated(d, black_box(n)));
             }
             let mut acc = ConingAccumulator::new();
             sink(acc.push(d));
             sink(acc.take());
             for m in [RateMethod::Magnus4, RateMethod::Cf4, RateMethod::Rk4] {
                 if let Ok(mut integ) = RateIntegrator::new(q, black_box(m), norm, dt) {
+                    for _ in 0..black_box(6) {
+                        sink(integ.push(v));
+                    }
+                    sink(integ.finish());
+                }
+                let ca = CompensatedAttitude::new(q);
+                if let Ok(integ) = RateIntegrator::new(ca, black_box(m), norm, dt) {
+                    let mut integ = integ.with_step_remainder(black_box(4.7e-11));
                     for _ in 0..black_box(6) {
                         sink(integ.push(v));
                     }
