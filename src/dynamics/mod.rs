@@ -16,6 +16,8 @@
 //! - [`analysis`]: the seed's closed forms of §6.7–6.9 (6.7.39–43, 6.8.6–10, 6.9.4).
 //! - [`mass`]: inertia tensors from point masses, parallel-axis shift, radius of gyration,
 //!   impulses (6.4.11–15, 6.5.4–6, 6.5.15).
+//! - [`euler_coordinates`]: the rigid rotor in Euler angles — metric, Euler momenta, kinetic
+//!   energy, Hamiltonian and Hamilton's velocity equations; the symmetric top (6.7.16–6.7.44).
 
 // --- inertia, Hamiltonians, integrators, gyrostat (branch dynamics) ---
 pub mod gyrostat;
@@ -33,3 +35,6 @@ pub mod analysis;
 pub mod elliptic;
 pub mod free_rigid_body;
 pub mod mass;
+
+// --- Euler coordinates ---
+pub mod euler_coordinates;
