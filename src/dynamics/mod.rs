@@ -18,6 +18,8 @@
 //!   impulses (6.4.11–15, 6.5.4–6, 6.5.15).
 //! - [`euler_coordinates`]: the rigid rotor in Euler angles — metric, Euler momenta, kinetic
 //!   energy, Hamiltonian and Hamilton's velocity equations; the symmetric top (6.7.16–6.7.44).
+//! - [`semi_rigid`]: centrifugal stretching of spring-mass rotors and the quartic Hamiltonian
+//!   coefficients it produces (6.8.11–6.8.20).
 
 // --- inertia, Hamiltonians, integrators, gyrostat (branch dynamics) ---
 pub mod gyrostat;
@@ -36,5 +38,6 @@ pub mod elliptic;
 pub mod free_rigid_body;
 pub mod mass;
 
-// --- Euler coordinates ---
+// --- Euler coordinates and semi-rigid rotors ---
 pub mod euler_coordinates;
+pub mod semi_rigid;
