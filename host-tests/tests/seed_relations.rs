@@ -1,0 +1,691 @@
+//! Relations of seed §6.4–6.9 that the library computes through its existing API, each checked
+//! against an independent computation (direct sums over point masses, central differences,
+//! explicit 2×2 complex matrices, the seed's printed matrices and closed forms):
+//!
+//! - the torque law `dL/dt = N` (6.4.10a) for every integrator;
+//! - rigid-body kinematics and momenta of point masses (6.4.4), (6.4.8)–(6.4.9), (6.5.1)–(6.5.14a);
+//! - Euler `ZYZ` as a matrix and a spinor (6.6.1b), (6.6.3); Euler angles from axis angles
+//!   (6.6.5b); the polar axis-angle decomposition (6.6.11a–d);
+//! - the seed's constrained rotor (6.7.19)–(6.7.30); the energy ellipsoids (6.7.27b–c);
+//! - the Levi-Civita matrix and lab momentum (6.8.1)–(6.8.2); the six-mass rotor (6.8.8a–b);
+//! - Hamilton's `ω = ∂H/∂J` for every body Hamiltonian (6.5.14a), (6.8.5d), (6.9.2b);
+//! - gyro-rotor and symmetric-top energies linear and quadratic in `K = J_z` (6.9.5)–(6.9.6).
+#![allow(clippy::needless_range_loop)] // 3×3 index loops read like the formulas
+
+use gyrostat::dynamics::analysis::{momentum_ellipsoid_radii, velocity_ellipsoid_radii};
+use gyrostat::dynamics::mass::{inertia_from_point_masses, total_mass_and_center};
+use gyrostat::dynamics::{BodyHamiltonian, Inertia, Integrator, Quartic, State, lab_momentum};
+use gyrostat::rotation::{Euler, EulerSequence, PolarAxisAngle};
+use gyrostat::{Mat3, Quat, Real, Su2, UnitQuat, Vec3};
+use host_tests::ref_dynamics::{RefModel, inverse};
+use host_tests::reference::{
+    C, M3, U2, V3, levi_civita, mat_mul, mat_vec, su2_matrix, transpose, u2_dist, u2_mul,
+};
+use host_tests::widen::{m64, v64};
+
+fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
+fn v<T: Real>(a: V3) -> Vec3<T> {
+    Vec3::from_array(a.map(T::from_f64))
+}
+
+/// The unit quaternion along `q` (normalised by the checked constructor).
+fn quat<T: Real>(q: [f64; 4]) -> UnitQuat<T> {
+    UnitQuat::try_new(Quat::new(
+        T::from_f64(q[0]),
+        T::from_f64(q[1]),
+        T::from_f64(q[2]),
+        T::from_f64(q[3]),
+    ))
+    .unwrap()
+}
+
+// --- (6.4.10a): the torque law -----------------------------------------------------------------
+
+/// A lab-fixed torque `N(t) = N₀ + N₁ sin Ωt` applied through the body-frame torque law
+/// `τ = q*·N·q`: the lab momentum `q J q*` must follow `L(t) = L₀ + N₀t + N₁(1 − cos Ωt)/Ω`
+/// whatever the body does (6.4.10a). With a constant torque every splitting method integrates
+/// it exactly (each kick adds `N·h/2` in the lab, the free flow keeps `L`), RK4 to its order;
+/// with the sinusoid, every method to its order.
+#[test]
+fn torque_law_6_4_10a() {
+    fn run<T: Real>(integ: Integrator, n1: f64, steps: usize) -> f64 {
+        let h = BodyHamiltonian::rigid(
+            Inertia::try_from_tensor(Mat3::from_rows(
+                [3.0, -0.4, 0.25].map(T::from_f64),
+                [-0.4, 4.0, 0.3].map(T::from_f64),
+                [0.25, 0.3, 5.0].map(T::from_f64),
+            ))
+            .unwrap(),
+        );
+        let (n0, n1v, big_omega) = ([0.05, -0.02, 0.03], [0.0, n1, 0.5 * n1], 1.3);
+        let torque = |t: f64| [0, 1, 2].map(|i| n0[i] + n1v[i] * (big_omega * t).sin());
+        let mut s = State {
+            attitude: quat::<T>([0.9, 0.1, -0.3, 0.2]),
+            momentum: v([0.4, -1.2, 2.0]),
+        };
+        let l0 = v64(lab_momentum(s.attitude, s.momentum));
+        let t_end = 10.0;
+        let dt = T::from_f64(t_end / steps as f64);
+        for k in 0..steps {
+            let t = T::from_f64(k as f64 * t_end / steps as f64);
+            s = h
+                .step_with(integ, &s, t, dt, |t, st| {
+                    st.attitude.inverse_rotate(v(torque(t.to_f64())))
+                })
+                .unwrap();
+        }
+        let l = v64(lab_momentum(s.attitude, s.momentum));
+        let want = [0, 1, 2].map(|i| {
+            l0[i] + n0[i] * t_end + n1v[i] * (1.0 - (big_omega * t_end).cos()) / big_omega
+        });
+        max_diff(&l, &want)
+    }
+    for integ in [
+        Integrator::Strang,
+        Integrator::Yoshida4,
+        Integrator::Suzuki4,
+    ] {
+        // Constant lab torque: exact to rounding (1000 steps, |L| ≈ 2.4).
+        let (e64, e32) = (run::<f64>(integ, 0.0, 1000), run::<f32>(integ, 0.0, 1000));
+        println!(
+            "{integ:?}: constant lab torque, |ΔL| after 1000 steps: f64 {e64:.1e}, f32 {e32:.1e}"
+        );
+        assert!(e64 < 1e-12, "{integ:?}");
+        // f32: up to 25 exact rotations per step, each rounding |L| ≈ 2.4 by ~ε = 6e-8: a
+        // linear budget of 25 000·ε·|L| ≈ 4e-3; measured ≤ 1.7e-4 (Suzuki4).
+        assert!(e32 < 1e-3, "{integ:?} f32");
+    }
+    let e_rk4 = run::<f64>(Integrator::Rk4, 0.0, 1000);
+    println!("Rk4: constant lab torque, |ΔL| after 1000 steps: f64 {e_rk4:.1e}");
+    assert!(e_rk4 < 1e-8);
+    // Time-varying torque: errors shrink with the step at each method's order.
+    for (integ, order) in [
+        (Integrator::Rk4, 4.0),
+        (Integrator::Strang, 2.0),
+        (Integrator::Yoshida4, 4.0),
+    ] {
+        let (e1, e2) = (run::<f64>(integ, 0.04, 200), run::<f64>(integ, 0.04, 400));
+        let measured = (e1 / e2).log2();
+        println!("{integ:?}: sinusoidal lab torque, |ΔL| {e1:.1e} → {e2:.1e}, order {measured:.2}");
+        assert!(
+            e2 < 1e-5 && measured > order - 0.3,
+            "{integ:?}: {e1:e} {e2:e} order {measured}"
+        );
+    }
+}
+
+// --- point masses: (6.4.4), (6.4.8)–(6.4.9), (6.5.1)–(6.5.14a) ----------------------------------
+
+fn cloud() -> Vec<(f64, V3)> {
+    (0..9)
+        .map(|k| {
+            let t = k as f64;
+            (
+                0.4 + (0.61 * t).sin().abs(),
+                [
+                    (1.3 * t).cos() + 0.2,
+                    (0.9 * t).sin() - 0.1,
+                    (0.4 * t).cos() * 1.1,
+                ],
+            )
+        })
+        .collect()
+}
+
+fn rigid_points<T: Real>(tol: f64) {
+    let pts = cloud();
+    let lib_pts: Vec<(T, Vec3<T>)> = pts.iter().map(|(m, r)| (T::from_f64(*m), v(*r))).collect();
+    let omega = [0.7, -1.1, 0.4];
+    // (6.4.4): the centre of mass by a direct sum.
+    let msum: f64 = pts.iter().map(|p| p.0).sum();
+    let cm = [0, 1, 2].map(|i| pts.iter().map(|(m, r)| m * r[i]).sum::<f64>() / msum);
+    let (m_lib, c_lib) = total_mass_and_center(&lib_pts).unwrap();
+    assert!((m_lib.to_f64() - msum).abs() < tol * msum);
+    assert!(max_diff(&v64(c_lib), &cm) < tol, "(6.4.4)");
+    // (6.4.9a–b), (6.5.2)–(6.5.3): L = Σ r × m (ω × r) = I ω.
+    let l_sum = pts.iter().fold([0.0; 3], |acc, (m, r)| {
+        let l = cross(*r, cross(omega, *r)).map(|c| c * m);
+        [acc[0] + l[0], acc[1] + l[1], acc[2] + l[2]]
+    });
+    let i = inertia_from_point_masses(&lib_pts).unwrap();
+    let l_lib = v64(i * v(omega));
+    let scale = 10.0;
+    assert!(
+        max_diff(&l_lib, &l_sum) < tol * scale,
+        "(6.5.3): {l_lib:?} vs {l_sum:?}"
+    );
+    // (6.5.7)–(6.5.9): T = ½ Σ m |ω × r|² = ½ ω·I·ω.
+    let t_sum: f64 = pts
+        .iter()
+        .map(|(m, r)| {
+            let u = cross(omega, *r);
+            0.5 * m * dot(u, u)
+        })
+        .sum();
+    let inertia = Inertia::try_from_tensor(i).unwrap();
+    let t_lib = 0.5 * dot(omega, l_lib);
+    assert!((t_lib - t_sum).abs() < tol * scale, "(6.5.8)");
+    // (6.5.10): in the principal axes, T = ½ Σ λᵢ ω_pᵢ².
+    let (lam, axes) = (
+        v64(inertia.principal_moments()),
+        m64(&inertia.principal_axes()),
+    );
+    let wp = mat_vec(&transpose(&axes), &omega);
+    let t_principal = 0.5 * (0..3).map(|k| lam[k] * wp[k] * wp[k]).sum::<f64>();
+    assert!((t_principal - t_sum).abs() < tol * scale, "(6.5.10)");
+    // (6.5.11)–(6.5.12): T = ½ L·I⁻¹·L = Σ L_pᵢ²/(2λᵢ).
+    let t_h = inertia.energy_from_momentum(v(l_sum)).to_f64();
+    assert!((t_h - t_sum).abs() < tol * scale, "(6.5.11)");
+    let t_rigid = BodyHamiltonian::rigid(inertia).energy(v(l_sum)).to_f64();
+    assert!((t_rigid - t_sum).abs() < tol * scale, "(6.5.12)");
+    // (6.5.13): L = ∂T/∂ω by central differences of the direct sum.
+    let h = 1e-6;
+    for k in 0..3 {
+        let t_at = |d: f64| {
+            let mut w = omega;
+            w[k] += d;
+            pts.iter()
+                .map(|(m, r)| {
+                    let u = cross(w, *r);
+                    0.5 * m * dot(u, u)
+                })
+                .sum::<f64>()
+        };
+        let fd = (t_at(h) - t_at(-h)) / (2.0 * h);
+        assert!((fd - l_lib[k]).abs() < tol * scale + 1e-8, "(6.5.13) {k}");
+    }
+    // (6.4.8), (6.5.1): a body point's lab velocity is ω_lab × r_lab (central differences of
+    // the attitude q(t) = q₀·exp(ω_body t)).
+    let q0 = quat::<T>([0.8, -0.2, 0.5, 0.1]);
+    let r_body = v::<T>(pts[3].1);
+    let at = |t: f64| v64(q0 * UnitQuat::exp(v::<T>(omega.map(|c| c * t))).unwrap() * r_body);
+    let ht = 1e-3;
+    let fd = [0, 1, 2].map(|k| (at(ht)[k] - at(-ht)[k]) / (2.0 * ht));
+    let w_lab = v64(q0.rotate(v(omega)));
+    let want = cross(w_lab, at(0.0));
+    // f64: central-difference truncation ≈ ht²|ω|³|r|/6 ≈ 5e-7; f32: the positions' rounding
+    // (6e-8·|r|) over 2ht, ≈ 5e-5.
+    let fd_tol = if tol > 1e-10 { 1e-4 } else { 1e-6 };
+    assert!(max_diff(&fd, &want) < fd_tol, "(6.4.8): {fd:?} vs {want:?}");
+}
+
+#[test]
+fn rigid_point_masses_f64() {
+    rigid_points::<f64>(1e-14);
+}
+
+#[test]
+fn rigid_point_masses_f32() {
+    rigid_points::<f32>(2e-6);
+}
+
+/// Hamilton's equation `ω = ∂H/∂J` ((6.5.14a), (6.7.17c) BOD form, (6.8.5d), (6.9.2b)) for the
+/// rigid body with a full tensor, the gyro-rotor and both quartic models: `BodyHamiltonian::omega`
+/// against central differences of an independently written `H`.
+#[test]
+fn omega_is_the_gradient_of_h_6_5_14a() {
+    fn check<T: Real>(tol: f64) {
+        let full: M3 = [[3.0, -0.4, 0.25], [-0.4, 4.0, 0.3], [0.25, 0.3, 5.0]];
+        let inv = inverse(&full);
+        let spin = [0.3, -0.2, 0.5];
+        let j = [0.9, -1.3, 0.6];
+        let h = 1e-6;
+        // Full tensor with spin: H = ½ (J − S)·I⁻¹·(J − S).
+        let inertia = Inertia::try_from_tensor(Mat3::from_rows(
+            full[0].map(T::from_f64),
+            full[1].map(T::from_f64),
+            full[2].map(T::from_f64),
+        ))
+        .unwrap();
+        let model = BodyHamiltonian::try_new(inertia, v(spin), Quartic::None).unwrap();
+        let e_ref = |j: V3| {
+            let r = [j[0] - spin[0], j[1] - spin[1], j[2] - spin[2]];
+            0.5 * dot(r, mat_vec(&inv, &r))
+        };
+        let w = v64(model.omega(v(j)));
+        for k in 0..3 {
+            let (mut p, mut m) = (j, j);
+            p[k] += h;
+            m[k] -= h;
+            let fd = (e_ref(p) - e_ref(m)) / (2.0 * h);
+            assert!((w[k] - fd).abs() < tol + 1e-8, "full tensor {k}");
+        }
+        assert!((model.energy(v(j)).to_f64() - e_ref(j)).abs() < tol);
+        // Principal axes with the quartic terms (6.8.20a–b).
+        let moments = [6.0, 4.0, 3.0];
+        let principal = Inertia::try_from_principal(v(moments)).unwrap();
+        for (q, t4, t22) in [
+            (Quartic::Octahedral(T::from_f64(0.02)), 0.02, 0.0),
+            (Quartic::Cubic(T::from_f64(-0.03)), 0.0, -0.03),
+        ] {
+            let model = BodyHamiltonian::try_new(principal, v(spin), q).unwrap();
+            let rm = RefModel {
+                moments,
+                spin,
+                t4,
+                t22,
+            };
+            let w = v64(model.omega(v(j)));
+            for k in 0..3 {
+                let (mut p, mut m) = (j, j);
+                p[k] += h;
+                m[k] -= h;
+                let fd = (rm.energy(p) - rm.energy(m)) / (2.0 * h);
+                assert!((w[k] - fd).abs() < tol + 1e-8, "{q:?} {k}");
+            }
+        }
+    }
+    check::<f64>(1e-14);
+    check::<f32>(2e-6);
+}
+
+// --- §6.6: Euler ZYZ, axis angles, the polar decomposition -------------------------------------
+
+const DEG: f64 = core::f64::consts::PI / 180.0;
+
+fn u2_of<T: Real>(q: UnitQuat<T>) -> U2 {
+    let m = Su2::from(q).matrix();
+    m.map(|row| row.map(|c| C::new(c.re.to_f64(), c.im.to_f64())))
+}
+
+fn cexp(phase: f64) -> C {
+    C::new(phase.cos(), phase.sin())
+}
+
+/// Seed (6.6.1b) and (6.6.3): `R(αβγ)` as the printed 3×3 matrix and 2×2 spinor, against the
+/// library's intrinsic `ZYZ`, sign of the spinor included.
+#[test]
+fn seed_6_6_1b_and_6_6_3_euler_zyz() {
+    fn check<T: Real>(tol: f64) {
+        for (a, b, g) in [
+            (0.4, 1.1, -0.7),
+            (50.0 * DEG, 60.0 * DEG, 70.0 * DEG),
+            (3.0, -2.0, 5.5),
+        ] {
+            let q = Euler::new(EulerSequence::ZYZ, [a, b, g].map(T::from_f64)).to_unit_quat();
+            let (sa, ca) = f64::sin_cos(a);
+            let (sb, cb) = f64::sin_cos(b);
+            let (sg, cg) = f64::sin_cos(g);
+            let r = [
+                [ca * cb * cg - sa * sg, -ca * cb * sg - sa * cg, ca * sb],
+                [sa * cb * cg + ca * sg, -sa * cb * sg + ca * cg, sa * sb],
+                [-cg * sb, sg * sb, cb],
+            ];
+            let m = m64(&q.to_rotation_matrix());
+            for i in 0..3 {
+                assert!(max_diff(&m[i], &r[i]) < tol, "(6.6.1b)");
+            }
+            let (c2, s2) = ((b / 2.0).cos(), (b / 2.0).sin());
+            let u = [
+                [
+                    cexp(-(a + g) / 2.0).mul(C::new(c2, 0.0)),
+                    cexp((g - a) / 2.0).mul(C::new(-s2, 0.0)),
+                ],
+                [
+                    cexp((a - g) / 2.0).mul(C::new(s2, 0.0)),
+                    cexp((a + g) / 2.0).mul(C::new(c2, 0.0)),
+                ],
+            ];
+            assert!(u2_dist(&u2_of(q), &u) < tol, "(6.6.3)");
+        }
+    }
+    check::<f64>(1e-15);
+    check::<f32>(2e-6);
+}
+
+/// Seed (6.6.5b): Euler angles from axis angles, `α = φ − π/2 + T`, `β = 2 sin⁻¹(sin(Θ/2) sin ϑ)`,
+/// `γ = π/2 − φ + T`, `T = tan⁻¹(tan(Θ/2) cos ϑ)` (the seed writes `tan(Ω/2)`: Θ = Ωt). For
+/// `Θ < π` these give the same spinor as `R[φ, ϑ, Θ]`; and the seed's (6.6.6a) numbers.
+#[test]
+fn seed_6_6_5b_euler_from_axis_angles() {
+    for (phi, th, big) in [
+        (80.0 * DEG, 34.0 * DEG, 129.0 * DEG),
+        (0.3, 1.2, 2.5),
+        (-1.0, 2.6, 0.4),
+    ] {
+        let t = ((big / 2.0f64).tan() * f64::cos(th)).atan();
+        let alpha = phi - core::f64::consts::FRAC_PI_2 + t;
+        let beta = 2.0 * ((big / 2.0f64).sin() * f64::sin(th)).asin();
+        let gamma = core::f64::consts::FRAC_PI_2 - phi + t;
+        let qe = Euler::new(EulerSequence::ZYZ, [alpha, beta, gamma]).to_unit_quat();
+        let qp = PolarAxisAngle::new(phi, th, big)
+            .try_to_unit_quat()
+            .unwrap();
+        let d = (qe.into_quat() - qp.into_quat()).norm();
+        assert!(d < 1e-15, "[{phi}, {th}, {big}]: {qe:?} vs {qp:?}");
+        if phi == 80.0 * DEG {
+            // (6.6.6a): R[80°, 34°, 129°] = R(50°, 60°, 70°) to the seed's rounding.
+            for (got, want) in [alpha, beta, gamma].iter().zip([50.0, 60.0, 70.0]) {
+                assert!((got / DEG - want).abs() < 1.0, "{}", got / DEG);
+            }
+        }
+    }
+}
+
+/// Seed (6.6.11a–d): `R[φ, ϑ, Θ] = T e^{−iΘS_Z} T†` with `T = R(φϑ0)`
+/// `= R(φ00) R(0ϑ0) R(00Θ) R(0−ϑ0) R(−φ00) = e^{−iφS_Z} e^{−iϑS_Y} e^{−iΘS_Z} e^{iϑS_Y} e^{iφS_Z}`:
+/// `PolarAxisAngle` against products of library Euler rotations and against products of the
+/// reference's explicit 2×2 matrices (6.6.4), as spinors (sign included, Θ up to 4π).
+#[test]
+fn polar_axis_angle_decomposition_6_6_11() {
+    fn check<T: Real>(tol: f64) {
+        let zyz = |a: f64, b: f64, g: f64| {
+            Euler::new(EulerSequence::ZYZ, [a, b, g].map(T::from_f64)).to_unit_quat()
+        };
+        for (phi, th, big) in [
+            (80.0 * DEG, 34.0 * DEG, 129.0 * DEG),
+            (80.0 * DEG, 34.0 * DEG, 489.0 * DEG),
+            (-2.0, 2.9, 6.0),
+            (0.5, 0.0, 1.0),
+            (1.1, core::f64::consts::PI, 3.5),
+            (2.2, 1.3, 4.0 * core::f64::consts::PI - 0.1),
+        ] {
+            let p = PolarAxisAngle::new(T::from_f64(phi), T::from_f64(th), T::from_f64(big));
+            let q = p.try_to_unit_quat().unwrap();
+            // (6.6.11a–b): the similarity transform of the z twist by T = R(φϑ0).
+            let t_op = zyz(phi, th, 0.0);
+            let b = zyz(0.0, 0.0, big).similarity_transform(t_op);
+            let b2 = t_op * zyz(0.0, 0.0, big) * t_op.inverse();
+            // (6.6.11c): five Euler factors.
+            let c = zyz(phi, 0.0, 0.0)
+                * zyz(0.0, th, 0.0)
+                * zyz(0.0, 0.0, big)
+                * zyz(0.0, -th, 0.0)
+                * zyz(-phi, 0.0, 0.0);
+            for (name, x) in [
+                ("(6.6.11b)", b),
+                ("(6.6.11b) product", b2),
+                ("(6.6.11c)", c),
+            ] {
+                let d = (x.into_quat() - q.into_quat()).norm().to_f64();
+                assert!(d < tol, "{name} [{phi}, {th}, {big}]: {d:e}");
+            }
+            // (6.6.11d) with explicit 2×2 exponentials e^{−iθS} = R[θ n̂] (6.6.4).
+            let (z, y) = ([0.0, 0.0, 1.0], [0.0, 1.0, 0.0]);
+            let d5 = [
+                su2_matrix(z, phi),
+                su2_matrix(y, th),
+                su2_matrix(z, big),
+                su2_matrix(y, -th),
+                su2_matrix(z, -phi),
+            ]
+            .iter()
+            .fold(su2_matrix(z, 0.0), |acc, m| u2_mul(&acc, m));
+            assert!(
+                u2_dist(&u2_of(q), &d5) < tol,
+                "(6.6.11d) [{phi}, {th}, {big}]"
+            );
+        }
+    }
+    check::<f64>(1e-14);
+    check::<f32>(4e-6);
+}
+
+// --- §6.7: the constrained rotor (6.7.19)–(6.7.30), ellipsoids (6.7.27) -----------------------
+
+/// The seed's constrained rotor (Fig. 6.7.1): one mass `m` on a rod at polar angle `β`, turned
+/// about the lab z axis at `α̇`. Its lab inertia, momentum and energy are the printed (6.7.19a),
+/// (6.7.20a–b), (6.7.21); the Euler-momentum map gives the same `J` from `J_α = ∂L/∂α̇` alone
+/// (6.7.22b); the bearing torque is `ω × J` (6.7.24), (6.7.30a), of size `|λ|` (6.7.23); the
+/// body-frame `J` is constant (6.7.28)–(6.7.29); and the rod tensors rotate as (6.7.25), (6.7.26).
+#[test]
+fn constrained_rotor_6_7_19_to_6_7_30() {
+    let (m, r, beta, alpha_dot) = (1.3f64, 0.8f64, 0.6f64, 1.7f64);
+    let mr2 = m * r * r;
+    let (sb, cb) = beta.sin_cos();
+    let inertia_lab = |alpha: f64| {
+        let x3 = [alpha.cos() * sb, alpha.sin() * sb, cb].map(|c| c * r);
+        inertia_from_point_masses(&[(m, Vec3::from_array(x3))]).unwrap()
+    };
+    let omega = Vec3::new(0.0, 0.0, alpha_dot); // (6.7.19b)
+    for alpha in [0.0, 0.7, 2.9] {
+        let (sa, ca) = f64::sin_cos(alpha);
+        // (6.7.19a)
+        let want = [
+            [1.0 - ca * ca * sb * sb, -sa * ca * sb * sb, -ca * sb * cb],
+            [-sa * ca * sb * sb, 1.0 - sa * sa * sb * sb, -sa * sb * cb],
+            [-ca * sb * cb, -sa * sb * cb, sb * sb],
+        ];
+        let i = inertia_lab(alpha);
+        for k in 0..3 {
+            assert!(
+                max_diff(&i.m[k], &want[k].map(|c| c * mr2)) < 1e-15,
+                "(6.7.19a)"
+            );
+        }
+        // (6.7.20a)–(6.7.20b)
+        let j = i * omega;
+        let j20a = [-ca * sb * cb, -sa * sb * cb, sb * sb].map(|c| c * mr2 * alpha_dot);
+        assert!(max_diff(&v64(j), &j20a) < 1e-15, "(6.7.20a)");
+        let jj = mr2 * alpha_dot * sb;
+        let rz = UnitQuat::try_from_axis_angle(Vec3::Z, alpha).unwrap();
+        let j20b = rz.rotate(Vec3::new(-cb, 0.0, sb).scale(jj));
+        assert!((j20b - j).norm() < 1e-15, "(6.7.20b)");
+        // (6.7.21): T = ½ ω·J = ½ m r² α̇² sin²β.
+        let t = 0.5 * omega.dot(j);
+        assert!((t - 0.5 * mr2 * alpha_dot * alpha_dot * sb * sb).abs() < 1e-15);
+        // (6.7.22b): J from J_α = ∂L/∂α̇ = m r² α̇ sin²β through (6.7.10a), J_β = J_γ = 0.
+        let e = Euler::new(EulerSequence::ZYZ, [alpha, beta, 0.0]);
+        let j_alpha = mr2 * alpha_dot * sb * sb;
+        let j22 = e
+            .try_lab_momentum_from_euler_momenta([j_alpha, 0.0, 0.0])
+            .unwrap();
+        assert!((j22 - j).norm() < 1e-15, "(6.7.22b): {j22:?} vs {j:?}");
+        // (6.7.24), (6.7.30a): dJ/dt = ω × J by central differences in time; size |λ| (6.7.23).
+        let h = 1e-5;
+        let jd = (inertia_lab(alpha + alpha_dot * h) * omega
+            - inertia_lab(alpha - alpha_dot * h) * omega)
+            .scale(1.0 / (2.0 * h));
+        let j24 = [sa, -ca, 0.0].map(|c| c * mr2 * alpha_dot * alpha_dot * sb * cb);
+        assert!(max_diff(&v64(jd), &j24) < 1e-9, "(6.7.24)");
+        assert!(max_diff(&v64(omega.cross(j)), &j24) < 1e-15, "(6.7.30a)");
+        let lambda = -mr2 * alpha_dot * alpha_dot * sb * cb;
+        assert!(
+            (omega.cross(j).norm() - lambda.abs()).abs() < 1e-15,
+            "(6.7.23)"
+        );
+        // (6.7.28)–(6.7.29): J_body = Rᵀ(αβ0) J is the same at every α.
+        let jb = e.to_unit_quat().inverse_rotate(j);
+        // The mass is on z̄: I_body = m r² diag(1, 1, 0), ω_body = α̇(−sin β, 0, cos β).
+        let jb_want = Vec3::new(-mr2 * alpha_dot * sb, 0.0, 0.0);
+        assert!((jb - jb_want).norm() < 1e-15, "(6.7.29a): {jb:?}");
+        // (6.7.25a–b): z̄ = R(αβ0) z and z̄z̄ᵀ = R zzᵀ Rᵀ; (6.7.25d), (6.7.26): a body tensor
+        // diag(I, I, ι) seen in the lab.
+        let rot = m64(&e.to_unit_quat().to_rotation_matrix());
+        let zbar = v64(e.to_unit_quat().rotate(Vec3::Z));
+        assert!(
+            max_diff(&zbar, &[ca * sb, sa * sb, cb]) < 1e-15,
+            "(6.7.25a)"
+        );
+        let zz = [[0.0; 3], [0.0; 3], [0.0, 0.0, 1.0]];
+        let zzbar = mat_mul(&mat_mul(&rot, &zz), &transpose(&rot));
+        let want = [
+            [ca * ca * sb * sb, sa * ca * sb * sb, ca * sb * cb],
+            [sa * ca * sb * sb, sa * sa * sb * sb, sa * sb * cb],
+            [ca * sb * cb, sa * sb * cb, cb * cb],
+        ];
+        for k in 0..3 {
+            assert!(max_diff(&zzbar[k], &want[k]) < 1e-15, "(6.7.25b)");
+        }
+        let (it, iota) = (mr2, 0.05 * mr2);
+        let body = Inertia::try_from_principal(Vec3::new(it, it, iota)).unwrap();
+        let lab = mat_mul(&mat_mul(&rot, &m64(&body.tensor())), &transpose(&rot));
+        let d = iota - it;
+        let want = [
+            [
+                it + d * ca * ca * sb * sb,
+                d * sa * ca * sb * sb,
+                d * ca * sb * cb,
+            ],
+            [
+                d * sa * ca * sb * sb,
+                it + d * sa * sa * sb * sb,
+                d * sa * sb * cb,
+            ],
+            [
+                d * ca * sb * cb,
+                d * sa * sb * cb,
+                it * sb * sb + iota * cb * cb,
+            ],
+        ];
+        for k in 0..3 {
+            assert!(max_diff(&lab[k], &want[k]) < 1e-15, "(6.7.26)");
+        }
+    }
+}
+
+/// (6.7.27b–c): the momentum ellipsoid has semi-axes `√(2EIᵢ)`, the velocity ellipsoid
+/// `√(2E/Iᵢ)`: the points at those distances along each principal axis have energy `E` (checked
+/// with an independently inverted tensor). The seed's printed `√Iᵢ/√(2E)` and `1/√(2EIᵢ)`
+/// (and `Iᵢ = 2aᵢ²E` in (6.8.8b)) do not, except at `E = ½`.
+#[test]
+fn ellipsoid_radii_6_7_27() {
+    fn check<T: Real>(tol: f64) {
+        let full: M3 = [[3.0, -0.4, 0.25], [-0.4, 4.0, 0.3], [0.25, 0.3, 5.0]];
+        let inv = inverse(&full);
+        let inertia = Inertia::try_from_tensor(Mat3::from_rows(
+            full[0].map(T::from_f64),
+            full[1].map(T::from_f64),
+            full[2].map(T::from_f64),
+        ))
+        .unwrap();
+        let axes = m64(&inertia.principal_axes());
+        let moments = v64(inertia.principal_moments());
+        let energy = 0.8;
+        let a = v64(momentum_ellipsoid_radii(&inertia, T::from_f64(energy)).unwrap());
+        let w = v64(velocity_ellipsoid_radii(&inertia, T::from_f64(energy)).unwrap());
+        for k in 0..3 {
+            let n = [axes[0][k], axes[1][k], axes[2][k]];
+            let jk = n.map(|c| c * a[k]);
+            assert!(
+                (0.5 * dot(jk, mat_vec(&inv, &jk)) - energy).abs() < tol,
+                "(6.7.27b) {k}"
+            );
+            let wk = n.map(|c| c * w[k]);
+            assert!(
+                (0.5 * dot(wk, mat_vec(&full, &wk)) - energy).abs() < tol,
+                "(6.7.27c) {k}"
+            );
+            // The printed forms are off by a factor 2E (momentum) and 1/(2E) (velocity).
+            let printed = (moments[k] / (2.0 * energy)).sqrt();
+            assert!((a[k] / printed - 2.0 * energy).abs() < tol);
+        }
+    }
+    check::<f64>(1e-14);
+    check::<f32>(4e-6);
+}
+
+// --- §6.8 ---------------------------------------------------------------------------------------
+
+/// (6.8.1): the Levi-Civita matrix `ε·ω` is the cross-product matrix; (6.8.2): the lab momentum of
+/// body momentum `(0, 0, J)` at attitude `R(αβγ)` is `J(cos α sin β, sin α sin β, cos β)`.
+#[test]
+fn levi_civita_and_lab_momentum_6_8_1_and_6_8_2() {
+    let w = [0.3, -1.2, 0.7];
+    let s = Mat3::skew(Vec3::from_array(w));
+    for jj in 0..3 {
+        for l in 0..3 {
+            let want: f64 = (0..3).map(|k| levi_civita(jj, k, l) * w[k]).sum();
+            assert_eq!(s.m[jj][l], want, "(6.8.1) ({jj}, {l})");
+        }
+    }
+    let (a, b, g, jm) = (0.4f64, 1.1f64, -0.7f64, 2.5f64);
+    let q = Euler::new(EulerSequence::ZYZ, [a, b, g]).to_unit_quat();
+    let l = v64(lab_momentum(q, Vec3::new(0.0, 0.0, jm)));
+    let want = [a.cos() * b.sin(), a.sin() * b.sin(), b.cos()].map(|c| c * jm);
+    assert!(max_diff(&l, &want) < 1e-15, "(6.8.2)");
+}
+
+/// (6.8.8a–b): the rotor of Fig. 6.8.1 — three pairs of masses `m` at `±r₁x̂, ±r₂ŷ, ±r₃ẑ` —
+/// has `Iᵢ = 2m(r_j² + r_k²)`; radii `r² ∝ (½, 5/2, 7/2)` give `I₁ : I₂ : I₃ = 6 : 4 : 3`, and
+/// its momentum ellipsoid has semi-axes `aᵢ² = 2EIᵢ` (not the printed `Iᵢ = 2aᵢ²E`).
+#[test]
+fn six_mass_rotor_6_8_8() {
+    let (m, k) = (0.7f64, 0.3f64);
+    let r = [0.5f64, 2.5, 3.5].map(|x| (x * k).sqrt());
+    let mut pts = Vec::new();
+    for (axis, ri) in r.iter().enumerate() {
+        for s in [1.0, -1.0] {
+            let mut p = [0.0; 3];
+            p[axis] = s * ri;
+            pts.push((m, Vec3::from_array(p)));
+        }
+    }
+    let i = inertia_from_point_masses(&pts).unwrap();
+    let unit = 2.0 * m * k;
+    let want = [
+        2.0 * m * (r[1] * r[1] + r[2] * r[2]),
+        2.0 * m * (r[0] * r[0] + r[2] * r[2]),
+        2.0 * m * (r[0] * r[0] + r[1] * r[1]),
+    ];
+    assert!(max_diff(&v64(i.diagonal()), &want) < 1e-14, "(6.8.8a)");
+    assert!(max_diff(&v64(i.diagonal()).map(|c| c / unit), &[6.0, 4.0, 3.0]) < 1e-14);
+    let inertia = Inertia::try_from_tensor(i).unwrap();
+    let energy = 1.7;
+    let a = v64(momentum_ellipsoid_radii(&inertia, energy).unwrap());
+    let moments = v64(inertia.principal_moments());
+    for k in 0..3 {
+        assert!(
+            (a[k] * a[k] - 2.0 * energy * moments[k]).abs() < 1e-13,
+            "(6.8.8b)"
+        );
+        assert!(
+            (2.0 * a[k] * a[k] * energy - moments[k]).abs() > 1.0,
+            "printed (6.8.8b)"
+        );
+    }
+}
+
+// --- §6.9 ---------------------------------------------------------------------------------------
+
+/// (6.9.5)–(6.9.6b): a spherical gyro-rotor's energy is linear in `K = J_z` (spin on z),
+/// `E = BS² + BJ² − 2BSK` with `gμ = 2B`; a symmetric rigid top's is quadratic,
+/// `E = BJ² + (C − B)K²` (`B = 1/(2I₁)`, `C = 1/(2I₃)`).
+#[test]
+fn gyro_and_symmetric_top_energies_6_9_5_and_6_9_6() {
+    fn check<T: Real>(tol: f64) {
+        let (i, s) = (2.5, 0.8);
+        let bb = 1.0 / (2.0 * i);
+        let sph = BodyHamiltonian::try_new(
+            Inertia::try_from_principal(v::<T>([i, i, i])).unwrap(),
+            v([0.0, 0.0, s]),
+            Quartic::None,
+        )
+        .unwrap();
+        let (it, i3) = (3.0, 1.7);
+        let (b2, c2) = (1.0 / (2.0 * it), 1.0 / (2.0 * i3));
+        let top = BodyHamiltonian::rigid(Inertia::try_from_principal(v([it, it, i3])).unwrap());
+        for j in [[0.3, -0.4, 1.2], [1.0, 0.0, 0.0], [0.2, 0.9, -0.5]] {
+            let (j2, kk) = (dot(j, j), j[2]);
+            let e = sph.energy(v::<T>(j)).to_f64();
+            assert!(
+                (e - (bb * s * s + bb * j2 - 2.0 * bb * s * kk)).abs() < tol,
+                "(6.9.5)"
+            );
+            let e = top.energy(v::<T>(j)).to_f64();
+            assert!(
+                (e - (b2 * j2 + (c2 - b2) * kk * kk)).abs() < tol,
+                "(6.9.6b)"
+            );
+        }
+    }
+    check::<f64>(1e-15);
+    check::<f32>(1e-6);
+}
