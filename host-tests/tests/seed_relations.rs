@@ -689,3 +689,46 @@ fn gyro_and_symmetric_top_energies_6_9_5_and_6_9_6() {
     check::<f64>(1e-15);
     check::<f32>(1e-6);
 }
+
+/// (6.8.20c–d): the quartic tensors along the seed's BOD direction
+/// `Ĵ = (−cos γ sin β, sin γ sin β, cos β)` (6.7.40). The library's quartic energies (difference
+/// of a `BodyHamiltonian` with and without the term) match the printed angle form of `T⁽⁴⁾`
+/// (6.8.20c). For `T⁽²²⁾` the printed `J⁴[cos²2γ sin²β + sin²2β]` is a misprint: expanding
+/// `Ĵ₁²Ĵ₂² + Ĵ₁²Ĵ₃² + Ĵ₂²Ĵ₃²` gives `¼J⁴[sin²2γ sin⁴β + sin²2β]` (the printed form is 0 at
+/// β = 90°, γ = 45°, where `T⁽²²⁾ = J⁴/4`).
+#[test]
+fn quartic_tensors_in_angles_6_8_20c_d() {
+    fn check<T: Real>(tol: f64) {
+        let inertia = Inertia::try_from_principal(v::<T>([6.0, 4.0, 3.0])).unwrap();
+        let rigid = BodyHamiltonian::rigid(inertia);
+        let octa =
+            BodyHamiltonian::try_new(inertia, Vec3::ZERO, Quartic::Octahedral(T::ONE)).unwrap();
+        let cubic = BodyHamiltonian::try_new(inertia, Vec3::ZERO, Quartic::Cubic(T::ONE)).unwrap();
+        let jm = 1.3f64;
+        for kb in 0..=6 {
+            for kg in 0..=8 {
+                let (b, g) = (kb as f64 * 0.5, kg as f64 * 0.75);
+                let d = [-g.cos() * b.sin(), g.sin() * b.sin(), b.cos()];
+                let j = v::<T>(d.map(|c| c * jm));
+                let t4 = (octa.energy(j) - rigid.energy(j)).to_f64();
+                let t22 = (cubic.energy(j) - rigid.energy(j)).to_f64();
+                let j4 = jm.powi(4);
+                let (sb, cb, sg, cg) = (b.sin(), b.cos(), g.sin(), g.cos());
+                let printed_c =
+                    j4 * (cg.powi(4) * sb.powi(4) + sg.powi(4) * sb.powi(4) + cb.powi(4));
+                assert!((t4 - printed_c).abs() < tol, "(6.8.20c) β={b} γ={g}");
+                let corrected_d =
+                    0.25 * j4 * ((2.0 * g).sin().powi(2) * sb.powi(4) + (2.0 * b).sin().powi(2));
+                assert!((t22 - corrected_d).abs() < tol, "(6.8.20d) β={b} γ={g}");
+            }
+        }
+        // The printed (6.8.20d) at β = 90°, γ = 45°.
+        let (b, g) = (core::f64::consts::FRAC_PI_2, core::f64::consts::FRAC_PI_4);
+        let printed_d = (2.0 * g).cos().powi(2) * b.sin().powi(2) + (2.0 * b).sin().powi(2);
+        let j = v::<T>([-g.cos() * b.sin(), g.sin() * b.sin(), b.cos()]);
+        let t22 = (cubic.energy(j) - rigid.energy(j)).to_f64();
+        assert!((t22 - 0.25).abs() < tol && printed_d.abs() < 1e-15);
+    }
+    check::<f64>(1e-13);
+    check::<f32>(2e-5); // differences of order-one energies of ~3 in f32
+}
