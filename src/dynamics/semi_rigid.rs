@@ -132,6 +132,18 @@ impl<T: Real> StretchMode<T> {
         })
     }
 
+    /// The mass `m` of the stretch coordinate.
+    #[inline]
+    pub fn mass(&self) -> T {
+        self.mass
+    }
+
+    /// The spring frequency `ω_v`, rad/s.
+    #[inline]
+    pub fn omega_v(&self) -> T {
+        self.omega_v
+    }
+
     /// The slope `∂μ/∂r` of the inverse inertia.
     #[inline]
     pub fn dmu_dr(&self) -> T {
@@ -223,6 +235,24 @@ impl<T: Real> SpringRotor<T> {
             omega_v,
             rest_radius,
         })
+    }
+
+    /// The mass `m`, kg.
+    #[inline]
+    pub fn mass(&self) -> T {
+        self.mass
+    }
+
+    /// The spring frequency `ω_v`, rad/s.
+    #[inline]
+    pub fn omega_v(&self) -> T {
+        self.omega_v
+    }
+
+    /// The rest radius `r₀`, m.
+    #[inline]
+    pub fn rest_radius(&self) -> T {
+        self.rest_radius
     }
 
     /// The rest inverse inertia `μ₀ = 1/(mr₀²)`.
