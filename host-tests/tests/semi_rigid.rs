@@ -333,6 +333,7 @@ fn symmetric_rotors_match_direct_minimisation_6_8_16_to_6_8_20() {
         assert!((t22 + 2.0 * t4).abs() <= 1e-15 * t4.abs());
 
         let mut res = Vec::new();
+        let mut worst_rel: f64 = 0.0;
         for dir in [
             [1.0, 0.0, 0.0],
             [1.0, 1.0, 0.0],
@@ -358,10 +359,11 @@ fn symmetric_rotors_match_direct_minimisation_6_8_16_to_6_8_20() {
                     assert!((e_b - e).abs() < 1e-15 * e, "{arr:?} {b:?}");
                 }
                 // The quartic carries the whole stretch energy to O(J²) relative: at |J| = 0.05
-                // within 0.1% (measured ≤ 0.05%).
+                // within 0.1% (measured ≤ 0.052%, tetrahedron).
                 let quartic_min = e_min - j2 / (2.0 * i0);
                 let quartic = e - j2 / (2.0 * i0);
                 if len == 0.05 {
+                    worst_rel = worst_rel.max((quartic_min / quartic - 1.0).abs());
                     assert!(
                         (quartic_min / quartic - 1.0).abs() < 1e-3,
                         "{arr:?} {dir:?}: {quartic_min} vs {quartic}"
@@ -390,7 +392,10 @@ fn symmetric_rotors_match_direct_minimisation_6_8_16_to_6_8_20() {
             );
             res.push(ratio);
         }
-        println!("{arr:?}: residual ratios |J| = 0.1/0.05 over four directions: {res:.3?}");
+        println!(
+            "{arr:?}: residual ratios |J| = 0.1/0.05 over four directions: {res:.3?}; \
+             quartic vs minimised stretch energy at |J| = 0.05: {worst_rel:.1e}"
+        );
         // Which axes are valleys, from the minimiser alone: octahedron (100), cube and
         // tetrahedron (111).
         let e100 = minimise(&directions(arr), unit([1.0, 0.0, 0.0], 0.1)).1;
