@@ -25,7 +25,8 @@ targets=(thumbv6m-none-eabi thumbv7em-none-eabihf)
 labels=(M0 M4F)
 caps=(baseline gyro2 euler gyro2_euler strang exact all)
 snapshot=benches/footprint.snapshot
-dir=target/footprint
+target_dir="${CARGO_TARGET_DIR:-target}"
+dir="$target_dir/footprint"
 mkdir -p "$dir"
 size_tool="$(rustc --print sysroot)/lib/rustlib/$(rustc -vV | sed -n 's/^host: //p')/bin/llvm-size"
 [ -x "$size_tool" ] || { echo "llvm-size not found: rustup component add llvm-tools" >&2; exit 1; }
@@ -38,7 +39,7 @@ current="$dir/current.txt"
 for t in "${targets[@]}"; do
   for c in "${caps[@]}"; do
     GYROSTAT_FOOTPRINT="$c" cargo build -q --release --example fw_footprint --target "$t"
-    "$size_tool" -A "target/$t/release/examples/fw_footprint" > "$dir/$t-$c.size"
+    "$size_tool" -A "$target_dir/$t/release/examples/fw_footprint" > "$dir/$t-$c.size"
     GYROSTAT_FOOTPRINT="$c" GYROSTAT_FOOTPRINT_STACK=1 \
       cargo run -q --release --example fw_footprint --target "$t" > "$dir/$t-$c.stack"
     # Stack of the typical case (the first) and the worst over all cases.

@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 targets=(thumbv7em-none-eabihf thumbv8m.main-none-eabihf thumbv7m-none-eabi thumbv6m-none-eabi)
 labels=(M4F M33 M3 M0)
-dir=target/icount
+dir="${CARGO_TARGET_DIR:-target}/icount"
 mkdir -p "$dir"
 for t in "${targets[@]}"; do
   cargo run -q --release --example fw_icount --target "$t" > "$dir/$t.txt"
