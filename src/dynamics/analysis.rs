@@ -300,17 +300,7 @@ pub fn momentum_ellipsoid_radii<T: Real>(
     inertia: &Inertia<T>,
     energy: T,
 ) -> Result<Vec3<T>, Error> {
-    check_finite(&[energy])?;
-    if energy < T::ZERO {
-        return Err(Error::InvalidArgument);
-    }
-    let m = inertia.principal_moments();
-    let two_e = T::TWO * energy;
-    Ok(Vec3::new(
-        (two_e * m.x).sqrt(),
-        (two_e * m.y).sqrt(),
-        (two_e * m.z).sqrt(),
-    ))
+    ellipsoid_radii(inertia, energy, |two_e, moment| (two_e * moment).sqrt())
 }
 
 /// The semi-axes `Aᵢ = √(2E/Iᵢ)` of the angular-velocity ellipsoid
@@ -324,6 +314,15 @@ pub fn velocity_ellipsoid_radii<T: Real>(
     inertia: &Inertia<T>,
     energy: T,
 ) -> Result<Vec3<T>, Error> {
+    ellipsoid_radii(inertia, energy, |two_e, moment| (two_e / moment).sqrt())
+}
+
+/// `radius(2E, Iᵢ)` on each principal axis, for a checked energy `E ≥ 0`.
+fn ellipsoid_radii<T: Real>(
+    inertia: &Inertia<T>,
+    energy: T,
+    radius: impl Fn(T, T) -> T,
+) -> Result<Vec3<T>, Error> {
     check_finite(&[energy])?;
     if energy < T::ZERO {
         return Err(Error::InvalidArgument);
@@ -331,8 +330,8 @@ pub fn velocity_ellipsoid_radii<T: Real>(
     let m = inertia.principal_moments();
     let two_e = T::TWO * energy;
     Ok(Vec3::new(
-        (two_e / m.x).sqrt(),
-        (two_e / m.y).sqrt(),
-        (two_e / m.z).sqrt(),
+        radius(two_e, m.x),
+        radius(two_e, m.y),
+        radius(two_e, m.z),
     ))
 }
