@@ -143,39 +143,42 @@ impl<T: Real> Dcm<T> {
         self.0 * v
     }
 
-    /// The unit quaternion of this matrix, by Shepperd's method (J. Guidance Control 1(3), 1978):
-    /// of `4w² = 1 + tr R`, `4x² = 1 + 2R₀₀ − tr R`, `4y²…`, `4z²…` take the largest, and get the
-    /// other three components from sums and differences of off-diagonal entries divided by that
-    /// largest one (never by a small number: it is at least 1/2). Result has `w ≥ 0` except when
-    /// another component is chosen, whose sign is then positive; call
+    /// The unit quaternion of this matrix, by Shepperd's method (J. Guidance Control 1(3), 1978)
+    /// with Day's choice of the pivot (*Converting a rotation matrix to a quaternion*, 2015): one
+    /// of `4w² = 1 + tr R`, `4x² = 1 + 2R₀₀ − tr R`, `4y²…`, `4z²…` that is at least 1, picked by
+    /// two comparisons (`R₂₂ < 0`, then `R₀₀ > R₁₁` or `R₀₀ < −R₁₁`); the other three
+    /// components come from sums and differences of off-diagonal entries, and the four are scaled
+    /// by `1/(2√t)` of that pivot `t ≥ 1` (never a division by a small number). Result has
+    /// `w ≥ 0` when `w` is the pivot, else the pivot component positive; call
     /// [`UnitQuat::canonical`] for the documented SO(3) representative.
     ///
-    /// For a matrix within the invariant's tolerance the result is renormalised, so it is a unit
-    /// quaternion to rounding.
+    /// For a matrix within the invariant's tolerance the result is a unit quaternion to that
+    /// tolerance (`|q| − 1` is half the matrix's departure from orthogonality, a few ulp).
     pub fn to_unit_quat(self) -> UnitQuat<T> {
         let m = &self.0.m;
         let (r00, r01, r02) = (m[0][0], m[0][1], m[0][2]);
         let (r10, r11, r12) = (m[1][0], m[1][1], m[1][2]);
         let (r20, r21, r22) = (m[2][0], m[2][1], m[2][2]);
-        let tr = r00 + r11 + r22;
         let one = T::ONE;
-        let q = if tr >= r00 && tr >= r11 && tr >= r22 {
-            let w4 = one + tr; // = 4w²
-            Quat::new(w4, r21 - r12, r02 - r20, r10 - r01)
-        } else if r00 >= r11 && r00 >= r22 {
-            let x4 = one + r00 - r11 - r22;
-            Quat::new(r21 - r12, x4, r01 + r10, r02 + r20)
-        } else if r11 >= r22 {
-            let y4 = one + r11 - r00 - r22;
-            Quat::new(r02 - r20, r01 + r10, y4, r12 + r21)
+        // Each branch's pivot t is ≥ 1: e.g. R₂₂ < 0 and R₀₀ > R₁₁ give
+        // t = 1 + (R₀₀ − R₁₁) − R₂₂ > 1.
+        let (t, q) = if r22 < T::ZERO {
+            if r00 > r11 {
+                let t = one + r00 - r11 - r22;
+                (t, Quat::new(r21 - r12, t, r01 + r10, r02 + r20))
+            } else {
+                let t = one - r00 + r11 - r22;
+                (t, Quat::new(r02 - r20, r01 + r10, t, r12 + r21))
+            }
+        } else if r00 < -r11 {
+            let t = one - r00 - r11 + r22;
+            (t, Quat::new(r10 - r01, r02 + r20, r12 + r21, t))
         } else {
-            let z4 = one + r22 - r00 - r11;
-            Quat::new(r10 - r01, r02 + r20, r12 + r21, z4)
+            let t = one + r00 + r11 + r22;
+            (t, Quat::new(t, r21 - r12, r02 - r20, r10 - r01))
         };
-        // Each branch is 4·c·(w, x, y, z) with c the chosen component, c ≥ 1/2: normalising
-        // divides by |q| ≈ 4c ≥ 2, never a small number. Entries are ≤ 4, so the squared norm
-        // cannot overflow and one sqrt replaces a scaling hypot.
-        UnitQuat::new_unchecked(q.scale(one / q.norm_squared().sqrt()))
+        // q = 4c·(w, x, y, z) with c = √t/2 the pivot component: scale by 1/(2√t).
+        UnitQuat::new_unchecked(q.scale(T::HALF / t.sqrt()))
     }
 }
 

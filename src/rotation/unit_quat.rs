@@ -194,14 +194,16 @@ impl<T: Real> UnitQuat<T> {
     /// `R(q)·v = q ⊗ v ⊗ q*`. Equal to the Rodrigues form (6.6.15) for the same axis and angle.
     pub fn to_rotation_matrix(self) -> Mat3<T> {
         let Quat { w, x, y, z } = self.0;
-        let two = T::TWO;
-        let (xx, yy, zz) = (x * x, y * y, z * z);
-        let (xy, xz, yz) = (x * y, x * z, y * z);
-        let (wx, wy, wz) = (w * x, w * y, w * z);
+        // Doubling the second factor first (exact) gives the same roundings as doubling each
+        // product, `2·fl(a·b) = fl(a·2b)`, with nine multiplications fewer.
+        let (x2, y2, z2) = (x + x, y + y, z + z);
+        let (xx, yy, zz) = (x * x2, y * y2, z * z2);
+        let (xy, xz, yz) = (x * y2, x * z2, y * z2);
+        let (wx, wy, wz) = (w * x2, w * y2, w * z2);
         Mat3::from_rows(
-            [T::ONE - two * (yy + zz), two * (xy - wz), two * (xz + wy)],
-            [two * (xy + wz), T::ONE - two * (xx + zz), two * (yz - wx)],
-            [two * (xz - wy), two * (yz + wx), T::ONE - two * (xx + yy)],
+            [T::ONE - (yy + zz), xy - wz, xz + wy],
+            [xy + wz, T::ONE - (xx + zz), yz - wx],
+            [xz - wy, yz + wx, T::ONE - (xx + yy)],
         )
     }
 
