@@ -44,11 +44,12 @@
 //! parts (the low part of `sin ψ`, the carried errors' share) below an ulp of the increment
 //! would otherwise round away the same way every time.
 //!
-//! With all four, the f32 Yoshida4 and Suzuki4 errors are 0.004–0.11× those of a plain f32 RK4
-//! at the same step on the eight cases, 0.16× with a constant torque; `|J|` drifts ≤ 2.1e-7
-//! relative over 10⁶ steps and the lab momentum ≤ 2.1e-7; the energy error is the random walk of
-//! the increments' roundings (1.0e-6 after 10⁶ steps at `dt = 0.1`, against a drift to 2.5e-4
-//! for the plain step); RK4 on a compensated state is 0.004–0.12× the plain RK4. Costs are in BENCHMARKS.md (Cortex-M4F
+//! With all four, the f32 Yoshida4 and Suzuki4 errors are 0.002–0.11× those of a plain f32 RK4
+//! at the same step on the eight cases, 0.16× with a constant torque; over 10⁶ steps `|J|`
+//! drifts ≤ 2.1e-7 relative and the lab momentum ≤ 2.7e-7 (plain: 8e-6…1e-3 and 2e-4…1e-2);
+//! the energy error is the random walk of the increments' roundings (1.0e-6 after 10⁶ steps at
+//! `dt = 0.1`, against a drift to 2.5e-4 for the plain step); RK4 on a compensated state is
+//! 0.001–0.12× the plain RK4. Costs are in BENCHMARKS.md (Cortex-M4F
 //! instruction counts beside the plain rows, host times). The plain [`State`] keeps the plain,
 //! cheaper flows: use it for short horizons (a control loop whose state is reset from sensors),
 //! the compensated state for propagating a model for long (a simulator, a predictor without
