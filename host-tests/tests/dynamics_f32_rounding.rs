@@ -137,8 +137,9 @@ fn reference(case: &Case, n: usize) -> (M3, [f64; 3]) {
 
 /// The targets of the compensated f32 step: on every case, the f32 Yoshida4 and Suzuki4 errors
 /// are at most half the error of a plain f32 RK4 at the same step (measured 0.002–0.11×; the
-/// plain Yoshida4 and Suzuki4, printed beside them, are 2.9–110× RK4's). The compensated RK4 (0.001–0.12×)
-/// and Strang are printed for information (Strang's larger truncation error shows at this step).
+/// plain Yoshida4 and Suzuki4, printed beside them, are 2.9–110× RK4's). The compensated RK4
+/// (0.001–0.12×) and Strang are printed for information (Strang's larger truncation error shows
+/// at this step).
 #[test]
 fn compensated_splittings_beat_plain_rk4_in_f32() {
     for case in &CASES {
