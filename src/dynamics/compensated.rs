@@ -2,7 +2,7 @@
 //!
 //! # Why a plain f32 splitting loses to RK4
 //! Every sub-step of a splitting method is an exact rotation, yet in f32 the plain Yoshida4 and
-//! Suzuki4 steps end 3–110× further from the truth than a plain f32 RK4 at the same step
+//! Suzuki4 steps end 2.9–108× further from the truth than a plain f32 RK4 at the same step
 //! (`dt = 0.004`, horizons 12–60, eight well-conditioned torque-free cases), and 1300–2900×
 //! further with a constant torque. The causes, found by changing one thing at a time in a
 //! replica of these flows that reproduces the library bit for bit
@@ -13,7 +13,7 @@
 //!   of a step rounds `J` and `q` to f32, where RK4 rounds them once per step. An error in `J`
 //!   changes the rates, so the phase error it causes keeps growing after it is made: the errors
 //!   are amplified, not just added. Carrying each rounding error instead of dropping it (below)
-//!   takes the errors from 3–110× RK4's to 0.02–2.2×. Making the roundings unbiased (stochastic
+//!   takes the errors from 2.9–108× RK4's to 0.01–2.3×. Making the roundings unbiased (stochastic
 //!   rounding in the replica) does not: 0.4–97×, worse than round-to-nearest on the symmetric
 //!   tops, where nearest rounding happens to return the spin component to the same value.
 //! - *Rounding the same way every time.* A constant kick `J ← J + τh` rounds with the same sign
@@ -26,7 +26,7 @@
 //!
 //! Ruled out by the same experiment: the f32 `sin`/`cos` kernel, the merging of same-axis
 //! rotations at stage boundaries, and, alone, the multiplicative form of the co-rotation
-//! (`q·cos ψ + sin ψ·(q ⊗ eᵢ)`; the increment form alone changes the errors by 0.3–3× either way).
+//! (`q·cos ψ + sin ψ·(q ⊗ eᵢ)`; the increment form alone changes the errors by 0.3–1.4×).
 //!
 //! # The compensated step
 //! 1. *Increment form*: every update is `x ← x + d` with a small increment `d`: the co-rotation
