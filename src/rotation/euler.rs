@@ -451,13 +451,17 @@ impl<T: Real> UnitQuat<T> {
         // Plain sqrt is several times faster than a scaling hypot.
         let n_ab = (a * a + b * b).sqrt();
         let n_cd = (c * c + d * d).sqrt();
-        // Middle angle (raw, in [0, π]); near the upper pole its distance to π is its own
-        // atan2 of the two norms (accurate, no π − x cancellation).
-        let mid_raw = T::TWO * n_cd.atan2(n_ab);
-        let to_upper = if n_ab < n_cd {
-            T::TWO * n_ab.atan2(n_cd)
+        // Middle angle (raw, in [0, π]) and its distance to π, from one atan2 of the smaller
+        // norm over the larger: that angle is the one near its pole's 0, accurate without a
+        // π − x cancellation; the other is π minus it (far from its pole, where the cancellation
+        // costs nothing).
+        let near_upper = n_ab < n_cd;
+        let (small, large) = if near_upper { (n_ab, n_cd) } else { (n_cd, n_ab) };
+        let near = T::TWO * small.atan2(large);
+        let (mid_raw, to_upper) = if near_upper {
+            (T::PI - near, near)
         } else {
-            T::PI - mid_raw
+            (near, T::PI - near)
         };
         let half_sum = b.atan2(a);
         let half_diff = d.atan2(c);
