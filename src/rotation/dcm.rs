@@ -154,6 +154,7 @@ impl<T: Real> Dcm<T> {
     ///
     /// For a matrix within the invariant's tolerance the result is a unit quaternion to that
     /// tolerance (`|q| − 1` is half the matrix's departure from orthogonality, a few ulp).
+    #[inline]
     pub fn to_unit_quat(self) -> UnitQuat<T> {
         let m = &self.0.m;
         let (r00, r01, r02) = (m[0][0], m[0][1], m[0][2]);

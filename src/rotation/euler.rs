@@ -377,6 +377,7 @@ impl<T: Real> Euler<T> {
     ///
     /// Angles are not range-checked; a non-finite angle gives a non-finite quaternion (use
     /// [`Euler::try_to_unit_quat`] for untrusted input).
+    #[inline]
     pub fn to_unit_quat(&self) -> UnitQuat<T> {
         let (axes, _) = self.sequence.product_order();
         let [a0, a1, a2] = self.angles;
@@ -456,7 +457,11 @@ impl<T: Real> UnitQuat<T> {
         // π − x cancellation; the other is π minus it (far from its pole, where the cancellation
         // costs nothing).
         let near_upper = n_ab < n_cd;
-        let (small, large) = if near_upper { (n_ab, n_cd) } else { (n_cd, n_ab) };
+        let (small, large) = if near_upper {
+            (n_ab, n_cd)
+        } else {
+            (n_cd, n_ab)
+        };
         let near = T::TWO * small.atan2(large);
         let (mid_raw, to_upper) = if near_upper {
             (T::PI - near, near)

@@ -192,6 +192,7 @@ impl<T: Real> UnitQuat<T> {
 
     /// The rotation matrix `R(q)`: columns are the body axes in lab coordinates, so that
     /// `R(q)·v = q ⊗ v ⊗ q*`. Equal to the Rodrigues form (6.6.15) for the same axis and angle.
+    #[inline]
     pub fn to_rotation_matrix(self) -> Mat3<T> {
         let Quat { w, x, y, z } = self.0;
         // Doubling the second factor first (exact) gives the same roundings as doubling each
