@@ -126,6 +126,14 @@ pub trait Real:
     fn sin_cos(self) -> (Self, Self) {
         (self.sin(), self.cos())
     }
+    /// `([sin xᵢ], [cos xᵢ])` of three angles, bit for bit the values of three
+    /// [`Real::sin_cos`] calls; a backend may evaluate the three side by side (f32 on host CPUs
+    /// does, in SIMD lanes).
+    #[inline]
+    fn sin_cos3(x: [Self; 3]) -> ([Self; 3], [Self; 3]) {
+        let r = x.map(Self::sin_cos);
+        (r.map(|p| p.0), r.map(|p| p.1))
+    }
     /// Four-quadrant arctangent of `self / x` in `[-π, π]`; `atan2(0, 0) = 0`.
     fn atan2(self, x: Self) -> Self;
     /// `sqrt(self² + other²)` without undue overflow or underflow.
@@ -241,6 +249,10 @@ impl Real for f32 {
         f32_backend::sin_cos(self)
     }
     #[inline]
+    fn sin_cos3(x: [Self; 3]) -> ([Self; 3], [Self; 3]) {
+        f32_backend::sin_cos3(x)
+    }
+    #[inline]
     fn atan2(self, x: Self) -> Self {
         f32_backend::atan2(self, x)
     }
@@ -282,6 +294,22 @@ mod f32_backend {
     pub fn sin_cos(x: f32) -> (f32, f32) {
         super::sincos_f32(x)
     }
+    /// Four lanes on CPUs with 128-bit SIMD (one kernel evaluation for three angles), three calls
+    /// elsewhere (a microcontroller would pay for the unused fourth lane).
+    #[inline]
+    pub fn sin_cos3(x: [f32; 3]) -> ([f32; 3], [f32; 3]) {
+        if cfg!(any(
+            target_arch = "x86_64",
+            target_arch = "x86",
+            target_arch = "aarch64"
+        )) {
+            let (s, c) = super::sincos_f32_x4([x[0], x[1], x[2], 0.0]);
+            ([s[0], s[1], s[2]], [c[0], c[1], c[2]])
+        } else {
+            let r = x.map(super::sincos_f32);
+            (r.map(|p| p.0), r.map(|p| p.1))
+        }
+    }
     #[inline]
     pub fn atan2(y: f32, x: f32) -> f32 {
         libm::atan2f(y, x)
@@ -321,6 +349,15 @@ fn sincos_f32(x: f32) -> (f32, f32) {
     if !x.is_finite() || libm::fabsf(x) > SINCOS_F32_LIMIT {
         return libm::sincosf(x);
     }
+    let (shifted, s, c) = sincos_f32_reduced(x);
+    quadrant(shifted.to_bits(), s, c)
+}
+
+/// The in-range part of [`sincos_f32`]: the shifted `x·2/π` (its low bits are the quadrant) and
+/// `(sin r, cos r)` of the reduced angle.
+#[cfg(not(feature = "micromath"))]
+#[inline(always)]
+fn sincos_f32_reduced(x: f32) -> (f32, f32, f32) {
     const FRAC_2_PI: f32 = core::f32::consts::FRAC_2_PI;
     const P1: f32 = 1.570_312_5;
     const P2: f32 = 4.838_705e-4; // = 0.000483870506286621093750 exactly (12 bits)
@@ -341,7 +378,33 @@ fn sincos_f32(x: f32) -> (f32, f32) {
     let r2 = r * r;
     let s = r + r * r2 * (S1 + r2 * (S2 + r2 * S3));
     let c = 1.0 - 0.5 * r2 + r2 * r2 * (C1 + r2 * (C2 + r2 * C3));
-    quadrant(shifted.to_bits(), s, c)
+    (shifted, s, c)
+}
+
+/// [`sincos_f32`] of four angles, lane by lane the same operations (so the same bits, see the
+/// test): written over arrays so that the compiler evaluates the lanes in one SIMD register,
+/// with the quadrant selected on the bits. The range check is one integer comparison per lane
+/// (`|x|`'s bits above the limit's: also true for NaN and infinity); any lane out of range sends
+/// all four through the scalar path. Not inlined: inlined next to a constant lane, the compiler
+/// splits the lanes again.
+#[cfg(not(feature = "micromath"))]
+#[inline(never)]
+fn sincos_f32_x4(x: [f32; 4]) -> ([f32; 4], [f32; 4]) {
+    let mut out_of_range = 0u32;
+    for v in x {
+        out_of_range |= ((v.to_bits() & 0x7fff_ffff) > SINCOS_F32_LIMIT.to_bits()) as u32;
+    }
+    if out_of_range != 0 {
+        let r = x.map(sincos_f32);
+        return (r.map(|p| p.0), r.map(|p| p.1));
+    }
+    let mut s = [0.0; 4];
+    let mut c = [0.0; 4];
+    for i in 0..4 {
+        let (shifted, si, ci) = sincos_f32_reduced(x[i]);
+        (s[i], c[i]) = quadrant_bits(shifted.to_bits(), si, ci);
+    }
+    (s, c)
 }
 
 /// `(sin x, cos x)` from `(s, c) = (sin r, cos r)` and the quadrant `q mod 4` of
@@ -420,6 +483,10 @@ mod f32_backend {
     #[inline]
     pub fn sin_cos(x: f32) -> (f32, f32) {
         (F32Ext::sin(x), F32Ext::cos(x))
+    }
+    #[inline]
+    pub fn sin_cos3(x: [f32; 3]) -> ([f32; 3], [f32; 3]) {
+        (x.map(F32Ext::sin), x.map(F32Ext::cos))
     }
     /// micromath returns NaN for `(0, 0)`; the trait promises 0 there.
     #[inline]
@@ -558,6 +625,41 @@ mod tests {
                     "{q}"
                 );
             }
+        }
+    }
+
+    /// `sin_cos3` (four SIMD lanes on host CPUs) gives the bits of three `sin_cos` calls, for
+    /// angles over the kernel's whole range, mixed with out-of-range and non-finite lanes.
+    #[test]
+    fn sin_cos3_equals_three_calls_bit_for_bit() {
+        fn check<T: Real>(x: [T; 3], bits: impl Fn(T) -> u64) {
+            let (s, c) = T::sin_cos3(x);
+            for i in 0..3 {
+                let (si, ci) = x[i].sin_cos();
+                assert_eq!((bits(s[i]), bits(c[i])), (bits(si), bits(ci)), "{:?}", x);
+            }
+        }
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let special = [7000.0f64, -1e30, f64::NAN, f64::INFINITY, 0.0, -0.0];
+        for n in 0..300_000 {
+            let mut x = [0.0f64; 3];
+            for v in &mut x {
+                let r = next();
+                // Mostly half angles of Euler angles, some over the whole kernel range.
+                let u = (r >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+                *v = if r & 7 == 0 { u * 6000.0 } else { u * 3.2 };
+            }
+            if n % 1000 == 0 {
+                x[n / 1000 % 3] = special[n / 3000 % special.len()];
+            }
+            check(x.map(|v| v as f32), |v: f32| v.to_bits() as u64);
+            check(x, f64::to_bits);
         }
     }
 

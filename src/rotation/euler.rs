@@ -327,10 +327,10 @@ pub(crate) fn parity(i: Axis, j: Axis) -> i8 {
     if i.next() == j { 1 } else { -1 }
 }
 
-/// The elementary rotation about coordinate axis `axis` by `angle`: `(cos(θ/2), sin(θ/2)·e_axis)`.
+/// The elementary rotation about coordinate axis `axis` by an angle `θ` given as
+/// `(s, c) = (sin(θ/2), cos(θ/2))`: `(c, s·e_axis)`.
 #[inline]
-pub(crate) fn elementary<T: Real>(axis: Axis, angle: T) -> Quat<T> {
-    let (s, c) = (angle * T::HALF).sin_cos();
+pub(crate) fn elementary<T: Real>(axis: Axis, s: T, c: T) -> Quat<T> {
     let z = T::ZERO;
     match axis {
         Axis::X => Quat::new(c, s, z, z),
@@ -339,11 +339,10 @@ pub(crate) fn elementary<T: Real>(axis: Axis, angle: T) -> Quat<T> {
     }
 }
 
-/// `q ⊗ (cos(θ/2), sin(θ/2)·e_axis)`: the Hamilton product with an elementary rotation, using
-/// its sparsity (8 multiplications instead of 16).
+/// `q ⊗ (c, s·e_axis)` with `(s, c) = (sin(θ/2), cos(θ/2))`: the Hamilton product with an
+/// elementary rotation, using its sparsity (8 multiplications instead of 16).
 #[inline]
-pub(crate) fn mul_elementary<T: Real>(q: Quat<T>, axis: Axis, angle: T) -> Quat<T> {
-    let (s, c) = (angle * T::HALF).sin_cos();
+pub(crate) fn mul_elementary<T: Real>(q: Quat<T>, axis: Axis, s: T, c: T) -> Quat<T> {
     let Quat { w, x, y, z } = q;
     match axis {
         Axis::X => Quat::new(c * w - s * x, c * x + s * w, c * y + s * z, c * z - s * y),
@@ -385,8 +384,10 @@ impl<T: Real> Euler<T> {
             Frame::Intrinsic => (a0, a2),
             Frame::Extrinsic => (a2, a0),
         };
-        let q = mul_elementary(elementary(axes[0], p0), axes[1], a1);
-        UnitQuat::new_unchecked(mul_elementary(q, axes[2], p2))
+        // The three half-angle sines and cosines in one call (side by side where the backend can).
+        let (s, c) = T::sin_cos3([p0 * T::HALF, a1 * T::HALF, p2 * T::HALF]);
+        let q = mul_elementary(elementary(axes[0], s[0], c[0]), axes[1], s[1], c[1]);
+        UnitQuat::new_unchecked(mul_elementary(q, axes[2], s[2], c[2]))
     }
 
     /// [`Euler::to_unit_quat`] with a finiteness check.
