@@ -2,8 +2,10 @@
 //!
 //! Attitude kinematics and rigid-body (gyrostat) dynamics for flight software and simulation:
 //! `#![no_std]`, no allocation, no panicking paths, generic over f32 and f64 through a narrow
-//! scalar trait designed so that a Q-format fixed-point type for FPU-less MCUs can implement it
-//! (that type is not implemented yet).
+//! two-layer scalar trait ([`Ring`] below [`Real`]) that the Q-format fixed-point type of
+//! [`fixed`] implements for FPU-less MCUs: the attitude hot path (quaternion product, rotation,
+//! exponential map, coning rules, renormalisation) runs in integer arithmetic, with the same bits
+//! on every target.
 //!
 //! The physics follows W. G. Harter, *Unit 6: rigid and semi-rigid body rotation*; doc comments
 //! cite its equation numbers, like `(6.6.4)`.
@@ -48,6 +50,8 @@
 //! | `nalgebra`  | `From`/`Into` nalgebra's `UnitQuaternion`, `Quaternion`, `Vector3`, `Matrix3` (no std) |
 //! | `mint`      | `From`/`Into` mint's types, so glam, cgmath and others convert for free |
 //!
+//! Fixed point ([`fixed`]) needs no feature: it is plain integer code.
+//!
 //! ## Example
 //! ```
 //! use gyrostat::{UnitQuat, Vec3};
@@ -66,6 +70,7 @@
 
 pub mod dynamics;
 mod error;
+pub mod fixed;
 pub mod interop;
 pub mod linalg;
 pub mod propagation;
@@ -79,7 +84,7 @@ pub use error::Error;
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 pub use linalg::{Complex, Mat3, Vec3};
-pub use real::Real;
+pub use real::{Real, Ring};
 pub use rotation::{
     AxisAngle, Dcm, Euler, EulerSequence, Gibbs, GimbalPolicy, Mrp, PolarAxisAngle, RotationVector,
 };

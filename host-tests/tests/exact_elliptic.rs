@@ -92,7 +92,7 @@ fn known_values() {
         (1.0 - 1e-6, 8.294_051_463_601_062_201_9),
         (1.0 - 1e-12, 15.201_815_980_070_120_28),
     ] {
-        let got = complete_k(m).unwrap();
+        let got: f64 = complete_k(m).unwrap();
         assert!((got - k).abs() <= 4e-16 * k, "K({m}) = {got}, want {k}");
         // f32: m rounds to f32 first; near m → 1 that moves K by ~ δm/(2(1−m)), so compare only
         // where the rounding of m is harmless.

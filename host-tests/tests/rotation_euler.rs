@@ -5,7 +5,7 @@
 use gyrostat::rotation::{
     Euler, EulerSequence, Frame, GimbalPolicy, PolarAxisAngle, Pole, gimbal_lock_threshold,
 };
-use gyrostat::{Quat, Real, UnitQuat};
+use gyrostat::{Quat, Real, Ring, UnitQuat};
 use host_tests::ref_rotation::{
     all_sequences, euler_matrix, is_proper, poles, quat_matrix, rot_dist,
 };

@@ -37,7 +37,7 @@
 use heapless::Vec as HVec;
 
 use crate::propagation::Normalization;
-use crate::{Error, Real, UnitQuat, Vec3};
+use crate::{Error, Ring, UnitQuat, Vec3};
 
 /// An increment (coning) rule: how the rotation vector of one attitude update is formed.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -79,30 +79,35 @@ impl ConingRule {
 
 /// `θₖ + (1/12) θₖ₋₁ × θₖ`: one increment with the previous-interval coning correction.
 #[inline]
-pub fn one_plus_previous<T: Real>(previous: Vec3<T>, current: Vec3<T>) -> Vec3<T> {
-    current + previous.cross(current).scale(T::from_f64(1.0 / 12.0))
+pub fn one_plus_previous<T: Ring>(previous: Vec3<T>, current: Vec3<T>) -> Vec3<T> {
+    current + previous.cross(current).scale(T::ratio::<1, 12>())
 }
 
 /// `θ₁ + θ₂ + ⅔ θ₁ × θ₂`: the 2-sample coning rule.
 #[inline]
-pub fn two_sample<T: Real>(t1: Vec3<T>, t2: Vec3<T>) -> Vec3<T> {
-    t1 + t2 + t1.cross(t2).scale(T::from_f64(2.0 / 3.0))
+pub fn two_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>) -> Vec3<T> {
+    t1 + t2 + t1.cross(t2).scale(T::ratio::<2, 3>())
 }
 
 /// `θ₁ + θ₂ + θ₃ + (9/20 θ₁ + 27/20 θ₂) × θ₃`: the 3-sample coning rule.
 #[inline]
-pub fn three_sample<T: Real>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>) -> Vec3<T> {
-    let c = t1.scale(T::from_f64(9.0 / 20.0)) + t2.scale(T::from_f64(27.0 / 20.0));
+pub fn three_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>) -> Vec3<T> {
+    let c = t1.scale(T::ratio::<9, 20>()) + t2.scale(T::ratio::<27, 20>());
     t1 + t2 + t3 + c.cross(t3)
 }
 
 /// `Σθ + (54 θ₁ + 92 θ₂ + 214 θ₃)/105 × θ₄`: the 4-sample coning rule.
+///
+/// Evaluated as `Σθ + 2·((27 θ₁ + 46 θ₂ + 107 θ₃)/105 × θ₄)`, so that every coefficient lies in
+/// `[−2, 2)` (214/105 does not fit Q1.30); for the floats the halving and doubling are exact and
+/// the result is the same as with the written coefficients.
 #[inline]
-pub fn four_sample<T: Real>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>, t4: Vec3<T>) -> Vec3<T> {
-    let c = t1.scale(T::from_f64(54.0 / 105.0))
-        + t2.scale(T::from_f64(92.0 / 105.0))
-        + t3.scale(T::from_f64(214.0 / 105.0));
-    t1 + t2 + t3 + t4 + c.cross(t4)
+pub fn four_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>, t4: Vec3<T>) -> Vec3<T> {
+    let c_half = t1.scale(T::ratio::<27, 105>())
+        + t2.scale(T::ratio::<46, 105>())
+        + t3.scale(T::ratio::<107, 105>());
+    let k = c_half.cross(t4);
+    t1 + t2 + t3 + t4 + Vec3::new(k.x.twice(), k.y.twice(), k.z.twice())
 }
 
 /// The rotation vector of `samples` (1 to 4 increments in time order) by the highest-order rule
@@ -110,7 +115,7 @@ pub fn four_sample<T: Real>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>, t4: Vec3<T>) 
 /// 3 → [`three_sample`], 4 → [`four_sample`]. Zero for an empty slice; a slice longer than 4
 /// uses its first four. This is how a partial group (the end of a record, or a provisional
 /// attitude inside a group) is integrated.
-pub fn rotation_vector_for<T: Real>(previous: Vec3<T>, samples: &[Vec3<T>]) -> Vec3<T> {
+pub fn rotation_vector_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> Vec3<T> {
     match samples {
         [] => Vec3::ZERO,
         [a] => one_plus_previous(previous, *a),
@@ -121,13 +126,15 @@ pub fn rotation_vector_for<T: Real>(previous: Vec3<T>, samples: &[Vec3<T>]) -> V
 }
 
 /// The complete 2-sample update on the hot path: `q ⊗ exp(θ₁ + θ₂ + ⅔ θ₁ × θ₂)`, then the fast
-/// renormalisation `q·(3 − |q|²)/2`.
+/// renormalisation `q + q·(1 − |q|²)/2`. Generic over [`Ring`]: with `T = Q30` it is the
+/// fixed-point update, integer arithmetic only (see [`crate::fixed`]).
 ///
 /// Unchecked (a non-finite increment gives a non-finite attitude): for an inner loop whose
 /// increments were validated when they were read. The exponential of the small per-update
-/// angle uses the series of [`UnitQuat::exp`] (no trigonometric call below 0.37 rad in f32).
+/// angle uses the series of [`UnitQuat::exp`] (no trigonometric call below 0.37 rad in f32,
+/// 1/8 rad in Q1.30).
 #[inline]
-pub fn coning2_update<T: Real>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
+pub fn coning2_update<T: Ring>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
     (q * UnitQuat::exp_unchecked(two_sample(t1, t2))).renormalize_fast()
 }
 
@@ -159,7 +166,7 @@ pub struct IncrementIntegrator<T> {
     previous: Vec3<T>,
 }
 
-impl<T: Real> IncrementIntegrator<T> {
+impl<T: Ring> IncrementIntegrator<T> {
     /// Starts at attitude `q0`.
     pub fn new(q0: UnitQuat<T>, rule: ConingRule, norm: Normalization) -> Self {
         Self {
@@ -264,7 +271,7 @@ pub struct ConingAccumulator<T> {
     count: u32,
 }
 
-impl<T: Real> ConingAccumulator<T> {
+impl<T: Ring> ConingAccumulator<T> {
     /// An empty accumulator with no previous increment.
     pub const fn new() -> Self {
         Self {
@@ -288,7 +295,7 @@ impl<T: Real> ConingAccumulator<T> {
     /// [`ConingAccumulator::push`] without the finiteness check.
     #[inline]
     pub fn push_unchecked(&mut self, dtheta: Vec3<T>) {
-        let lever = self.alpha + self.previous.scale(T::from_f64(1.0 / 6.0));
+        let lever = self.alpha + self.previous.scale(T::ratio::<1, 6>());
         self.beta += lever.cross(dtheta).scale(T::HALF);
         self.alpha += dtheta;
         self.previous = dtheta;
@@ -317,7 +324,7 @@ impl<T: Real> ConingAccumulator<T> {
 }
 
 #[cfg(feature = "defmt")]
-impl<T: Real + defmt::Format> defmt::Format for IncrementIntegrator<T> {
+impl<T: Ring + defmt::Format> defmt::Format for IncrementIntegrator<T> {
     fn format(&self, f: defmt::Formatter<'_>) {
         defmt::write!(
             f,
@@ -331,7 +338,7 @@ impl<T: Real + defmt::Format> defmt::Format for IncrementIntegrator<T> {
 }
 
 #[cfg(feature = "defmt")]
-impl<T: Real + defmt::Format> defmt::Format for ConingAccumulator<T> {
+impl<T: Ring + defmt::Format> defmt::Format for ConingAccumulator<T> {
     fn format(&self, f: defmt::Formatter<'_>) {
         defmt::write!(
             f,

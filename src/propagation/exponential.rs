@@ -8,7 +8,7 @@
 //! cutoff that returns the identity.
 
 use crate::propagation::Normalization;
-use crate::{Error, Real, UnitQuat, Vec3};
+use crate::{Error, Real, Ring, UnitQuat, Vec3};
 
 /// `q ⊗ exp(ω_body Δt)`: the exact attitude after a constant body rate held for `dt` (6.6.4).
 ///
@@ -54,7 +54,7 @@ pub fn step_constant_rate_unchecked<T: Real>(
 /// rotation vector `φ` accumulated over one update interval (by a coning rule or an integrator).
 /// Unchecked: a non-finite `φ` gives a non-finite attitude.
 #[inline]
-pub fn apply_rotation_vector<T: Real>(
+pub fn apply_rotation_vector<T: Ring>(
     q: UnitQuat<T>,
     phi: Vec3<T>,
     norm: Normalization,
