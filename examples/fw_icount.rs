@@ -259,6 +259,59 @@ mod firmware {
         }
 
         {
+            // Fixed point (Q1.30), the same operations and operands as the f32 rows above.
+            use gyrostat::fixed::Q30;
+            use gyrostat::propagation::coning::{coning2_update, four_sample, one_plus_previous};
+            use gyrostat::propagation::exponential::apply_rotation_vector;
+            use gyrostat::propagation::{ConingAccumulator, Normalization};
+            let q = |q: UnitQuat<f32>| UnitQuat::<Q30>::try_from_f32(q).unwrap_or_default();
+            let v3 = |v: Vec3<f32>| Vec3::<Q30>::try_from_f32(v).unwrap_or_default();
+            let (aq, bq, vq, phiq) = (q(a), q(b), v3(v.scale(0.5)), v3(phi));
+            let t1 = v3(Vec3::new(1.0e-3f32, -2.0e-3, 0.5e-3));
+            let t2 = v3(Vec3::new(1.2e-3f32, -1.9e-3, 0.6e-3));
+            let t3 = v3(Vec3::new(1.4e-3f32, -1.7e-3, 0.7e-3));
+            let t4 = v3(Vec3::new(1.5e-3f32, -1.4e-3, 0.8e-3));
+            let big = v3(Vec3::new(0.9f32, -0.6, 0.3));
+            let fast = Normalization::Fast;
+            count!(table, "quat_product_q30", || black_box(aq) * black_box(bq));
+            count!(table, "vector_rotation_q30", || black_box(aq)
+                .rotate(black_box(vq)));
+            count!(table, "quat_to_matrix_q30", || black_box(aq)
+                .to_rotation_matrix());
+            count!(table, "renormalize_fast_q30", || black_box(aq)
+                .renormalize_fast());
+            count!(table, "renormalize_exact_q30", || black_box(aq)
+                .renormalize());
+            count!(table, "exp_small_angle_q30", || UnitQuat::exp_unchecked(
+                black_box(phiq)
+            ));
+            count!(table, "exp_large_angle_q30", || UnitQuat::exp_unchecked(
+                black_box(big)
+            ));
+            count!(table, "prop_coning2_update_q30", || coning2_update(
+                black_box(aq),
+                black_box(t1),
+                black_box(t2)
+            ));
+            count!(table, "prop_coning1_fast_q30", || apply_rotation_vector(
+                black_box(aq),
+                one_plus_previous(black_box(t1), black_box(t2)),
+                fast
+            ));
+            count!(table, "prop_coning4_fast_q30", || apply_rotation_vector(
+                black_box(aq),
+                four_sample(black_box(t1), black_box(t2), black_box(t3), black_box(t4)),
+                fast
+            ));
+            let acc = ConingAccumulator::<Q30>::new();
+            count!(table, "prop_two_speed_push_q30", || {
+                let mut x = black_box(acc);
+                x.push_unchecked(black_box(t3));
+                x
+            });
+        }
+
+        {
             use gyrostat::rotation::{Euler, EulerSequence, GimbalPolicy};
             let e = [0.3f32, -0.5, 1.2];
             let qe = Euler::new(EulerSequence::ZYX, e).to_unit_quat();
