@@ -104,7 +104,11 @@ mod firmware {
     #[unsafe(no_mangle)]
     #[inline(never)]
     fn gyrostat_fixed_hot_renormalize(q: &UnitQuat<Q30>) -> (UnitQuat<Q30>, UnitQuat<Q30>, Q30) {
-        (q.renormalize_fast(), q.renormalize(), norm_squared_deviation(*q))
+        (
+            q.renormalize_fast(),
+            q.renormalize(),
+            norm_squared_deviation(*q),
+        )
     }
 
     #[unsafe(no_mangle)]
@@ -136,8 +140,7 @@ mod firmware {
 
     #[entry]
     fn main() -> ! {
-        let r = exercise_hot_path()
-            .and_then(|()| run_scenario(&mut |line| hprintln!("{}", line)));
+        let r = exercise_hot_path().and_then(|()| run_scenario(&mut |line| hprintln!("{}", line)));
         match r {
             Ok(()) => {
                 hprintln!("done");

@@ -140,6 +140,18 @@ pub trait Ring:
     /// half angle; fixed point halves the angle until the series applies and doubles back
     /// (see [`crate::fixed`]).
     fn exp_beyond_series(phi: Vec3<Self>, theta_sq: Self) -> Quat<Self>;
+    /// `q ⊗ exp(φ)`: the attitude update by a body-frame rotation vector, the step of every
+    /// increment integrator ([`crate::UnitQuat::mul_exp`]).
+    ///
+    /// The floats form `exp(φ)` and multiply. Fixed point fuses the two on the series domain:
+    /// `sin(θ/2)/θ·φ`, a small vector, is kept with 3 more fraction bits than the format, and each
+    /// component of the product is summed in 64 bits and rounded once, so that the rotation
+    /// increment itself is never rounded to the format's resolution (a constant rate would
+    /// otherwise integrate that rounding linearly).
+    #[inline]
+    fn mul_exp(q: Quat<Self>, phi: Vec3<Self>) -> Quat<Self> {
+        q * *crate::UnitQuat::exp_unchecked(phi).as_quat()
+    }
     /// `1/√x` for `x` near one (the squared norm of a drifting unit quaternion): the scale of
     /// [`crate::UnitQuat::renormalize`]. The floats compute `1/√x` for any positive `x`; fixed
     /// point iterates Newton steps and is accurate for `x ∈ [¼, 2)`.

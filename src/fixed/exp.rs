@@ -11,14 +11,16 @@ const MAX_HALVINGS: u32 = 5;
 
 /// `exp(φ)` for `|φ|² > 1/64` (θ > 1/8 rad), by scaling and squaring.
 ///
-/// With `θₖ = θ/2ᵏ` for the smallest `k` that brings `θₖ² ≤ 1/64` (exact: `θ²` is formed in 64
+/// With `θⱼ = θ/2ʲ` and the smallest `k` that brings `θₖ² ≤ 1/64` (exact: `θ²` is formed in 64
 /// bits from the raw components, then shifted), the series gives `cₖ = cos(θₖ/2)` and
-/// `sₖ = sin(θₖ/2)/θₖ`, and `Pₖ = sₖ²θₖ² = sin²(θₖ/2)`. Each doubling of the angle is
-/// `c ← c² − P`, `P ← 4c²P`, `s ← c·s` (`cos 2x = cos²x − sin²x`, `sin²2x = 4cos²x sin²x`,
-/// `sin(2x)/(2θ) = cos x · sin(x)/θ`); every quantity stays in `[−1, 1]`, so nothing is divided
-/// and no precision is lost to small magnitudes. The result `(c₀, s₀·φ)` scales the original `φ`.
-/// Each doubling at most doubles the rounding error of `c`: ≤ 5 doublings, measured error in
-/// `host-tests/tests/fixed_point.rs`.
+/// `sₖ = sin(θₖ/2)/θₖ`. Each doubling of the angle, from level `j` to `j − 1`, is
+/// `c ← c² − Pⱼ`, `s ← c·s` with `Pⱼ = sin²(θⱼ/2)` (`cos 2x = cos²x − sin²x`,
+/// `sin(2x)/(2θ) = cos x · sin(x)/θ`, and the sinc is taken against `θⱼ₋₁ = 2θⱼ`, so `s` keeps
+/// the scale of `φ`). `Pⱼ` is tracked as `P̃ⱼ = Pⱼ·4^(j−2)`, which stays near `θ²/16` at every
+/// level (`P̃ⱼ₋₁ = cⱼ² P̃ⱼ`): a small `Pⱼ` never loses its relative precision to the format's
+/// absolute resolution, so the error of `c` grows only by the doubling of `c² − P` (≤ 2ᵏ times
+/// the series' rounding, measured in `host-tests/tests/fixed_point.rs`). Nothing is divided.
+/// The result `(c₀, s₀·φ)` scales the original `φ`.
 pub(crate) fn exp_large<const F: u32>(phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
     // θ² in units of 2^-(2F−2): each square < 2⁶², shifted by 2, three of them < 3·2⁶⁰.
     let sq = |x: Fixed<F>| mul_wide(x.0, x.0) >> 2;
@@ -31,15 +33,52 @@ pub(crate) fn exp_large<const F: u32>(phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
     }
     let tk2 = Fixed::<F>(saturate(round_shift(t2, 2 * k + F - 2)));
     let (mut c, mut s) = half_angle_series(tk2);
-    let mut p = (s * s) * tk2;
-    for _ in 0..k {
+    // P̃ₖ = sₖ²·θ²/16 (θ²/16 < 3/4).
+    let theta_sq_16 = Fixed::<F>(saturate(round_shift(t2, F + 2)));
+    let mut pt = (s * s) * theta_sq_16;
+    for j in (1..=k).rev() {
         let cc = c * c;
+        let p = if j >= 2 {
+            Fixed::<F>(saturate(round_shift(i64::from(pt.0), 2 * (j - 2))))
+        } else {
+            pt.twice().twice()
+        };
         let c_next = cc - p;
-        p = (cc * p).twice().twice();
+        pt = cc * pt;
         s = c * s;
         c = c_next;
     }
     Quat::from_parts(c, phi.scale(s))
+}
+
+/// `q ⊗ exp(φ)`, fused on the series domain (`|φ|² ≤ 1/64`); beyond it, the product with
+/// [`exp_large`].
+///
+/// With `c = cos(θ/2)` and `s = sin(θ/2)/θ` from the series, `u = s·φ` (`|u| ≤ 1/16`) is rounded
+/// to `F + 3` fraction bits (2⁻³⁴ in Q1.30, 16 times finer than the format), and each component
+/// of `q ⊗ (c, u)`,
+/// `(q_w c − q·u, c q_v + q_w u + q_v × u)`, is summed exactly in 64 bits (units 2^−(2F+1):
+/// the `c` products shifted left by one, the `u` products right by two; no overflow for any
+/// components in range) and rounded once, ties to even.
+pub(crate) fn mul_exp<const F: u32>(q: Quat<Fixed<F>>, phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
+    let n2 = phi.norm_squared();
+    if n2 > Fixed::<F>::EXP_SERIES_MAX_SQ {
+        return q * exp_large(phi);
+    }
+    let (c, s) = half_angle_series(n2);
+    // s·φ in units of 2^−(F+3): |s·φ| ≤ 1/16, so it fits 32 bits with room to spare.
+    let fine = |p: Fixed<F>| saturate(round_shift(mul_wide(s.0, p.0), F - 3));
+    let (ux, uy, uz) = (fine(phi.x), fine(phi.y), fine(phi.z));
+    let (qw, qx, qy, qz) = (q.w.0, q.x.0, q.y.0, q.z.0);
+    let cc = |a: i32| mul_wide(a, c.0) << 1;
+    let uu = |a: i32, b: i32| mul_wide(a, b) >> 2;
+    let out = |sum: i64| Fixed::<F>(saturate(round_shift(sum, F + 1)));
+    Quat::new(
+        out(cc(qw) - uu(qx, ux) - uu(qy, uy) - uu(qz, uz)),
+        out(cc(qx) + uu(qw, ux) + uu(qy, uz) - uu(qz, uy)),
+        out(cc(qy) + uu(qw, uy) - uu(qx, uz) + uu(qz, ux)),
+        out(cc(qz) + uu(qw, uz) + uu(qx, uy) - uu(qy, ux)),
+    )
 }
 
 /// Newton iterations allowed: from `r = 1`, `x = 0.26` (the slowest case of the domain) needs 7.

@@ -327,6 +327,10 @@ impl<const F: u32> Ring for Fixed<F> {
         exp::exp_large(phi)
     }
     #[inline]
+    fn mul_exp(q: Quat<Self>, phi: Vec3<Self>) -> Quat<Self> {
+        exp::mul_exp(q, phi)
+    }
+    #[inline]
     fn inv_sqrt_near_one(x: Self) -> Self {
         exp::inv_sqrt_near_one(x)
     }

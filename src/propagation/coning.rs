@@ -78,15 +78,19 @@ impl ConingRule {
 }
 
 /// `θₖ + (1/12) θₖ₋₁ × θₖ`: one increment with the previous-interval coning correction.
+///
+/// Every rule scales the earlier operand of its cross product before multiplying: the
+/// coefficient's rounding then lands on an increment-sized value (negligible after the product)
+/// and the small coning term is rounded once, which matters in fixed point.
 #[inline]
 pub fn one_plus_previous<T: Ring>(previous: Vec3<T>, current: Vec3<T>) -> Vec3<T> {
-    current + previous.cross(current).scale(T::ratio::<1, 12>())
+    current + previous.scale(T::ratio::<1, 12>()).cross(current)
 }
 
 /// `θ₁ + θ₂ + ⅔ θ₁ × θ₂`: the 2-sample coning rule.
 #[inline]
 pub fn two_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>) -> Vec3<T> {
-    t1 + t2 + t1.cross(t2).scale(T::ratio::<2, 3>())
+    t1 + t2 + t1.scale(T::ratio::<2, 3>()).cross(t2)
 }
 
 /// `θ₁ + θ₂ + θ₃ + (9/20 θ₁ + 27/20 θ₂) × θ₃`: the 3-sample coning rule.
@@ -135,7 +139,7 @@ pub fn rotation_vector_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> V
 /// 1/8 rad in Q1.30).
 #[inline]
 pub fn coning2_update<T: Ring>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
-    (q * UnitQuat::exp_unchecked(two_sample(t1, t2))).renormalize_fast()
+    q.mul_exp(two_sample(t1, t2)).renormalize_fast()
 }
 
 /// Buffer of the increments of the current update group.
@@ -210,9 +214,7 @@ impl<T: Ring> IncrementIntegrator<T> {
 
     fn commit(&mut self) {
         if let Some(last) = self.group.last().copied() {
-            self.q = self
-                .norm
-                .apply(self.q * UnitQuat::exp_unchecked(self.phi()));
+            self.q = self.norm.apply(self.q.mul_exp(self.phi()));
             self.previous = last;
             self.group.clear();
         }
@@ -236,8 +238,7 @@ impl<T: Ring> IncrementIntegrator<T> {
         if self.group.is_empty() {
             self.q
         } else {
-            self.norm
-                .apply(self.q * UnitQuat::exp_unchecked(self.phi()))
+            self.norm.apply(self.q.mul_exp(self.phi()))
         }
     }
 
@@ -296,7 +297,7 @@ impl<T: Ring> ConingAccumulator<T> {
     #[inline]
     pub fn push_unchecked(&mut self, dtheta: Vec3<T>) {
         let lever = self.alpha + self.previous.scale(T::ratio::<1, 6>());
-        self.beta += lever.cross(dtheta).scale(T::HALF);
+        self.beta += lever.scale(T::HALF).cross(dtheta);
         self.alpha += dtheta;
         self.previous = dtheta;
         self.count = self.count.saturating_add(1);

@@ -59,5 +59,5 @@ pub fn apply_rotation_vector<T: Ring>(
     phi: Vec3<T>,
     norm: Normalization,
 ) -> UnitQuat<T> {
-    norm.apply(q * UnitQuat::exp_unchecked(phi))
+    norm.apply(q.mul_exp(phi))
 }

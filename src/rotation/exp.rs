@@ -64,6 +64,17 @@ impl<T: Ring> UnitQuat<T> {
     }
 }
 
+impl<T: Ring> UnitQuat<T> {
+    /// `self ⊗ exp(φ)`: the attitude after the body-frame rotation vector `φ`, unchecked (see
+    /// [`UnitQuat::exp_unchecked`]). Equal to `self * UnitQuat::exp_unchecked(phi)` for the
+    /// floats; fused in fixed point ([`Ring::mul_exp`]): one rounding per component, with the
+    /// small rotation increment carried at a finer resolution than the format.
+    #[inline]
+    pub fn mul_exp(self, phi: Vec3<T>) -> Self {
+        Self::new_unchecked(T::mul_exp(self.into_quat(), phi))
+    }
+}
+
 impl<T: Real> UnitQuat<T> {
     /// The exponential map: the rotation by `|φ|` about `φ̂`, `(cos(|φ|/2), sin(|φ|/2)·φ/|φ|)`.
     ///
