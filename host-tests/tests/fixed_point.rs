@@ -130,12 +130,8 @@ fn exponential_map_small_and_large_angles() {
     assert!(worst[0] <= 1.5 * U, "{}", worst[0] / U);
     // Each doubling at most doubles the error of c (c ← c² − P, with P kept at full relative
     // precision) and adds the roundings of c², P and s: ≤ (2ᵏ⁺¹ + 4)·u for k halvings.
-    for k in 1..6 {
-        assert!(
-            worst[k] <= ((2 << k) + 4) as f64 * U,
-            "band {k}: {}",
-            worst[k] / U
-        );
+    for (k, w) in worst.iter().enumerate().skip(1) {
+        assert!(*w <= ((2 << k) + 4) as f64 * U, "band {k}: {}", w / U);
     }
     // Exactly 2π about z is the spinor −1 (the map continues past π).
     let two_pi =
