@@ -152,6 +152,20 @@ pub trait Ring:
     fn mul_exp(q: Quat<Self>, phi: Vec3<Self>) -> Quat<Self> {
         q * *crate::UnitQuat::exp_unchecked(phi).as_quat()
     }
+    /// `q ⊗ exp(sum + lever × last)`: the attitude update of a coning rule
+    /// ([`crate::UnitQuat::mul_exp_coning`]). The floats form the rotation vector and call
+    /// [`Ring::mul_exp`]; fixed point forms the cross product exactly and adds it to the sum at
+    /// the finer resolution of its fused exponential, so that the small coning term is rounded to
+    /// 2^−(F+3), not to the format's step.
+    #[inline]
+    fn mul_exp_coning(
+        q: Quat<Self>,
+        sum: Vec3<Self>,
+        lever: Vec3<Self>,
+        last: Vec3<Self>,
+    ) -> Quat<Self> {
+        Self::mul_exp(q, sum + lever.cross(last))
+    }
     /// `1/√x` for `x` near one (the squared norm of a drifting unit quaternion): the scale of
     /// [`crate::UnitQuat::renormalize`]. The floats compute `1/√x` for any positive `x`; fixed
     /// point iterates Newton steps and is accurate for `x ∈ [¼, 2)`.

@@ -51,34 +51,85 @@ pub(crate) fn exp_large<const F: u32>(phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
     Quat::from_parts(c, phi.scale(s))
 }
 
+/// Extra fraction bits of the fused exponential's rotation vector and increment.
+const FINE: u32 = 3;
+
 /// `q ⊗ exp(φ)`, fused on the series domain (`|φ|² ≤ 1/64`); beyond it, the product with
-/// [`exp_large`].
+/// [`exp_large`]. See [`mul_exp_fine`].
+pub(crate) fn mul_exp<const F: u32>(q: Quat<Fixed<F>>, phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
+    // Components below ¼ rad fit 32 bits with FINE more fraction bits.
+    let quarter = 1i32 << (F - 2);
+    let fits = |x: Fixed<F>| x.0.unsigned_abs() < quarter as u32;
+    if fits(phi.x) && fits(phi.y) && fits(phi.z) {
+        let f = [phi.x.0 << FINE, phi.y.0 << FINE, phi.z.0 << FINE];
+        if let Some(r) = mul_exp_fine(q, f) {
+            return r;
+        }
+    }
+    q * exp_large(phi)
+}
+
+/// `q ⊗ exp(sum + lever × last)`: the cross product is formed exactly (64 bits) and rounded once
+/// to the fine scale 2^−(F+3), where it is added to the sum (exact there); then as
+/// [`mul_exp_fine`]. Beyond the fused domain, the rounded rotation vector goes to [`mul_exp`].
+pub(crate) fn mul_exp_coning<const F: u32>(
+    q: Quat<Fixed<F>>,
+    sum: Vec3<Fixed<F>>,
+    lever: Vec3<Fixed<F>>,
+    last: Vec3<Fixed<F>>,
+) -> Quat<Fixed<F>> {
+    let (l, b) = (lever, last);
+    // Each difference of two products < 2⁶³ (symmetric range); units 2^−2F.
+    let cross = [
+        mul_wide(l.y.0, b.z.0) - mul_wide(l.z.0, b.y.0),
+        mul_wide(l.z.0, b.x.0) - mul_wide(l.x.0, b.z.0),
+        mul_wide(l.x.0, b.y.0) - mul_wide(l.y.0, b.x.0),
+    ];
+    let s = [sum.x.0, sum.y.0, sum.z.0];
+    let limit = 1i64 << (F + FINE - 2); // ¼ rad at the fine scale
+    let mut f = [0i32; 3];
+    let mut fused = true;
+    for ((slot, &si), &ci) in f.iter_mut().zip(&s).zip(&cross) {
+        let v = (i64::from(si) << FINE) + round_shift(ci, F - FINE);
+        fused &= v.abs() < limit;
+        *slot = saturate(v);
+    }
+    if fused && let Some(r) = mul_exp_fine(q, f) {
+        return r;
+    }
+    mul_exp(q, sum + lever.cross(last))
+}
+
+/// `q ⊗ exp(φ)` for `φ` given at the fine scale 2^−(F+3) (components below ¼ rad), or `None`
+/// beyond the series domain `|φ|² > 1/64`.
 ///
 /// With `c = cos(θ/2)` and `s = sin(θ/2)/θ` from the series, `u = s·φ` (`|u| ≤ 1/16`) is rounded
-/// to `F + 3` fraction bits (2⁻³⁴ in Q1.30, 16 times finer than the format), and each component
-/// of `q ⊗ (c, u)`,
-/// `(q_w c − q·u, c q_v + q_w u + q_v × u)`, is summed exactly in 64 bits (units 2^−(2F+1):
-/// the `c` products shifted left by one, the `u` products right by two; no overflow for any
-/// components in range) and rounded once, ties to even.
-pub(crate) fn mul_exp<const F: u32>(q: Quat<Fixed<F>>, phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
-    let n2 = phi.norm_squared();
-    if n2 > Fixed::<F>::EXP_SERIES_MAX_SQ {
-        return q * exp_large(phi);
+/// to the fine scale (2⁻³³ in Q1.30, 8 times finer than the format), and each component of
+/// `q ⊗ (c, u)`, `(q_w c − q·u, c q_v + q_w u + q_v × u)`, is summed exactly in 64 bits (units
+/// 2^−(2F+1): the `c` products shifted left by one, the `u` products right by two; no overflow
+/// for any components in range) and rounded once, ties to even. The rotation increment itself is
+/// never rounded to the format's step: a constant rate would otherwise integrate that rounding
+/// linearly.
+fn mul_exp_fine<const F: u32>(q: Quat<Fixed<F>>, f: [i32; 3]) -> Option<Quat<Fixed<F>>> {
+    // θ² in units 2^−(2F+2·FINE−2) (each square < 2⁶², shifted by 2); 1/64 is 2^(2F−2) there.
+    let t2_wide: i64 = f.iter().map(|&x| mul_wide(x, x) >> 2).sum();
+    if t2_wide > 1i64 << (2 * F + 2 * FINE - 2 - 6) {
+        return None;
     }
-    let (c, s) = half_angle_series(n2);
-    // s·φ in units of 2^−(F+3): |s·φ| ≤ 1/16, so it fits 32 bits with room to spare.
-    let fine = |p: Fixed<F>| saturate(round_shift(mul_wide(s.0, p.0), F - 3));
-    let (ux, uy, uz) = (fine(phi.x), fine(phi.y), fine(phi.z));
+    let t2 = Fixed::<F>(saturate(round_shift(t2_wide, F + 2 * FINE - 2)));
+    let (c, s) = half_angle_series(t2);
+    let fine = |x: i32| saturate(round_shift(mul_wide(s.0, x), F));
+    let (ux, uy, uz) = (fine(f[0]), fine(f[1]), fine(f[2]));
     let (qw, qx, qy, qz) = (q.w.0, q.x.0, q.y.0, q.z.0);
     let cc = |a: i32| mul_wide(a, c.0) << 1;
     let uu = |a: i32, b: i32| mul_wide(a, b) >> 2;
     let out = |sum: i64| Fixed::<F>(saturate(round_shift(sum, F + 1)));
-    Quat::new(
+    Some(Quat::new(
         out(cc(qw) - uu(qx, ux) - uu(qy, uy) - uu(qz, uz)),
         out(cc(qx) + uu(qw, ux) + uu(qy, uz) - uu(qz, uy)),
         out(cc(qy) + uu(qw, uy) - uu(qx, uz) + uu(qz, ux)),
         out(cc(qz) + uu(qw, uz) + uu(qx, uy) - uu(qy, ux)),
-    )
+    ))
 }
 
 /// Newton iterations allowed: from `r = 1`, `x = 0.26` (the slowest case of the domain) needs 7.

@@ -49,7 +49,9 @@
 //! - The attitude update `q ⊗ exp(φ)` ([`UnitQuat::mul_exp`], used by every increment
 //!   integrator): fused, so that the small rotation increment `sin(θ/2)/θ·φ` is carried with 3
 //!   more fraction bits (2⁻³³) and each output component is rounded once. Without it, a constant
-//!   rate would integrate the rounding of its (identical) increment quaternion linearly.
+//!   rate would integrate the rounding of its (identical) increment quaternion linearly. A
+//!   coning rule's update ([`UnitQuat::mul_exp_coning`]) also forms its cross product exactly
+//!   and adds it to the increments at 2⁻³³, so the small coning term is not rounded to 2⁻³⁰.
 //! - Renormalisation: [`UnitQuat::renormalize_fast`] is `q + q·(1 − |q|²)/2` (one Newton step of
 //!   the inverse square root, no division); [`UnitQuat::renormalize`] iterates that step on the
 //!   scale until it stops changing (valid for `|q|² ∈ (¼, 2)`).
@@ -60,12 +62,13 @@
 //! per component, rotation ≤ 3.4u, matrix ≤ 3.7u, exponential ≤ 0.64u on the series domain and
 //! ≤ 29u up to `|φ| = 3.4` rad. Over 10⁶ constant-rate updates the attitude error is 9.5e-6 rad
 //! (f32 on the same inputs: 3.9e-3 rad). Under classical coning the 2-sample path stays within
-//! 6e-9 rad of the closed form near the identity (f32: 5e-9 to 2e-8) and within 1.1e-6 rad from
-//! other base attitudes (f32: 5e-6 to 3e-5). One limit: a per-update rotation vector is carried
-//! with the absolute step 2⁻³⁰, so a coning-correction term of only a few units per update,
-//! nearly constant under coning, is rounded the same way every update; the measured drift
-//! constants of the one-plus-previous and 2-sample rules are then 16% above the published ones
-//! (f32: within 1%), while the exponential-per-increment drift is reproduced to 0.4%.
+//! 6e-9 rad of the closed form near the identity (f32: 6e-9 to 8e-8) and within 1.3e-6 rad from
+//! other base attitudes (f32: 5e-6 to 3e-5). One limit: the attitude itself has the absolute
+//! step 2⁻³⁰, and a periodic motion repeats its roundings every period; drifts below about
+//! 1e-7 rad/s are then measured with an offset of about 1.3e-8 rad/s (the one-plus-previous and
+//! 2-sample drift constants at α = 0.05 come out 16% high, f32 within 1%; the
+//! exponential-per-increment drift is reproduced to 0.4%). `host-tests` shows the cause by
+//! rounding the f64 path's attitude to 2⁻³⁰ per update, which reproduces the offset.
 //!
 //! # Cost
 //! The Cortex-M0 has no 32×32 → 64-bit multiply; an `i64` product there is a call of
@@ -82,8 +85,8 @@
 //!
 //! | operation | M0 soft f32 | M0 Q1.30 | M3 soft f32 | M3 Q1.30 | M4F f32 (FPU) | M4F Q1.30 |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | quaternion product | 3276 | 599 | 1886 | 172 | 46 | 168 |
-//! | 2-sample coning update (rule, exp, product, renormalisation) | 9085 | 1883 | 5158 | 667 | 97 | 615 |
+//! | quaternion product | 3276 | 599 | 1886 | 169 | 46 | 168 |
+//! | 2-sample coning update (rule, exp, product, renormalisation) | 9077 | 1933 | 5157 | 690 | 97 | 661 |
 //!
 //! # When to choose fixed point
 //! On a core without an FPU (Cortex-M0/M0+, M3, M23), for the strapdown attitude update from gyro
@@ -352,6 +355,15 @@ impl<const F: u32> Ring for Fixed<F> {
     #[inline]
     fn mul_exp(q: Quat<Self>, phi: Vec3<Self>) -> Quat<Self> {
         exp::mul_exp(q, phi)
+    }
+    #[inline]
+    fn mul_exp_coning(
+        q: Quat<Self>,
+        sum: Vec3<Self>,
+        lever: Vec3<Self>,
+        last: Vec3<Self>,
+    ) -> Quat<Self> {
+        exp::mul_exp_coning(q, sum, lever, last)
     }
     #[inline]
     fn inv_sqrt_near_one(x: Self) -> Self {

@@ -77,41 +77,125 @@ impl ConingRule {
     }
 }
 
-/// `θₖ + (1/12) θₖ₋₁ × θₖ`: one increment with the previous-interval coning correction.
+/// A rule's rotation vector in the form every rule shares, `φ = sum + lever × last`: the sum of
+/// the increments, the (scaled) earlier increments, and the last increment.
 ///
-/// Every rule scales the earlier operand of its cross product before multiplying: the
-/// coefficient's rounding then lands on an increment-sized value (negligible after the product)
-/// and the small coning term is rounded once, which matters in fixed point.
+/// [`UnitQuat::mul_exp_coning`] takes this form, so that fixed point can form the coning term
+/// `lever × last` (small, and nearly constant under coning) at a finer resolution than the
+/// format instead of rounding it to 2⁻³⁰ every update.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConingTerms<T> {
+    /// `Σθ`.
+    pub sum: Vec3<T>,
+    /// The combination of earlier increments that multiplies the last one.
+    pub lever: Vec3<T>,
+    /// The last increment `θ_N`.
+    pub last: Vec3<T>,
+}
+
+impl<T: Ring> ConingTerms<T> {
+    /// `φ = sum + lever × last`.
+    #[inline]
+    pub fn rotation_vector(self) -> Vec3<T> {
+        self.sum + self.lever.cross(self.last)
+    }
+}
+
+/// One increment with the previous-interval correction, `θₖ + (1/12) θₖ₋₁ × θₖ`, as
+/// [`ConingTerms`].
+///
+/// Every rule scales the earlier operands of its cross product before multiplying: the
+/// coefficient's rounding then lands on an increment-sized value (negligible after the product).
+#[inline]
+pub fn one_plus_previous_terms<T: Ring>(previous: Vec3<T>, current: Vec3<T>) -> ConingTerms<T> {
+    ConingTerms {
+        sum: current,
+        lever: previous.scale(T::ratio::<1, 12>()),
+        last: current,
+    }
+}
+
+/// The 2-sample rule `θ₁ + θ₂ + ⅔ θ₁ × θ₂` as [`ConingTerms`].
+#[inline]
+pub fn two_sample_terms<T: Ring>(t1: Vec3<T>, t2: Vec3<T>) -> ConingTerms<T> {
+    ConingTerms {
+        sum: t1 + t2,
+        lever: t1.scale(T::ratio::<2, 3>()),
+        last: t2,
+    }
+}
+
+/// The 3-sample rule `Σθ + (9/20 θ₁ + 27/20 θ₂) × θ₃` as [`ConingTerms`].
+#[inline]
+pub fn three_sample_terms<T: Ring>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>) -> ConingTerms<T> {
+    ConingTerms {
+        sum: t1 + t2 + t3,
+        lever: t1.scale(T::ratio::<9, 20>()) + t2.scale(T::ratio::<27, 20>()),
+        last: t3,
+    }
+}
+
+/// The 4-sample rule `Σθ + (54 θ₁ + 92 θ₂ + 214 θ₃)/105 × θ₄` as [`ConingTerms`].
+///
+/// The lever is formed as `2·(27 θ₁ + 46 θ₂ + 107 θ₃)/105`, so that every coefficient lies in
+/// `[−2, 2)` (214/105 does not fit Q1.30); for the floats the halving and doubling are exact and
+/// the result is the same as with the written coefficients.
+#[inline]
+pub fn four_sample_terms<T: Ring>(
+    t1: Vec3<T>,
+    t2: Vec3<T>,
+    t3: Vec3<T>,
+    t4: Vec3<T>,
+) -> ConingTerms<T> {
+    let h = t1.scale(T::ratio::<27, 105>())
+        + t2.scale(T::ratio::<46, 105>())
+        + t3.scale(T::ratio::<107, 105>());
+    ConingTerms {
+        sum: t1 + t2 + t3 + t4,
+        lever: Vec3::new(h.x.twice(), h.y.twice(), h.z.twice()),
+        last: t4,
+    }
+}
+
+/// `θₖ + (1/12) θₖ₋₁ × θₖ`: one increment with the previous-interval coning correction.
 #[inline]
 pub fn one_plus_previous<T: Ring>(previous: Vec3<T>, current: Vec3<T>) -> Vec3<T> {
-    current + previous.scale(T::ratio::<1, 12>()).cross(current)
+    one_plus_previous_terms(previous, current).rotation_vector()
 }
 
 /// `θ₁ + θ₂ + ⅔ θ₁ × θ₂`: the 2-sample coning rule.
 #[inline]
 pub fn two_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>) -> Vec3<T> {
-    t1 + t2 + t1.scale(T::ratio::<2, 3>()).cross(t2)
+    two_sample_terms(t1, t2).rotation_vector()
 }
 
 /// `θ₁ + θ₂ + θ₃ + (9/20 θ₁ + 27/20 θ₂) × θ₃`: the 3-sample coning rule.
 #[inline]
 pub fn three_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>) -> Vec3<T> {
-    let c = t1.scale(T::ratio::<9, 20>()) + t2.scale(T::ratio::<27, 20>());
-    t1 + t2 + t3 + c.cross(t3)
+    three_sample_terms(t1, t2, t3).rotation_vector()
 }
 
-/// `Σθ + (54 θ₁ + 92 θ₂ + 214 θ₃)/105 × θ₄`: the 4-sample coning rule.
-///
-/// Evaluated as `Σθ + 2·((27 θ₁ + 46 θ₂ + 107 θ₃)/105 × θ₄)`, so that every coefficient lies in
-/// `[−2, 2)` (214/105 does not fit Q1.30); for the floats the halving and doubling are exact and
-/// the result is the same as with the written coefficients.
+/// `Σθ + (54 θ₁ + 92 θ₂ + 214 θ₃)/105 × θ₄`: the 4-sample coning rule (see
+/// [`four_sample_terms`] for how the coefficients are applied).
 #[inline]
 pub fn four_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>, t4: Vec3<T>) -> Vec3<T> {
-    let c_half = t1.scale(T::ratio::<27, 105>())
-        + t2.scale(T::ratio::<46, 105>())
-        + t3.scale(T::ratio::<107, 105>());
-    let k = c_half.cross(t4);
-    t1 + t2 + t3 + t4 + Vec3::new(k.x.twice(), k.y.twice(), k.z.twice())
+    four_sample_terms(t1, t2, t3, t4).rotation_vector()
+}
+
+/// The [`ConingTerms`] of `samples` (1 to 4 increments in time order) by the highest-order rule
+/// that fits their number (see [`rotation_vector_for`]); all zero for an empty slice.
+pub fn coning_terms_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> ConingTerms<T> {
+    match samples {
+        [] => ConingTerms {
+            sum: Vec3::ZERO,
+            lever: Vec3::ZERO,
+            last: Vec3::ZERO,
+        },
+        [a] => one_plus_previous_terms(previous, *a),
+        [a, b] => two_sample_terms(*a, *b),
+        [a, b, c] => three_sample_terms(*a, *b, *c),
+        [a, b, c, d, ..] => four_sample_terms(*a, *b, *c, *d),
+    }
 }
 
 /// The rotation vector of `samples` (1 to 4 increments in time order) by the highest-order rule
@@ -120,13 +204,7 @@ pub fn four_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>, t4: Vec3<T>) 
 /// uses its first four. This is how a partial group (the end of a record, or a provisional
 /// attitude inside a group) is integrated.
 pub fn rotation_vector_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> Vec3<T> {
-    match samples {
-        [] => Vec3::ZERO,
-        [a] => one_plus_previous(previous, *a),
-        [a, b] => two_sample(*a, *b),
-        [a, b, c] => three_sample(*a, *b, *c),
-        [a, b, c, d, ..] => four_sample(*a, *b, *c, *d),
-    }
+    coning_terms_for(previous, samples).rotation_vector()
 }
 
 /// The complete 2-sample update on the hot path: `q ⊗ exp(θ₁ + θ₂ + ⅔ θ₁ × θ₂)`, then the fast
@@ -136,10 +214,12 @@ pub fn rotation_vector_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> V
 /// Unchecked (a non-finite increment gives a non-finite attitude): for an inner loop whose
 /// increments were validated when they were read. The exponential of the small per-update
 /// angle uses the series of [`UnitQuat::exp`] (no trigonometric call below 0.37 rad in f32,
-/// 1/8 rad in Q1.30).
+/// 1/8 rad in Q1.30); the rule and the exponential are applied by
+/// [`UnitQuat::mul_exp_coning`].
 #[inline]
 pub fn coning2_update<T: Ring>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
-    q.mul_exp(two_sample(t1, t2)).renormalize_fast()
+    q.mul_exp_coning(two_sample_terms(t1, t2))
+        .renormalize_fast()
 }
 
 /// Buffer of the increments of the current update group.
@@ -204,17 +284,18 @@ impl<T: Ring> IncrementIntegrator<T> {
         Ok(None)
     }
 
-    fn phi(&self) -> Vec3<T> {
+    /// `q ⊗ exp(φ)` for the pending group, before normalisation.
+    fn advanced(&self) -> UnitQuat<T> {
         match (self.rule, self.group.as_slice()) {
-            (ConingRule::Exp, [a]) => *a,
-            (ConingRule::Exp, s) => s.iter().fold(Vec3::ZERO, |acc, t| acc + *t),
-            (_, s) => rotation_vector_for(self.previous, s),
+            (ConingRule::Exp, [a]) => self.q.mul_exp(*a),
+            (ConingRule::Exp, s) => self.q.mul_exp(s.iter().fold(Vec3::ZERO, |acc, t| acc + *t)),
+            (_, s) => self.q.mul_exp_coning(coning_terms_for(self.previous, s)),
         }
     }
 
     fn commit(&mut self) {
         if let Some(last) = self.group.last().copied() {
-            self.q = self.norm.apply(self.q.mul_exp(self.phi()));
+            self.q = self.norm.apply(self.advanced());
             self.previous = last;
             self.group.clear();
         }
@@ -238,7 +319,7 @@ impl<T: Ring> IncrementIntegrator<T> {
         if self.group.is_empty() {
             self.q
         } else {
-            self.norm.apply(self.q.mul_exp(self.phi()))
+            self.norm.apply(self.advanced())
         }
     }
 

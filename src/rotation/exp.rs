@@ -73,6 +73,20 @@ impl<T: Ring> UnitQuat<T> {
     pub fn mul_exp(self, phi: Vec3<T>) -> Self {
         Self::new_unchecked(T::mul_exp(self.into_quat(), phi))
     }
+
+    /// `self ⊗ exp(φ)` for a coning rule's rotation vector `φ = sum + lever × last`
+    /// ([`crate::propagation::ConingTerms`]). Equal to `self.mul_exp(terms.rotation_vector())`
+    /// for the floats; in fixed point the coning term is formed exactly and kept at the fused
+    /// exponential's finer resolution ([`Ring::mul_exp_coning`]).
+    #[inline]
+    pub fn mul_exp_coning(self, terms: crate::propagation::ConingTerms<T>) -> Self {
+        Self::new_unchecked(T::mul_exp_coning(
+            self.into_quat(),
+            terms.sum,
+            terms.lever,
+            terms.last,
+        ))
+    }
 }
 
 impl<T: Real> UnitQuat<T> {
