@@ -12,6 +12,7 @@
 //! is subtracted, and the count is per call. Counts are guest
 //! instructions (QEMU has no cycle model), identical on every run.
 //!
+//! Rows ending in `_q30` are the fixed-point (Q1.30) path on the same operands as the f32 rows.
 //! Each operation is one line in `main` (`count!("name", || expression)`); operands go through
 //! `black_box`, so the count includes loading them, as in real firmware. Output, one line each:
 //! `icount <name> <instructions>`. `calibration_check_1000` (1000 loop instructions plus about 3
