@@ -2,8 +2,8 @@
 //! RISC-V RV32IMAC) against the independent f64 reference.
 //!
 //! `.ci/run` runs the firmware, writes its output to `$GYROSTAT_FIRMWARE_OUTPUT/<target>.txt` for
-//! each target, and then runs this test with `GYROSTAT_FIRMWARE_OUTPUT` set and
-//! `--include-ignored`; every expected file must then exist and hold one line per case. The test
+//! each target, and then runs this test with `GYROSTAT_FIRMWARE_OUTPUT` set and `--ignored`;
+//! every expected file must then exist and hold one line per case. The test
 //! is `#[ignore]`d, so a plain `cargo test` lists it as ignored instead of passing without
 //! checking anything, and it fails when run without its input.
 //!

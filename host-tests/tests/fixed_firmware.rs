@@ -3,8 +3,8 @@
 //!
 //! The scenario (`examples/fw/fixed_scenario.rs`, included here) runs on the host in this test.
 //! `.ci/run` runs the firmware on the M0, M3, M4F, M33 and RISC-V boards, writes
-//! `$GYROSTAT_FIRMWARE_OUTPUT/fixed-<target>.txt` and runs this test with the variable set and
-//! `--include-ignored`; the boards' lines must then equal the host's lines character for
+//! `$GYROSTAT_FIRMWARE_OUTPUT/fixed-<target>.txt` and runs the ignored test with the variable set
+//! (`--ignored`); the boards' lines must then equal the host's lines character for
 //! character (every number is the hex of a raw Q1.30 integer). The bit-identity check is
 //! `#[ignore]`d, so a plain `cargo test` lists it as ignored instead of passing without checking
 //! anything, and it fails when run without its input. The accuracy and `propagate --fixed`
