@@ -58,10 +58,10 @@ use crate::compensated::{
     add_compensated, renormalize_compensated, rotate_compensated, sixth_pair, two_sum,
 };
 use crate::propagation::Normalization;
-use crate::propagation::coning::{ConingRule, apply_rule};
+use crate::propagation::coning::{ConingRule, apply_rule, coning_terms_for};
 use crate::propagation::kinematics::quat_rate_body;
 use crate::propagation::rate_samples::{RateMethod, Weights, advance_plain, interp_difference};
-use crate::{Quat, Real, UnitQuat, Vec3};
+use crate::{Quat, Real, Ring, UnitQuat, Vec3};
 
 /// An attitude with its rounding error carried: `q + q_lo`, `q` the attitude rounded to `T`.
 ///
@@ -175,11 +175,12 @@ impl<T: Real> CompensatedAttitude<T> {
     }
 }
 
-/// The attitude an increment or rate integrator carries: a [`UnitQuat`] (the plain update) or
-/// a [`CompensatedAttitude`] (the compensated update). Sealed.
+/// The attitude an increment or rate integrator carries: a [`UnitQuat`] (the plain update, for
+/// every [`Ring`] type, fixed point included) or a [`CompensatedAttitude`] (the compensated
+/// update, [`Real`] types). Sealed.
 pub trait PropagatedAttitude<T>: sealed::Propagate<T> {}
 
-impl<T: Real> PropagatedAttitude<T> for UnitQuat<T> {}
+impl<T: Ring> PropagatedAttitude<T> for UnitQuat<T> {}
 impl<T: Real> PropagatedAttitude<T> for CompensatedAttitude<T> {}
 
 pub(crate) mod sealed {
@@ -209,10 +210,12 @@ pub(crate) mod sealed {
             h: T,
             h_lo: T,
             norm: Normalization,
-        ) -> Self;
+        ) -> Self
+        where
+            T: Real;
     }
 
-    impl<T: Real> Propagate<T> for UnitQuat<T> {
+    impl<T: Ring> Propagate<T> for UnitQuat<T> {
         #[inline(always)]
         fn attitude(&self) -> UnitQuat<T> {
             *self
@@ -236,7 +239,10 @@ pub(crate) mod sealed {
             h: T,
             _h_lo: T,
             norm: Normalization,
-        ) -> Self {
+        ) -> Self
+        where
+            T: Real,
+        {
             advance_plain(self, method, window, weights, h, norm)
         }
     }
@@ -292,8 +298,8 @@ fn two_product_vec<T: Real>(a: Vec3<T>, s: T) -> (Vec3<T>, Vec3<T>) {
 }
 
 /// The rotation vector of one update of `rule` as a compensated pair: the sum of the increments
-/// exactly (TwoSum), the coning term of the rule that fits their number (as in
-/// [`crate::propagation::coning::rotation_vector_for`]) added to the low part; [`ConingRule::Exp`]
+/// exactly (TwoSum), the coning term `lever × last` of the rule that fits their number
+/// ([`coning_terms_for`], the plain update's terms) added to the low part; [`ConingRule::Exp`]
 /// has no coning term.
 fn rule_vector<T: Real>(
     rule: ConingRule,
@@ -308,15 +314,10 @@ fn rule_vector<T: Real>(
     }
     let coning = match (rule, samples) {
         (ConingRule::Exp, _) | (_, []) => Vec3::ZERO,
-        (_, [a]) => previous.cross(*a).scale(T::from_f64(1.0 / 12.0)),
-        (_, [a, b]) => a.cross(*b).scale(T::from_f64(2.0 / 3.0)),
-        (_, [a, b, c]) => {
-            (a.scale(T::from_f64(9.0 / 20.0)) + b.scale(T::from_f64(27.0 / 20.0))).cross(*c)
+        (_, s) => {
+            let terms = coning_terms_for(previous, s);
+            terms.lever.cross(terms.last)
         }
-        (_, [a, b, c, d, ..]) => (a.scale(T::from_f64(54.0 / 105.0))
-            + b.scale(T::from_f64(92.0 / 105.0))
-            + c.scale(T::from_f64(214.0 / 105.0)))
-        .cross(*d),
     };
     (sum, lo + coning)
 }

@@ -38,6 +38,7 @@ pub mod normalization;
 pub mod rate_samples;
 
 pub use compensated::{CompensatedAttitude, PropagatedAttitude};
-pub use coning::{ConingAccumulator, ConingRule, IncrementIntegrator};
+pub use coning::{ConingAccumulator, ConingRule, ConingTerms, IncrementIntegrator};
+pub use exponential::RotationVectorForm;
 pub use normalization::Normalization;
 pub use rate_samples::{RateIntegrator, RateMethod};
