@@ -128,11 +128,12 @@ pub trait Ring:
     /// that a quaternion product or a cross product costs one rounding per component.
     #[inline]
     fn dot<const N: usize>(a: [Self; N], b: [Self; N]) -> Self {
-        a.into_iter()
-            .zip(b)
-            .map(|(x, y)| x * y)
-            .reduce(|s, p| s + p)
-            .unwrap_or(Self::ZERO)
+        // Over references, not `into_iter()`: the by-value array iterator kept its index range in
+        // memory, and the f32 exponential map took 34 instead of 9 ns on x86-64 (stores and loads
+        // of different widths). The first product, then the others added left to right.
+        let mut products = a.iter().zip(b.iter()).map(|(x, y)| *x * *y);
+        let first = products.next().unwrap_or(Self::ZERO);
+        products.fold(first, |s, p| s + p)
     }
     /// The exponential map `exp(φ) = (cos(θ/2), sin(θ/2)·φ/θ)`, `θ = |φ|`, for
     /// `theta_sq = |φ|² >` [`Ring::EXP_SERIES_MAX_SQ`] (or not finite): the part of
