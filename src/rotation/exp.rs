@@ -55,7 +55,7 @@ impl<T: Ring> UnitQuat<T> {
     /// series, no trigonometric call; beyond, [`Ring::exp_beyond_series`]. For fixed point this
     /// is the exponential map itself: total on every representable `φ`, integer arithmetic only
     /// (see [`crate::fixed`]).
-    #[inline]
+    #[inline(always)]
     pub fn exp_unchecked(phi: Vec3<T>) -> Self {
         let n2 = phi.norm_squared();
         if n2 <= T::EXP_SERIES_MAX_SQ {
