@@ -14,9 +14,11 @@
 //!   tiny-step RK4 free rigid body.
 //! - [`tolerance`]: the one tolerance trait, [`tolerance::Tolerance`].
 //! - [`cast`]: gyrostat values of any scalar type to and from f64 arrays.
+//! - [`cli`]: the command-line tools (examples) built and run as processes.
 //! - [`per_type!`]: runs test items for f32 and for f64.
 
 pub mod cast;
+pub mod cli;
 pub mod ref_dynamics;
 pub mod ref_exact;
 pub mod ref_propagation;

@@ -1,0 +1,128 @@
+//! The host command-line tools (`examples/convert.rs`, `examples/propagate.rs`,
+//! `examples/simulate/`) as processes, for the tests of their interfaces.
+//!
+//! Cargo tells integration tests where the workspace's *binaries* are (`CARGO_BIN_EXE_<name>`),
+//! not its examples. So the first call of [`example`] in a test process builds the three tools
+//! with the cargo that runs the tests, into the target directory and profile of the running test
+//! executable (`<target>/<dir>/deps/<test>` → `cargo build --target-dir <target> --profile
+//! bench|dev -p gyrostat --example convert --example propagate --example simulate`), and returns
+//! `<target>/<dir>/examples/<name>`. Under `cargo test --workspace --release` the examples were
+//! already built with that profile, so the build is a no-op check; a targeted run
+//! (`cargo test --release -p host-tests --test cli_simulate`) builds them first, so a test never
+//! runs a stale tool. A `OnceLock` makes the build happen once per test process; concurrent
+//! cargo processes are serialised by cargo's own lock on the target directory.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::OnceLock;
+
+/// The three command-line tools.
+pub const TOOLS: [&str; 3] = ["convert", "propagate", "simulate"];
+
+/// `(target directory, profile directory)` of the running test executable.
+fn target_of_this_test() -> (PathBuf, PathBuf) {
+    let exe = std::env::current_exe().expect("the test knows its executable");
+    // <target>/<profile dir>/deps/<test executable>
+    let profile_dir = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("test executables live in <target>/<profile>/deps")
+        .to_path_buf();
+    let target = profile_dir
+        .parent()
+        .expect("a profile directory has a parent")
+        .to_path_buf();
+    (target, profile_dir)
+}
+
+/// The path of the built example `name` (one of [`TOOLS`]), building the tools on first use.
+pub fn example(name: &str) -> PathBuf {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    let dir = DIR.get_or_init(|| {
+        let (target, profile_dir) = target_of_this_test();
+        let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
+        // `cargo test --release` builds with the bench profile, plain `cargo test` with dev.
+        let profile = if cfg!(debug_assertions) {
+            "dev"
+        } else {
+            "bench"
+        };
+        let mut cmd = Command::new(env!("CARGO"));
+        cmd.current_dir(&root)
+            .arg("build")
+            .arg("-q")
+            .arg("--target-dir")
+            .arg(&target)
+            .args(["--profile", profile, "-p", "gyrostat"]);
+        for tool in TOOLS {
+            cmd.args(["--example", tool]);
+        }
+        let status = cmd.status().expect("cargo runs");
+        assert!(status.success(), "building the command-line tools failed");
+        profile_dir.join("examples")
+    });
+    dir.join(name)
+}
+
+/// What a tool run produced.
+#[derive(Debug)]
+pub struct Output {
+    /// Everything written to stdout.
+    pub stdout: String,
+    /// Everything written to stderr.
+    pub stderr: String,
+    /// The exit status (`None` if killed by a signal).
+    pub status: Option<i32>,
+}
+
+impl Output {
+    /// The stdout lines.
+    pub fn lines(&self) -> Vec<&str> {
+        self.stdout.lines().collect()
+    }
+}
+
+/// Runs the tool `name` with `args` and `stdin` as its standard input.
+pub fn run(name: &str, args: &[&str], stdin: &str) -> Output {
+    let mut child = Command::new(example(name))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap_or_else(|e| panic!("{name} runs: {e}"));
+    let mut input = child.stdin.take().expect("piped stdin");
+    let text = stdin.to_string();
+    // Feed stdin from a thread so a tool that writes before reading all input cannot deadlock.
+    let feeder = std::thread::spawn(move || {
+        // A tool that stops reading early (a bad row) closes the pipe: not an error here.
+        let _ = input.write_all(text.as_bytes());
+    });
+    let out = child.wait_with_output().expect("the tool finishes");
+    feeder.join().expect("stdin feeder");
+    Output {
+        stdout: String::from_utf8(out.stdout).expect("UTF-8 stdout"),
+        stderr: String::from_utf8(out.stderr).expect("UTF-8 stderr"),
+        status: out.status.code(),
+    }
+}
+
+/// Parses a CSV row of numbers.
+pub fn numbers(line: &str) -> Vec<f64> {
+    line.split(',')
+        .map(|f| {
+            f.trim()
+                .parse()
+                .unwrap_or_else(|_| panic!("not a number: {f:?} in {line:?}"))
+        })
+        .collect()
+}
+
+/// Formats numbers as a CSV row in the shortest form that round-trips (`{:?}`).
+pub fn row(xs: &[f64]) -> String {
+    xs.iter()
+        .map(|x| format!("{x:?}"))
+        .collect::<Vec<_>>()
+        .join(",")
+}
