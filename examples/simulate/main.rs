@@ -116,7 +116,7 @@ after the CSV: without external torque the lab-frame total momentum is conserved
 printed); with one, its change is compared with the integrated lab-frame torque.
 
 A run that lasts longer than about a second shows its progress on stderr when stderr is a
-terminal, and nothing otherwise.
+terminal and stdout is not (the CSV goes to a file or a pipe), and nothing otherwise.
 ";
 
 /// Calls `f::<T, N>(args)` with the wheel count `N` a constant: one instance per count up to
@@ -501,7 +501,8 @@ fn parse(args: &[String]) -> Result<Config, String> {
 // ---------------------------------------------------------------------------------------------
 // Progress
 
-/// Progress on stderr for a run longer than [`Progress::QUIET`], only when stderr is a terminal.
+/// Progress on stderr for a run longer than [`Progress::QUIET`], only when stderr is a terminal
+/// and stdout is not (CSV rows on a terminal are never interleaved with a progress line).
 struct Progress {
     enabled: bool,
     start: Instant,
@@ -517,7 +518,7 @@ impl Progress {
 
     fn new(total: u64) -> Self {
         Self {
-            enabled: io::stderr().is_terminal(),
+            enabled: io::stderr().is_terminal() && !io::stdout().is_terminal(),
             start: Instant::now(),
             last: None,
             total,

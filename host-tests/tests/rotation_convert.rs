@@ -1,59 +1,14 @@
 //! The `convert` example as an interface: flags, CSV formats, error lines, exit status,
 //! round-tripping output numbers, checked against the independent reference matrices.
 
-use std::io::Write;
-use std::path::PathBuf;
-use std::process::{Command, Stdio};
-use std::sync::OnceLock;
-
 use host_tests::ref_rotation::{euler_matrix, rot_dist, rotvec_matrix};
 use host_tests::reference::quat_matrix;
 
-/// Builds the example once (same profile as this test) and returns its path.
-fn binary() -> &'static PathBuf {
-    static BIN: OnceLock<PathBuf> = OnceLock::new();
-    BIN.get_or_init(|| {
-        let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
-        let release = !cfg!(debug_assertions);
-        let mut cmd = Command::new(env!("CARGO"));
-        cmd.current_dir(&root)
-            .args(["build", "-q", "-p", "gyrostat", "--example", "convert"]);
-        if release {
-            cmd.arg("--release");
-        }
-        let st = cmd.status().expect("cargo runs");
-        assert!(st.success(), "building the convert example failed");
-        let target = std::env::var_os("CARGO_TARGET_DIR")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| root.join("target"));
-        target
-            .join(if release { "release" } else { "debug" })
-            .join("examples")
-            .join("convert")
-    })
-}
-
-/// Runs `convert ARGS` with `input` on stdin: (stdout, stderr, success).
+/// Runs `convert ARGS` with `input` on stdin: (stdout, stderr, success). The tool is built by
+/// [`host_tests::cli::example`] (same target directory and profile as this test).
 fn run(args: &[&str], input: &str) -> (String, String, bool) {
-    let mut child = Command::new(binary())
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("convert runs");
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(input.as_bytes())
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
-    (
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-        out.status.success(),
-    )
+    let out = host_tests::cli::run("convert", args, input);
+    (out.stdout, out.stderr, out.status == Some(0))
 }
 
 fn nums(line: &str) -> Vec<f64> {
