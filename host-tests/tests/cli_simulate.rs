@@ -311,7 +311,7 @@ fn reference(times: &[f64]) -> Vec<Ref> {
     for c in cuts {
         s = g.integrate(&s, c - t, REF_H, torque_at(0.5 * (t + c)), &WHEEL_TORQUE);
         t = c;
-        if times.iter().any(|&x| x == c) {
+        if times.contains(&c) {
             out.push(s.clone());
         }
     }
