@@ -898,6 +898,10 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
 
 fn run_csv<T: Real + Display, const N: usize>(cfg: &Config) -> Result<(), String> {
     let sim = setup::<T, N>(cfg)?;
+    if let Some(path) = &cfg.plot {
+        // Fail before any output when the plot cannot be written.
+        std::fs::File::create(path).map_err(|e| format!("--plot {}: {e}", path.display()))?;
+    }
     let stdout = io::stdout();
     let mut out = BufWriter::new(stdout.lock());
     let stride = cfg.plot.as_ref().map(|_| plot_stride(cfg.steps));

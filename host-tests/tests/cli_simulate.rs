@@ -790,6 +790,10 @@ fn error_paths() {
         ],
         "--integrator exact is for torque-free rigid bodies only (no --spin, no --quartic)",
     );
+    fails(
+        &[&i[..], &base[..], &["--plot", "/nonexistent/plot.svg"]].concat(),
+        "--plot /nonexistent/plot.svg: ",
+    );
     // Bad torque files: the line is named, before any output.
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     for (name, text, msg) in [
