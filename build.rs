@@ -1,26 +1,37 @@
 //! Link setup for the firmware examples only: the library itself needs no build step.
 //!
-//! For bare-metal ARM targets, the examples link with cortex-m-rt's `link.x`, which includes the
-//! top-level `memory.x`. One `memory.x` serves every board: its lengths default to the
-//! Cortex-M4F board (mps2-an386, 4 MiB + 4 MiB) and this script overrides them per target.
+//! Bare-metal examples link with their runtime's `link.x` (cortex-m-rt on ARM, riscv-rt on
+//! RISC-V), which includes the top-level `memory.x`. One `memory.x` serves every board: its
+//! origins and lengths default to the Cortex-M4F board (mps2-an386, 4 MiB + 4 MiB) and this
+//! script overrides them per target; the board table and the reasons for each map are in
+//! `memory.x`.
 use std::env;
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=memory.x");
     let target = env::var("TARGET").unwrap_or_default();
-    if !target.starts_with("thumb") {
-        return;
-    }
-    println!("cargo:rustc-link-arg-examples=-Tlink.x");
-    // (flash, ram) of the QEMU board each target runs on (README, "Firmware under QEMU").
-    let (flash, ram) = if target.starts_with("thumbv6m") {
-        ("256K", "16K") // microbit (nRF51, Cortex-M0)
+    // (FLASH origin, length, RAM origin, length) of the QEMU board each target runs on.
+    let (flash_origin, flash, ram_origin, ram) = if target.starts_with("thumbv6m") {
+        ("0x00000000", "256K", "0x20000000", "16K") // microbit (nRF51, Cortex-M0)
     } else if target.starts_with("thumbv7m") {
-        ("256K", "64K") // lm3s6965evb (Cortex-M3)
+        ("0x00000000", "256K", "0x20000000", "64K") // lm3s6965evb (Cortex-M3)
+    } else if target.starts_with("thumbv8m") {
+        ("0x10000000", "4M", "0x38000000", "4M") // mps2-an505 (Cortex-M33), secure aliases
+    } else if target.starts_with("thumb") {
+        ("0x00000000", "4M", "0x20000000", "4M") // mps2-an386 (Cortex-M4F)
+    } else if target.starts_with("riscv32") && target.ends_with("-none-elf") {
+        ("0x80000000", "4M", "0x80400000", "4M") // QEMU virt, DRAM
     } else {
-        ("4M", "4M") // mps2-an386 (Cortex-M4F)
+        return;
     };
-    println!("cargo:rustc-link-arg-examples=--defsym=_gyrostat_flash_len={flash}");
-    println!("cargo:rustc-link-arg-examples=--defsym=_gyrostat_ram_len={ram}");
+    println!("cargo:rustc-link-arg-examples=-Tlink.x");
+    for (sym, value) in [
+        ("flash_origin", flash_origin),
+        ("flash_len", flash),
+        ("ram_origin", ram_origin),
+        ("ram_len", ram),
+    ] {
+        println!("cargo:rustc-link-arg-examples=--defsym=_gyrostat_{sym}={value}");
+    }
 }

@@ -3,6 +3,8 @@
 //! ```text
 //! cargo run --release --example fw_nopanic --target thumbv7em-none-eabihf
 //! ```
+//! (and the same for every firmware target: thumbv6m-none-eabi, thumbv7m-none-eabi,
+//! thumbv8m.main-none-eabihf, riscv32imac-unknown-none-elf).
 //! Every library entry point a firmware calls is fed opaque inputs (`core::hint::black_box`), so
 //! the optimiser must keep all of their branches, error paths included. The `#[panic_handler]`
 //! calls an `extern "C"` function that exists nowhere: if any panicking branch (an index out of
@@ -16,10 +18,13 @@
 
 #[cfg(target_os = "none")]
 mod firmware {
+    use board::entry;
     use core::hint::black_box;
-    use cortex_m_rt::entry;
-    use cortex_m_semihosting::debug;
     use gyrostat::{Mat3, Quat, Su2, UnitQuat, Vec3};
+
+    mod board {
+        include!("fw/board.rs");
+    }
 
     /// Folds any result into a checksum the optimiser cannot see through.
     fn sink<T>(x: T) {
@@ -169,14 +174,7 @@ mod firmware {
 
     #[entry]
     fn main() -> ! {
-        if exercise() {
-            debug::exit(debug::EXIT_SUCCESS);
-        } else {
-            debug::exit(debug::EXIT_FAILURE);
-        }
-        loop {
-            cortex_m::asm::wfi();
-        }
+        board::exit(exercise())
     }
 
     #[panic_handler]

@@ -1,9 +1,12 @@
-//! Firmware: compose and apply a fixed set of rotations in f32 on a Cortex-M under QEMU.
+//! Firmware: compose and apply a fixed set of rotations in f32 on a Cortex-M or RISC-V core
+//! under QEMU.
 //!
 //! ```text
-//! cargo run --release --example fw_rotations --target thumbv7em-none-eabihf   # M4F, mps2-an386
-//! cargo run --release --example fw_rotations --target thumbv7m-none-eabi     # M3, lm3s6965evb
-//! cargo run --release --example fw_rotations --target thumbv6m-none-eabi     # M0, microbit
+//! cargo run --release --example fw_rotations --target thumbv7em-none-eabihf        # M4F, mps2-an386
+//! cargo run --release --example fw_rotations --target thumbv7m-none-eabi          # M3, lm3s6965evb
+//! cargo run --release --example fw_rotations --target thumbv6m-none-eabi          # M0, microbit
+//! cargo run --release --example fw_rotations --target thumbv8m.main-none-eabihf   # M33, mps2-an505
+//! cargo run --release --example fw_rotations --target riscv32imac-unknown-none-elf # RV32IMAC, virt
 //! ```
 //! For each case of `examples/fw/rotation_cases.rs` it builds `q₁`, `q₂` from axis-angle, the
 //! product `q = q₁ ⊗ q₂`, its rotation matrix and the rotated vector, and prints one line
@@ -15,9 +18,12 @@
 
 #[cfg(target_os = "none")]
 mod firmware {
-    use cortex_m_rt::entry;
-    use cortex_m_semihosting::{debug, hprintln};
+    use board::{entry, hprintln};
     use gyrostat::{Error, UnitQuat, Vec3};
+
+    mod board {
+        include!("fw/board.rs");
+    }
 
     include!("fw/rotation_cases.rs");
 
@@ -57,24 +63,18 @@ mod firmware {
         match run() {
             Ok(()) => {
                 hprintln!("done {}", N_CASES);
-                debug::exit(debug::EXIT_SUCCESS);
+                board::exit(true)
             }
             Err(e) => {
                 hprintln!("error {}", e);
-                debug::exit(debug::EXIT_FAILURE);
+                board::exit(false)
             }
-        }
-        loop {
-            cortex_m::asm::wfi();
         }
     }
 
     #[panic_handler]
     fn panic(_: &core::panic::PanicInfo) -> ! {
-        debug::exit(debug::EXIT_FAILURE);
-        loop {
-            cortex_m::asm::wfi();
-        }
+        board::exit(false)
     }
 }
 

@@ -1,5 +1,5 @@
-//! Checks the output of the `fw_rotations` firmware (run under QEMU on M0, M3 and M4F) against the
-//! independent f64 reference.
+//! Checks the output of the `fw_rotations` firmware (run under QEMU on Cortex-M0, M3, M4F, M33 and
+//! RISC-V RV32IMAC) against the independent f64 reference.
 //!
 //! `.ci/run` runs the firmware, writes its output to `$GYROSTAT_FIRMWARE_OUTPUT/<target>.txt` for
 //! each target, and then runs this test with `GYROSTAT_FIRMWARE_OUTPUT` set and
@@ -23,10 +23,12 @@ use host_tests::reference::{
 
 include!("../../examples/fw/rotation_cases.rs");
 
-const TARGETS: [&str; 3] = [
+const TARGETS: [&str; 5] = [
     "thumbv6m-none-eabi",
     "thumbv7m-none-eabi",
     "thumbv7em-none-eabihf",
+    "thumbv8m.main-none-eabihf",
+    "riscv32imac-unknown-none-elf",
 ];
 
 struct Line {

@@ -1,6 +1,7 @@
 //! The seed's closed-form analysis of free rotors (Harter, Unit 6, §6.7–6.9): rotational energy
-//! surfaces, the separatrix, small-oscillation and divergence rates, symmetric-top rates, and the
-//! multipole coefficients of a gyro-rotor Hamiltonian.
+//! surfaces, the momentum and velocity ellipsoids, the separatrix, small-oscillation and
+//! divergence rates, symmetric-top rates, and the multipole coefficients of a gyro-rotor
+//! Hamiltonian.
 //!
 //! # Conventions
 //! Every function takes the body's validated [`Inertia`] and works with its principal moments
@@ -281,4 +282,56 @@ pub fn gyro_multipoles<T: Real>(
         q_zz: (T::TWO * c - a - b) / six,
         q_x2_y2: (a - b) * T::HALF,
     })
+}
+
+/// The semi-axes `aᵢ = √(2E·Iᵢ)` of the momentum ellipsoid `H(J) = J₁²/(2I₁) + J₂²/(2I₂) +
+/// J₃²/(2I₃) = E` (6.7.27a–b), on the principal axes in the order of
+/// [`Inertia::principal_moments`]: proportional to `√Iᵢ`, largest along the axis of largest
+/// inertia.
+///
+/// The seed prints `a = √I₁/√(2E)` in (6.7.27b) (and `I₁ = 2a²E` in (6.8.8b)); that has the
+/// dimension of a time, not of a momentum, and does not satisfy `H/E = J₁²/a² + …`: the
+/// semi-axis is `√(2EI₁)`, as its own sentence "proportional to √I" requires. The test
+/// `seed_relations::ellipsoid_radii_6_7_27` checks the formula against `H` directly.
+///
+/// # Errors
+/// [`Error::NonFinite`]; [`Error::InvalidArgument`] for `energy < 0`.
+pub fn momentum_ellipsoid_radii<T: Real>(
+    inertia: &Inertia<T>,
+    energy: T,
+) -> Result<Vec3<T>, Error> {
+    ellipsoid_radii(inertia, energy, |two_e, moment| (two_e * moment).sqrt())
+}
+
+/// The semi-axes `Aᵢ = √(2E/Iᵢ)` of the angular-velocity ellipsoid
+/// `L(ω) = ½(I₁ω₁² + I₂ω₂² + I₃ω₃²) = E` (6.7.27c), on the principal axes: inversely
+/// proportional to `√Iᵢ`, shaped like the body. (The seed prints `A = 1/√(2EI₁)`, which has the
+/// dimension of an inverse momentum; see [`momentum_ellipsoid_radii`].)
+///
+/// # Errors
+/// As [`momentum_ellipsoid_radii`].
+pub fn velocity_ellipsoid_radii<T: Real>(
+    inertia: &Inertia<T>,
+    energy: T,
+) -> Result<Vec3<T>, Error> {
+    ellipsoid_radii(inertia, energy, |two_e, moment| (two_e / moment).sqrt())
+}
+
+/// `radius(2E, Iᵢ)` on each principal axis, for a checked energy `E ≥ 0`.
+fn ellipsoid_radii<T: Real>(
+    inertia: &Inertia<T>,
+    energy: T,
+    radius: impl Fn(T, T) -> T,
+) -> Result<Vec3<T>, Error> {
+    check_finite(&[energy])?;
+    if energy < T::ZERO {
+        return Err(Error::InvalidArgument);
+    }
+    let m = inertia.principal_moments();
+    let two_e = T::TWO * energy;
+    Ok(Vec3::new(
+        radius(two_e, m.x),
+        radius(two_e, m.y),
+        radius(two_e, m.z),
+    ))
 }

@@ -22,12 +22,17 @@
 //! - [`elliptic`]: `K(m)`, Jacobi `sn, cn, dn`, Carlson `R_F`, `R_J`, `F(φ|m)`, `Π(n; φ|m)`.
 //! - [`free_rigid_body`]: the exact torque-free rigid body [`FreeRigidBody`] (Landau–Lifshitz
 //!   §37 for the body momentum, the elliptic integral of the third kind for the attitude).
-//! - [`analysis`]: the seed's closed forms of §6.7–6.9 (6.7.39–43, 6.8.6–10, 6.9.4).
+//! - [`analysis`]: the seed's closed forms of §6.7–6.9 (6.7.27, 6.7.39–43, 6.8.6–10, 6.9.4).
 //! - [`mass`]: inertia tensors from point masses, parallel-axis shift, radius of gyration,
 //!   impulses (6.4.11–15, 6.5.4–6, 6.5.15).
+//! - [`euler_coordinates`]: the rigid rotor in Euler angles — metric, Euler momenta, kinetic
+//!   energy, Hamiltonian and Hamilton's velocity equations; the symmetric top (6.7.16–6.7.44).
+//! - [`semi_rigid`]: centrifugal stretching of spring-mass rotors and the quartic Hamiltonian
+//!   coefficients it produces (6.8.11–6.8.20).
 
 pub mod analysis;
 pub mod elliptic;
+pub mod euler_coordinates;
 pub mod free_rigid_body;
 pub mod gyrostat;
 pub mod hamiltonian;
@@ -35,6 +40,7 @@ pub mod inertia;
 pub mod mass;
 pub mod monitors;
 mod rk4;
+pub mod semi_rigid;
 pub mod splitting;
 pub mod state;
 

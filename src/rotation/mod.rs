@@ -23,7 +23,9 @@
 //! [`UnitQuat::canonical`] (SO(3) sign choice), composition (`*`, the U(2) product (6.6.10)),
 //! inverse, [`UnitQuat::similarity_transform`] (6.6.8), [`UnitQuat::angle_to`] (geodesic
 //! distance), [`UnitQuat::slerp`], [`UnitQuat::nlerp`]. Euler-rate kinematics for every
-//! convention: [`Euler::rates_to_body_matrix`] and friends ((6.7.5c–f) for `ZYZ`).
+//! convention: [`Euler::rates_to_body_matrix`] and friends ((6.7.5c–f) for `ZYZ`); the Euler
+//! momenta conjugate to the angles, [`Euler::body_to_euler_momenta_matrix`] and friends
+//! ((6.7.10a–d) for `ZYZ`).
 //!
 //! # Accuracy contract
 //! Enforced by the tests in `host-tests/tests/rotation_*.rs` against an independent f64
@@ -45,6 +47,7 @@ mod axis_angle;
 mod canonical;
 mod dcm;
 mod euler;
+mod euler_momenta;
 mod euler_rates;
 mod exp;
 mod gibbs;
