@@ -14,9 +14,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
+use gyrostat::dynamics::semi_rigid::{Arrangement, QuarticBasis, SemiRigidRotor};
 use gyrostat::dynamics::{
-    BodyHamiltonian, Control, DriftMonitor, FreeRigidBody, Gyrostat, Inertia, Integrator, Quartic,
-    State, Wheel, WheelCommand,
+    BodyHamiltonian, Control, DriftMonitor, FreeRigidBody, Gyrostat, Inertia, Integrator,
+    Invariants, Quartic, State, Wheel, WheelCommand,
 };
 use gyrostat::{Error, Quat, Real, UnitQuat, Vec3};
 
@@ -40,7 +41,7 @@ USAGE:
         FILE.svg, or by default simulate-default.svg in the Cargo target directory the binary
         was built in (the current directory if it was not built in one).
 
-    simulate --inertia I1,I2,I3 [--inertia-offdiag I12,I13,I23]
+    simulate (--inertia I1,I2,I3 [--inertia-offdiag I12,I13,I23] | --semi-rigid KIND:M,WV,R0)
              (--omega w1,w2,w3 | --momentum J1,J2,J3) [--spin S1,S2,S3]
              [--quartic octahedral:T4|cubic:T22] [--q0 w,x,y,z]
              [--wheel AX,AY,AZ,INERTIA[,SPEED0]]... [--wheel-torque T1,..,TN | --wheel-speed W1,..,WN]
@@ -64,6 +65,20 @@ OPTIONS:
     --quartic octahedral:T4     add T4 (J1^4 + J2^4 + J3^4) to the Hamiltonian (seed 6.8.20a)
     --quartic cubic:T22         add T22 (J1^2 J2^2 + J1^2 J3^2 + J2^2 J3^2) (seed 6.8.20b);
                                 quartic terms need a diagonal inertia tensor
+    --semi-rigid KIND:MASS,OMEGA_V,R0
+                                a semi-rigid rotor instead of --inertia (seed 6.8.c): equal
+                                point masses MASS (kg) on radial springs of frequency OMEGA_V
+                                (rad/s) at rest radius R0 (m), KIND octahedral (6 masses on
+                                +-x, +-y, +-z), cubic (8 on the cube diagonals) or tetrahedral
+                                (4 on alternate cube corners). The Hamiltonian is the rest
+                                inertia I0 plus the centrifugal-stretch quartic (6.8.18)-(6.8.20):
+                                an anisotropic term (octahedral T4 for the octahedron, cubic
+                                T22 for the others) and an isotropic t|J|^4, whose exact flow
+                                (a turn about J at 4 t |J|^3) is applied to the attitude, the
+                                rate and the energy columns. Conflicts with --inertia,
+                                --inertia-offdiag, --quartic, --torque and --torque-file (the
+                                turn is exact only without external torque); stderr shows I0
+                                and the coefficients
     --q0 w,x,y,z                initial attitude, body -> lab, scalar first (default 1,0,0,0);
                                 must have unit norm within 1e-6
     --wheel AX,AY,AZ,INERTIA[,SPEED0]
@@ -102,7 +117,7 @@ OPTIONS:
                                 yoshida4 Yoshida composition of strang (order 4, exact |J|)
                                 suzuki4  Suzuki 5-stage composition (order 4, smaller error)
                                 exact    closed-form torque-free rigid body (no --spin, no
-                                         --quartic, no wheels, no torque)
+                                         --quartic, no --semi-rigid, no wheels, no torque)
     --f32                       run the core in f32 (default f64)
     -h, --help                  this text
 
@@ -193,11 +208,14 @@ enum WheelInput {
 
 #[derive(Debug)]
 struct Config {
-    inertia: [f64; 3],
+    /// `--inertia` (`None` with `--semi-rigid`).
+    inertia: Option<[f64; 3]>,
     offdiag: [f64; 3],
     initial: Initial,
     spin: [f64; 3],
     quartic: Option<(bool, f64)>, // (octahedral?, coefficient)
+    /// `--semi-rigid KIND:MASS,OMEGA_V,R0`.
+    semi_rigid: Option<(Arrangement, [f64; 3])>,
     q0: [f64; 4],
     wheels: Vec<WheelSpec>,
     wheel_input: Option<WheelInput>,
@@ -297,6 +315,7 @@ fn parse(args: &[String]) -> Result<Config, String> {
     let mut momentum = None;
     let mut spin = None;
     let mut quartic = None;
+    let mut semi_rigid = None;
     let mut q0 = None;
     let mut dt = None;
     let mut steps = None;
@@ -344,6 +363,7 @@ fn parse(args: &[String]) -> Result<Config, String> {
             "--torque",
             "--torque-file",
             "--plot",
+            "--semi-rigid",
         ];
         if !known.contains(&flag) {
             return Err(format!("unknown argument {flag:?}"));
@@ -375,6 +395,28 @@ fn parse(args: &[String]) -> Result<Config, String> {
             "--torque" => set(&mut torque, flag, parse_list::<3>(flag, value)?)?,
             "--torque-file" => set(&mut torque_file, flag, value.to_string())?,
             "--plot" => set(&mut plot, flag, PathBuf::from(value))?,
+            "--semi-rigid" => {
+                let usage = || {
+                    format!(
+                        "--semi-rigid takes KIND:MASS,OMEGA_V,R0 with KIND octahedral, cubic or \
+                         tetrahedral, got {value:?}"
+                    )
+                };
+                let (kind, numbers) = value.split_once(':').ok_or_else(usage)?;
+                let kind = match kind.trim() {
+                    "octahedral" => Arrangement::Octahedral,
+                    "cubic" => Arrangement::Cubic,
+                    "tetrahedral" => Arrangement::Tetrahedral,
+                    _ => return Err(usage()),
+                };
+                let v = parse_list::<3>(flag, numbers)?;
+                if v.iter().any(|&x| x <= 0.0) {
+                    return Err(format!(
+                        "--semi-rigid: MASS, OMEGA_V and R0 must be > 0, got {numbers:?}"
+                    ));
+                }
+                set(&mut semi_rigid, flag, (kind, v))?
+            }
             "--quartic" => {
                 let (kind, t) = value.split_once(':').ok_or_else(|| {
                     format!("--quartic takes octahedral:T4 or cubic:T22, got {value:?}")
@@ -425,6 +467,33 @@ fn parse(args: &[String]) -> Result<Config, String> {
     }
     let spin = spin.unwrap_or([0.0; 3]);
     let method = method.ok_or("missing --integrator")?;
+    if semi_rigid.is_some() {
+        for (given, flag) in [
+            (
+                inertia.is_some(),
+                "--inertia (the rotor's rest inertia I0 is the body's)",
+            ),
+            (offdiag.is_some(), "--inertia-offdiag"),
+            (
+                quartic.is_some(),
+                "--quartic (the rotor has its own quartic term)",
+            ),
+            (
+                torque.is_some() || torque_file.is_some(),
+                "--torque and --torque-file (the isotropic |J|^4 turn is exact only without \
+                 external torque)",
+            ),
+        ] {
+            if given {
+                return Err(format!("--semi-rigid conflicts with {flag}"));
+            }
+        }
+        if method == Method::Exact {
+            return Err(
+                "--integrator exact is for torque-free rigid bodies only (no --semi-rigid)".into(),
+            );
+        }
+    }
     if method == Method::Exact && (spin != [0.0; 3] || quartic.is_some()) {
         return Err(
             "--integrator exact is for torque-free rigid bodies only (no --spin, no --quartic)"
@@ -478,12 +547,16 @@ fn parse(args: &[String]) -> Result<Config, String> {
                 .into(),
         );
     }
+    if inertia.is_none() && semi_rigid.is_none() {
+        return Err("missing --inertia".into());
+    }
     Ok(Config {
-        inertia: inertia.ok_or("missing --inertia")?,
+        inertia,
         offdiag: offdiag.unwrap_or([0.0; 3]),
         initial,
         spin,
         quartic,
+        semi_rigid,
         q0,
         wheels,
         wheel_input,
@@ -566,12 +639,40 @@ fn f3<T: Real>(v: Vec3<T>) -> [f64; 3] {
     v.to_array().map(|c| c.to_f64())
 }
 
-fn build<T: Real>(cfg: &Config) -> Result<BodyHamiltonian<T>, String> {
-    let inertia = Inertia::try_from_components(v3(cfg.inertia), v3(cfg.offdiag)).map_err(|e| {
+/// A semi-rigid rotor and the basis its quartic is split in (the anisotropic part in the
+/// [`BodyHamiltonian`], the isotropic `t|J|⁴` applied as its exact turn).
+#[derive(Clone, Copy)]
+struct Semi<T> {
+    rotor: SemiRigidRotor<T>,
+    basis: QuarticBasis,
+}
+
+/// The body model of `cfg`.
+struct Model<T> {
+    hamiltonian: BodyHamiltonian<T>,
+    semi: Option<Semi<T>>,
+}
+
+fn build<T: Real>(cfg: &Config) -> Result<Model<T>, String> {
+    if let Some((kind, [m, wv, r0])) = cfg.semi_rigid {
+        let rotor =
+            SemiRigidRotor::symmetric(kind, T::from_f64(m), T::from_f64(wv), T::from_f64(r0))
+                .map_err(|e| format!("--semi-rigid: {e}"))?;
+        let basis = kind.natural_basis();
+        let hamiltonian =
+            BodyHamiltonian::try_new(rotor.rest_inertia(), v3(cfg.spin), rotor.quartic(basis))
+                .map_err(|e| format!("--semi-rigid: {e}"))?;
+        return Ok(Model {
+            hamiltonian,
+            semi: Some(Semi { rotor, basis }),
+        });
+    }
+    let moments = cfg.inertia.unwrap_or([0.0; 3]);
+    let inertia = Inertia::try_from_components(v3(moments), v3(cfg.offdiag)).map_err(|e| {
         format!(
             "inertia {:?} with off-diagonal {:?}: {e} (must be symmetric positive definite with \
              principal moments I_a <= I_b + I_c)",
-            cfg.inertia, cfg.offdiag
+            moments, cfg.offdiag
         )
     })?;
     let quartic = match cfg.quartic {
@@ -579,25 +680,57 @@ fn build<T: Real>(cfg: &Config) -> Result<BodyHamiltonian<T>, String> {
         Some((true, t)) => Quartic::Octahedral(T::from_f64(t)),
         Some((false, t)) => Quartic::Cubic(T::from_f64(t)),
     };
-    BodyHamiltonian::try_new(inertia, v3(cfg.spin), quartic).map_err(|e| match e {
-        Error::InvalidArgument => {
-            "--quartic needs a diagonal inertia tensor (the quartic polynomials are defined on \
-             principal axes); drop --inertia-offdiag"
-                .to_string()
-        }
-        e => format!("model: {e}"),
+    let hamiltonian =
+        BodyHamiltonian::try_new(inertia, v3(cfg.spin), quartic).map_err(|e| match e {
+            Error::InvalidArgument => {
+                "--quartic needs a diagonal inertia tensor (the quartic polynomials are defined \
+                 on principal axes); drop --inertia-offdiag"
+                    .to_string()
+            }
+            e => format!("model: {e}"),
+        })?;
+    Ok(Model {
+        hamiltonian,
+        semi: None,
     })
+}
+
+/// What stderr shows of a semi-rigid rotor: `I₀`, the quartic term and the isotropic term.
+fn describe_semi(cfg: &Config, semi: &Semi<f64>, h: &BodyHamiltonian<f64>) -> String {
+    let Some((kind, [m, wv, r0])) = cfg.semi_rigid else {
+        return String::new();
+    };
+    let i0 = h.inertia().tensor().m;
+    let quartic = match h.quartic() {
+        Quartic::Octahedral(t) => format!("octahedral {t:e} (J1^4 + J2^4 + J3^4)"),
+        Quartic::Cubic(t) => format!("cubic {t:e} (J1^2 J2^2 + J1^2 J3^2 + J2^2 J3^2)"),
+        Quartic::None => "none".to_string(),
+    };
+    let kind = match kind {
+        Arrangement::Octahedral => "octahedral (6 masses)",
+        Arrangement::Cubic => "cubic (8 masses)",
+        Arrangement::Tetrahedral => "tetrahedral (4 masses)",
+    };
+    format!(
+        "simulate: semi-rigid {kind} rotor: masses {m} kg on springs of {wv} rad/s at {r0} m\n  \
+         rest inertia I0 = [{:?}, {:?}, {:?}] kg m^2\n  \
+         quartic term    {quartic}\n  \
+         isotropic term  {:e} |J|^4 (applied as its exact turn about J)\n",
+        i0[0],
+        i0[1],
+        i0[2],
+        semi.rotor.isotropic(semi.basis)
+    )
 }
 
 /// The wheels of `cfg`, checked against the body: the tensor without the wheels' axial inertia,
 /// `I − Σ I_w g gᵀ`, must stay positive definite (a wheel cannot hold more axial inertia than
 /// the body it is part of).
-fn wheels<T: Real, const N: usize>(cfg: &Config) -> Result<[Wheel<T>; N], String> {
-    let mut platform = [
-        [cfg.inertia[0], cfg.offdiag[0], cfg.offdiag[1]],
-        [cfg.offdiag[0], cfg.inertia[1], cfg.offdiag[2]],
-        [cfg.offdiag[1], cfg.offdiag[2], cfg.inertia[2]],
-    ];
+fn wheels<T: Real, const N: usize>(
+    cfg: &Config,
+    inertia: &Inertia<T>,
+) -> Result<[Wheel<T>; N], String> {
+    let mut platform = inertia.tensor().m.map(|row| row.map(|x| x.to_f64()));
     let mut out = Vec::with_capacity(N);
     for (i, w) in cfg.wheels.iter().enumerate() {
         let n = w.axis.iter().map(|c| c * c).sum::<f64>().sqrt();
@@ -635,13 +768,17 @@ struct Sim<T, const N: usize> {
     body: Gyrostat<T, N>,
     start: State<T, N>,
     exact: Option<FreeRigidBody<T>>,
+    semi: Option<Semi<T>>,
 }
 
 fn setup<T: Real, const N: usize>(cfg: &Config) -> Result<Sim<T, N>, String> {
-    let model = build::<T>(cfg)?;
+    let Model {
+        hamiltonian: model,
+        semi,
+    } = build::<T>(cfg)?;
     let q0 = UnitQuat::try_new(Quat::from_array(cfg.q0.map(T::from_f64)))
         .map_err(|e| format!("--q0: {e}"))?;
-    let body = Gyrostat::new(model, wheels::<T, N>(cfg)?);
+    let body = Gyrostat::new(model, wheels::<T, N>(cfg, model.inertia())?);
     let speeds: [T; N] = core::array::from_fn(|i| T::from_f64(cfg.wheels[i].speed0));
     let start = match cfg.initial {
         Initial::Omega(w) => body
@@ -659,6 +796,13 @@ fn setup<T: Real, const N: usize>(cfg: &Config) -> Result<Sim<T, N>, String> {
             wheel_speeds: speeds,
         },
     };
+    let start = match (&cfg.initial, &semi) {
+        (Initial::Omega(w), Some(semi)) => State {
+            momentum: momentum_with_isotropic(&body, semi, &start, v3(*w))?,
+            ..start
+        },
+        _ => start,
+    };
     let exact = match cfg.method {
         Method::Exact => Some(
             FreeRigidBody::try_new(model.inertia(), &State::new(start.attitude, start.momentum))
@@ -666,7 +810,83 @@ fn setup<T: Real, const N: usize>(cfg: &Config) -> Result<Sim<T, N>, String> {
         ),
         Method::Step(_) => None,
     };
-    Ok(Sim { body, start, exact })
+    Ok(Sim {
+        body,
+        start,
+        exact,
+        semi,
+    })
+}
+
+/// The momentum whose full semi-rigid body rate `∇H(J) + 4t|J|²J` is `omega`, by Newton's method
+/// from `start` (the solution without the isotropic term), with the Hessian
+/// `∇²H(J) + 4t(|J|²·1 + 2JJᵀ)`; stopped as [`BodyHamiltonian::momentum_from_omega`] is.
+fn momentum_with_isotropic<T: Real, const N: usize>(
+    body: &Gyrostat<T, N>,
+    semi: &Semi<T>,
+    start: &State<T, N>,
+    omega: Vec3<T>,
+) -> Result<Vec3<T>, String> {
+    use gyrostat::dynamics::hamiltonian::{
+        MOMENTUM_SOLVE_MAX_STEPS, MOMENTUM_SOLVE_RESIDUAL, MOMENTUM_SOLVE_STEP_TOLERANCE,
+    };
+    let four_t = T::from_f64(4.0) * semi.rotor.isotropic(semi.basis);
+    let hessian = |j: Vec3<T>| {
+        let ja = j.to_array();
+        let mut hess = body.model().hessian(j);
+        for (r, row) in hess.m.iter_mut().enumerate() {
+            for (c, x) in row.iter_mut().enumerate() {
+                let diag = if r == c { j.norm_squared() } else { T::ZERO };
+                *x += four_t * (diag + T::TWO * ja[r] * ja[c]);
+            }
+        }
+        hess
+    };
+    let residual = |j: Vec3<T>| {
+        let s = State {
+            momentum: j,
+            ..*start
+        };
+        body.omega(&s) + j.scale(four_t * j.norm_squared()) - omega
+    };
+    let fail = || "--omega with --semi-rigid: Newton's method did not converge; give --momentum";
+    let mut j = start.momentum;
+    let mut converged = false;
+    for _ in 0..MOMENTUM_SOLVE_MAX_STEPS {
+        let step = hessian(j).try_inverse().map_err(|_| fail().to_string())? * residual(j);
+        j -= step;
+        if !j.is_finite() {
+            return Err(fail().into());
+        }
+        if step.norm() <= T::from_f64(MOMENTUM_SOLVE_STEP_TOLERANCE) * (T::ONE + j.norm()) {
+            converged = true;
+            break;
+        }
+    }
+    if !converged
+        && residual(j).norm() > T::from_f64(MOMENTUM_SOLVE_RESIDUAL) * (T::ONE + omega.norm())
+    {
+        return Err(fail().into());
+    }
+    // The physical root has ∂ω/∂J positive definite (the energy is a minimum there at fixed
+    // direction); past the quartic model's largest rate Newton can only land on the far branch.
+    let m = hessian(j).m.map(|row| row.map(|x| x.to_f64()));
+    let minors = [
+        m[0][0],
+        m[0][0] * m[1][1] - m[0][1] * m[1][0],
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]),
+    ];
+    if minors.iter().any(|&d| d <= 0.0) {
+        return Err(
+            "--omega with --semi-rigid: this rate is beyond the quartic model's reach (no \
+             momentum with a positive definite Hessian gives it); give a smaller rate or \
+             --momentum"
+                .into(),
+        );
+    }
+    Ok(j)
 }
 
 /// What a run failed on: writing the CSV, or the simulation itself.
@@ -727,6 +947,51 @@ fn plot_stride(steps: u64) -> u64 {
 }
 
 impl<T: Real + Display, const N: usize> Sim<T, N> {
+    /// The attitude written out at time `t`: the state's, followed by the isotropic turn of a
+    /// semi-rigid rotor (the exact flow of `t|J|⁴`, which commutes with the rest).
+    fn attitude_at(&self, s: &State<T, N>, t: T) -> UnitQuat<T> {
+        match &self.semi {
+            None => s.attitude,
+            Some(semi) => semi
+                .rotor
+                .isotropic_turn(semi.basis, s.momentum, t)
+                .map_or(s.attitude, |turn| s.attitude * turn),
+        }
+    }
+
+    /// The body rate `∇H(J)`, with `4t|J|²J` of a semi-rigid rotor's isotropic term.
+    fn omega(&self, s: &State<T, N>) -> Vec3<T> {
+        let w = self.body.omega(s);
+        match &self.semi {
+            None => w,
+            Some(semi) => {
+                let four_t = T::from_f64(4.0) * semi.rotor.isotropic(semi.basis);
+                w + s.momentum.scale(four_t * s.momentum.norm_squared())
+            }
+        }
+    }
+
+    /// The energy `H(J)`, with `t|J|⁴` of a semi-rigid rotor's isotropic term.
+    fn energy(&self, s: &State<T, N>) -> T {
+        let e = self.body.energy(s);
+        match &self.semi {
+            None => e,
+            Some(semi) => {
+                let j2 = s.momentum.norm_squared();
+                e + semi.rotor.isotropic(semi.basis) * j2 * j2
+            }
+        }
+    }
+
+    /// The monitored invariants (energy with the isotropic term; `|J|` and the lab momentum
+    /// are those of the state: the isotropic turn is about `J`).
+    fn invariants(&self, s: &State<T, N>) -> Invariants<T> {
+        Invariants {
+            energy: self.energy(s),
+            ..self.body.invariants(s)
+        }
+    }
+
     /// The state after step `k` (from `(k−1)·dt` to `k·dt`); adds the step's external torque to
     /// `impulse` (`∫R(q)τ dt` by the trapezoid rule on each piece of constant torque).
     fn advance(
@@ -803,10 +1068,10 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
         s: &State<T, N>,
     ) -> io::Result<()> {
         let t = T::from_f64(k as f64 * cfg.dt);
-        let q = s.attitude;
-        let w = self.body.omega(s);
+        let q = self.attitude_at(s, t);
+        let w = self.omega(s);
         let j = s.momentum;
-        let e = self.body.energy(s);
+        let e = self.energy(s);
         write!(
             out,
             "{t},{},{},{},{},{},{},{},{},{},{},{e}",
@@ -835,18 +1100,19 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
         stride: Option<u64>,
     ) -> Result<Outcome, Fail> {
         let mut state = self.start;
-        let inv0 = self.body.invariants(&state);
+        let inv0 = self.invariants(&state);
         let mut monitor = DriftMonitor::new(inv0);
         let mut impulse = Impulse::default();
         let mut traj = Trajectory::default();
         let record = |traj: &mut Trajectory, k: u64, s: &State<T, N>, impulse: &Impulse| {
             traj.t.push(k as f64 * cfg.dt);
-            traj.attitude.push(widen(s.attitude));
-            traj.omega.push(f3(self.body.omega(s)));
+            traj.attitude
+                .push(widen(self.attitude_at(s, T::from_f64(k as f64 * cfg.dt))));
+            traj.omega.push(f3(self.omega(s)));
             traj.momentum.push(f3(s.momentum));
             traj.wheels
                 .push(s.wheel_speeds.iter().map(|w| w.to_f64()).collect());
-            traj.energy.push(self.body.energy(s).to_f64());
+            traj.energy.push(self.energy(s).to_f64());
             let lab = f3(self.body.invariants(s).lab_momentum);
             traj.lab_balance.push(sub(lab, impulse.lab));
         };
@@ -866,7 +1132,7 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
             state = self
                 .advance(cfg, &state, k, &mut impulse)
                 .map_err(Fail::Msg)?;
-            monitor.record(&self.body.invariants(&state));
+            monitor.record(&self.invariants(&state));
             if k % cfg.every == 0
                 && let Some(out) = csv.as_deref_mut()
             {
@@ -882,7 +1148,7 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
         if let Some(out) = csv {
             out.flush()?;
         }
-        let end = self.body.invariants(&state);
+        let end = self.invariants(&state);
         Ok(Outcome {
             trajectory: traj,
             lab0: f3(inv0.lab_momentum),
@@ -898,6 +1164,12 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
 
 fn run_csv<T: Real + Display, const N: usize>(cfg: &Config) -> Result<(), String> {
     let sim = setup::<T, N>(cfg)?;
+    if cfg.semi_rigid.is_some() {
+        let model = build::<f64>(cfg)?;
+        if let Some(semi) = &model.semi {
+            eprint!("{}", describe_semi(cfg, semi, &model.hamiltonian));
+        }
+    }
     if let Some(path) = &cfg.plot {
         // Fail before any output when the plot cannot be written.
         std::fs::File::create(path).map_err(|e| format!("--plot {}: {e}", path.display()))?;
@@ -1034,6 +1306,7 @@ fn csv_figure<const N: usize>(cfg: &Config, o: &Outcome) -> Result<Figure, Strin
     ));
     let rigid_free = cfg.spin == [0.0; 3]
         && cfg.quartic.is_none()
+        && cfg.semi_rigid.is_none()
         && cfg.wheels.is_empty()
         && !cfg.torque.is_some()
         && matches!(cfg.method, Method::Step(_));
@@ -1081,8 +1354,8 @@ fn csv_figure<const N: usize>(cfg: &Config, o: &Outcome) -> Result<Figure, Strin
             )
         })
         .collect();
-    let inertia = Inertia::try_from_components(v3(cfg.inertia), v3(cfg.offdiag))
-        .map_err(|e| format!("inertia: {e}"))?;
+    let inertia = *build::<f64>(cfg)?.hamiltonian.inertia();
+    let m = inertia.principal_moments();
     let precision = if cfg.f32 { "f32" } else { "f64" };
     let integ = match cfg.method {
         Method::Step(i) => format!("{i:?}").to_lowercase(),
@@ -1090,10 +1363,13 @@ fn csv_figure<const N: usize>(cfg: &Config, o: &Outcome) -> Result<Figure, Strin
     };
     Ok(Figure {
         title: format!(
-            "simulate: inertia ({}, {}, {}), {integ}, dt = {} s, {} steps, {precision}{}",
-            cfg.inertia[0],
-            cfg.inertia[1],
-            cfg.inertia[2],
+            "simulate: {}{}, {integ}, dt = {} s, {} steps, {precision}{}",
+            if cfg.semi_rigid.is_some() {
+                "semi-rigid rotor, rest "
+            } else {
+                ""
+            },
+            format_args!("inertia ({}, {}, {})", m.x, m.y, m.z),
             cfg.dt,
             cfg.steps,
             match N {
@@ -1111,9 +1387,11 @@ fn csv_figure<const N: usize>(cfg: &Config, o: &Outcome) -> Result<Figure, Strin
         polhode_note: (N > 0
             || cfg.torque.is_some()
             || cfg.spin != [0.0; 3]
-            || cfg.quartic.is_some())
+            || cfg.quartic.is_some()
+            || cfg.semi_rigid.is_some())
         .then(|| {
-            "curves: the rigid rotor of --inertia; rotors, wheels and torques move J across them"
+            "curves: the rigid rotor of the (rest) inertia; rotors, quartic terms, wheels and \
+             torques move J across them"
                 .to_string()
         }),
     })

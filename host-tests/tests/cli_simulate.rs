@@ -497,6 +497,133 @@ fn internal_torques_conserve_lab_momentum() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// A semi-rigid rotor: the full quartic Hamiltonian, integrated directly
+
+/// The seed's semi-rigid rotors from the closed forms of §6.8.c written here: equal masses `m`
+/// at rest radius `r0` on springs of frequency `wv`, `c = 1/(m³ω_v²r₀⁶)`:
+/// octahedron `I₀ = 4mr₀²`, quartic `−(c/256)(|J|⁴ + ΣJᵢ⁴)`; cube `I₀ = (16/3)mr₀²`,
+/// `−(9c/4096)(|J|⁴ + ΣJᵢ²Jⱼ²)`; tetrahedron `I₀ = (8/3)mr₀²`, `−(9c/512)(|J|⁴ + ΣJᵢ²Jⱼ²)`.
+/// With `|J|⁴ = ΣJᵢ⁴ + 2ΣJᵢ²Jⱼ²` the whole Hamiltonian is a `RefModel` (no isotropic term to
+/// split off): `(I₀, t₄, t₂₂)`.
+fn semi_rigid_reference(kind: &str, m: f64, wv: f64, r0: f64) -> (f64, f64, f64) {
+    let c = 1.0 / (m.powi(3) * wv * wv * r0.powi(6));
+    match kind {
+        "octahedral" => (4.0 * m * r0 * r0, 2.0 * (-c / 256.0), 2.0 * (-c / 256.0)),
+        "cubic" => {
+            let t = -9.0 * c / 4096.0;
+            (16.0 / 3.0 * m * r0 * r0, t, 3.0 * t)
+        }
+        "tetrahedral" => {
+            let t = -9.0 * c / 512.0;
+            (8.0 / 3.0 * m * r0 * r0, t, 3.0 * t)
+        }
+        _ => unreachable!(),
+    }
+}
+
+#[test]
+fn semi_rigid_rotor_matches_the_full_quartic_hamiltonian() {
+    use host_tests::ref_dynamics::{RefModel, lie_poisson_rk4};
+    // (kind, mass, ω_v, r₀, J₀): stretch d/r₀ = (ω_J/ω_v)² ≈ 1e-3..1e-2, where the quartic
+    // term changes the motion visibly over 5 s (the isotropic turn alone is 4t|J|³·5 s ≈ 0.1 rad).
+    let q0 = q0();
+    for (kind, m, wv, r0, j0) in [
+        ("octahedral", 1.0, 3.0, 0.5, [0.3, 0.2, 0.1]),
+        ("cubic", 1.0, 2.0, 0.5, [0.2, -0.3, 0.25]),
+        ("tetrahedral", 0.5, 2.5, 0.6, [-0.1, 0.2, 0.15]),
+    ] {
+        let (i0, t4, t22) = semi_rigid_reference(kind, m, wv, r0);
+        let model = RefModel::new([i0; 3], [0.0; 3], t4, t22);
+        let (dt, steps) = (0.01, 500u64);
+        let spec = format!("{kind}:{}", row(&[m, wv, r0]));
+        let (j, q, dt_s, steps_s) = (row(&j0), row(&q0), format!("{dt}"), steps.to_string());
+        let out = run(
+            "simulate",
+            &[
+                "--semi-rigid",
+                &spec,
+                "--momentum",
+                &j,
+                "--q0",
+                &q,
+                "--dt",
+                &dt_s,
+                "--steps",
+                &steps_s,
+                "--every",
+                "100",
+                "--integrator",
+                "yoshida4",
+            ],
+            "",
+        );
+        let rows = csv(&out, HEADER);
+        // stderr: the rest inertia (first diagonal entry) and the two coefficients.
+        let err = &out.stderr;
+        let first: f64 = err
+            .split("rest inertia I0 = [[")
+            .nth(1)
+            .and_then(|rest| rest.split(',').next())
+            .and_then(|x| x.parse().ok())
+            .unwrap_or_else(|| panic!("no I0 in {err}"));
+        assert!((first - i0).abs() < 1e-12 * i0, "{err}");
+        assert!(
+            err.contains("quartic term") && err.contains("isotropic term"),
+            "{err}"
+        );
+        // The reference, row to row: 1 ms RK4 steps of the full Hamiltonian.
+        let (mut r_ref, mut j_ref, mut t_ref) = (quat_matrix(q0), j0, 0.0);
+        for r in &rows {
+            let t = r[0];
+            if t > t_ref {
+                let n = ((t - t_ref) / 1e-3).round() as usize;
+                (r_ref, j_ref) = lie_poisson_rk4(&model, &r_ref, j_ref, t - t_ref, n);
+                t_ref = t;
+            }
+            let att = rot_dist(&quat_matrix([r[1], r[2], r[3], r[4]]), &r_ref);
+            let w_ref = model.gradient(j_ref);
+            let dj = norm(add([r[8], r[9], r[10]], scale(j_ref, -1.0)));
+            let dw = norm(add([r[5], r[6], r[7]], scale(w_ref, -1.0)));
+            let de = (r[11] - model.energy(j_ref)).abs();
+            println!("{kind} t = {t}: attitude {att:.2e} rad, J {dj:.2e}, w {dw:.2e}, E {de:.2e}");
+            assert!(
+                att < 1e-9 && dj < 1e-10 && dw < 1e-10 && de < 1e-12,
+                "{kind} t = {t}"
+            );
+        }
+        // Without the isotropic turn the attitude would be off by 4t|J|³ t: the test sees it.
+        let t_iso = if kind == "octahedral" { t4 / 2.0 } else { t4 };
+        let turn = 4.0 * t_iso.abs() * norm(j0).powi(3) * dt * steps as f64;
+        assert!(
+            turn > 1e-4,
+            "{kind}: isotropic turn {turn:e} too small to matter"
+        );
+        // --omega is the full body rate ∇H(J) (the isotropic term included): the reference's
+        // gradient at the printed momentum gives it back.
+        let w = row(&[0.3, -0.2, 0.25]);
+        let out = run(
+            "simulate",
+            &[
+                "--semi-rigid",
+                &spec,
+                "--omega",
+                &w,
+                "--dt",
+                "0.01",
+                "--steps",
+                "0",
+                "--integrator",
+                "strang",
+            ],
+            "",
+        );
+        let r = &csv(&out, HEADER)[0];
+        let g = model.gradient([r[8], r[9], r[10]]);
+        assert!(norm(add(g, [-0.3, 0.2, -0.25])) < 1e-14, "{kind}: {g:?}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
 // The plot
 
 /// `(stroke colour, number of points)` of every polyline in an SVG.
@@ -793,6 +920,61 @@ fn error_paths() {
     fails(
         &[&i[..], &base[..], &["--plot", "/nonexistent/plot.svg"]].concat(),
         "--plot /nonexistent/plot.svg: ",
+    );
+    let semi = ["--semi-rigid", "cubic:1,5,0.5"];
+    fails(
+        &[&semi[..], &base[..], &["--inertia", "1,1,1"]].concat(),
+        "--semi-rigid conflicts with --inertia",
+    );
+    fails(
+        &[&semi[..], &base[..], &["--quartic", "cubic:1"]].concat(),
+        "--semi-rigid conflicts with --quartic",
+    );
+    fails(
+        &[&semi[..], &base[..], &["--torque", "0,0,1"]].concat(),
+        "--semi-rigid conflicts with --torque",
+    );
+    fails(
+        &[
+            &semi[..],
+            &[
+                "--omega",
+                "0,1,0",
+                "--dt",
+                "0.01",
+                "--steps",
+                "1",
+                "--integrator",
+                "exact",
+            ],
+        ]
+        .concat(),
+        "(no --semi-rigid)",
+    );
+    fails(
+        &[&["--semi-rigid", "hex:1,5,0.5"][..], &base[..]].concat(),
+        "--semi-rigid takes KIND:MASS,OMEGA_V,R0",
+    );
+    fails(
+        &[&["--semi-rigid", "cubic:1,0,0.5"][..], &base[..]].concat(),
+        "must be > 0",
+    );
+    fails(
+        &[
+            &semi[..],
+            &[
+                "--omega",
+                "0.3,2,0.1",
+                "--dt",
+                "0.01",
+                "--steps",
+                "1",
+                "--integrator",
+                "rk4",
+            ],
+        ]
+        .concat(),
+        "beyond the quartic model's reach",
     );
     // Bad torque files: the line is named, before any output.
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
