@@ -2,15 +2,19 @@
 //! `examples/simulate/`) as processes, for the tests of their interfaces.
 //!
 //! Cargo tells integration tests where the workspace's *binaries* are (`CARGO_BIN_EXE_<name>`),
-//! not its examples. So the first call of [`example`] in a test process builds the three tools
-//! with the cargo that runs the tests, into the target directory and profile of the running test
-//! executable (`<target>/<dir>/deps/<test>` → `cargo build --target-dir <target> --profile
-//! bench|dev -p gyrostat --example convert --example propagate --example simulate`), and returns
-//! `<target>/<dir>/examples/<name>`. Under `cargo test --workspace --release` the examples were
-//! already built with that profile, so the build is a no-op check; a targeted run
-//! (`cargo test --release -p host-tests --test cli_simulate`) builds them first, so a test never
-//! runs a stale tool. A `OnceLock` makes the build happen once per test process; concurrent
-//! cargo processes are serialised by cargo's own lock on the target directory.
+//! not its examples. `cargo test --workspace` builds the examples too, as plain executables in
+//! `<target>/<profile dir>/examples/`. So the first call of [`example`] in a test process runs
+//! the same build again with the cargo that runs the tests, for the target directory of the
+//! running test executable (`<target>/<profile dir>/deps/<test>`):
+//! `cargo test --workspace --no-run [--release] --target-dir <target>`. Under the README test
+//! command (`cargo test --workspace --release`) every unit is fresh and this is a check of a
+//! second or two; a targeted run (`cargo test --release -p host-tests --test cli_simulate`)
+//! builds what is missing first, so a test never runs a stale tool. The command must be the
+//! workspace test build itself: `cargo build -p gyrostat --example ...` resolves other features
+//! (gyrostat without the `nalgebra`/`mint` features host-tests enables) and would compile a
+//! second copy of the library and the tools. A `OnceLock` makes the build happen once per test
+//! process; concurrent cargo processes are serialised by cargo's own lock on the target
+//! directory.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -42,24 +46,21 @@ pub fn example(name: &str) -> PathBuf {
     let dir = DIR.get_or_init(|| {
         let (target, profile_dir) = target_of_this_test();
         let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
-        // `cargo test --release` builds with the bench profile, plain `cargo test` with dev.
-        let profile = if cfg!(debug_assertions) {
-            "dev"
-        } else {
-            "bench"
-        };
         let mut cmd = Command::new(env!("CARGO"));
         cmd.current_dir(&root)
-            .arg("build")
-            .arg("-q")
-            .arg("--target-dir")
-            .arg(&target)
-            .args(["--profile", profile, "-p", "gyrostat"]);
-        for tool in TOOLS {
-            cmd.args(["--example", tool]);
+            .args(["test", "-q", "--workspace", "--no-run", "--target-dir"])
+            .arg(&target);
+        // `cargo test --release` builds with the bench profile, plain `cargo test` with test/dev.
+        if !cfg!(debug_assertions) {
+            cmd.arg("--release");
         }
-        let status = cmd.status().expect("cargo runs");
-        assert!(status.success(), "building the command-line tools failed");
+        // Cargo's "Executable ..." lines go to stderr; keep the test's output readable.
+        let out = cmd.output().expect("cargo runs");
+        assert!(
+            out.status.success(),
+            "building the command-line tools failed:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         profile_dir.join("examples")
     });
     dir.join(name)
