@@ -8,8 +8,12 @@
 //! Reads CSV rows from stdin, writes CSV rows to stdout; see `--help` (the `HELP` text below)
 //! for the formats. Host-only: the library stays `no_std`, the I/O lives here.
 
+#[macro_use]
+#[path = "cli/stream.rs"]
+mod stream;
+
 use std::fmt::Debug;
-use std::io::{self, BufRead, BufWriter, Write};
+use std::io::{self, Write};
 use std::process::ExitCode;
 use std::str::FromStr;
 
@@ -27,7 +31,9 @@ USAGE:
                                                 [--normalize]
 
 Reads CSV rows from stdin and writes CSV rows to stdout, no header either way: one output row
-per valid input row, in order. Blank lines are skipped (but counted for line numbers).
+per valid input row, in order. Blank lines (empty or only blanks) are skipped, the last one
+too, but counted for line numbers. Rows are written as they are converted (flushed at least
+every 0.1 s and whenever the input stalls).
 
 REP (field order of a row):
     quat         w,x,y,z            Hamilton, scalar first; maps body vectors to the lab frame
@@ -100,11 +106,14 @@ output rotvec has length <= pi.
 ERRORS:
     A malformed or invalid row (wrong field count, a field that is not a number, NaN or infinity,
     a zero or far-from-unit quaternion (| |q| - 1 | > 1e-3), a matrix that is not a rotation
-    (|R^T R - 1| > 1e-3 or det <= 0), a zero axis, a 180-degree rotation written as gibbs) writes
+    (|R^T R - 1| > 1e-3 or det <= 0), a zero axis, a 180-degree rotation written as gibbs, a
+    line that is not UTF-8 text or longer than 1 MiB, values so small or large that the result
+    would not be finite) writes
         error: line N: reason
-    to stderr and no output row; the run continues and exits with status 1 at the end.
-    With --normalize a zero quaternion and a matrix with det <= 0 are still errors.
-    Bad command-line arguments exit with status 2.
+    to stderr and no output row; the run continues with the next line and exits with status 1
+    at the end. With --normalize a zero quaternion and a matrix with det <= 0 are still errors.
+    Bad command-line arguments exit with status 2. When stdout is closed early (a pipe into
+    `head`), the run stops quietly with the status it would have had if the input ended there.
 ";
 
 /// Tolerance on `|q|` and on `‖RᵀR − 1‖` for input rows: data printed with at least 4
@@ -221,7 +230,7 @@ fn parse_args() -> Result<Option<Opts>, String> {
     let mut to = None;
     let mut op = None;
     let (mut f32, mut degrees, mut normalize) = (false, false, false);
-    let mut args = std::env::args().skip(1);
+    let mut args = stream::args()?.into_iter();
     while let Some(a) = args.next() {
         match a.as_str() {
             "-h" | "--help" => return Ok(None),
@@ -316,8 +325,26 @@ fn read_numbers<T: Real + FromStr>(line: &str, fields: usize) -> Result<Vec<T>, 
     Ok(v)
 }
 
-/// The attitude written in `v` (exactly `o.from.fields()` numbers).
+/// The attitude written in `v` (exactly `o.from.fields()` numbers), checked to be a finite unit
+/// quaternion (values at the ends of the float range can defeat a conversion).
 fn read_attitude<T: Real>(v: &[T], o: &Opts) -> Result<UnitQuat<T>, String> {
+    let q = attitude_of(v, o)?;
+    let c = q.to_array();
+    let n2 = c.iter().fold(T::ZERO, |acc, &x| acc + x * x);
+    if c.iter().all(|x| x.is_finite()) && (n2 - T::ONE).abs() <= T::from_f64(INPUT_TOL) {
+        Ok(q)
+    } else {
+        Err(format!(
+            "the attitude of this row is not a finite unit quaternion ({}): a value too small or \
+             too large for {}",
+            join_unchecked(&c),
+            if o.f32 { "f32" } else { "f64" }
+        ))
+    }
+}
+
+/// The attitude written in `v`, as the library converts it.
+fn attitude_of<T: Real>(v: &[T], o: &Opts) -> Result<UnitQuat<T>, String> {
     let deg = T::PI / T::from_f64(180.0);
     let ang = |x: T| if o.degrees { x * deg } else { x };
     let v3 = |k: usize| Vec3::new(v[k], v[k + 1], v[k + 2]);
@@ -384,7 +411,19 @@ fn read_attitude<T: Real>(v: &[T], o: &Opts) -> Result<UnitQuat<T>, String> {
     }
 }
 
-fn join<T: Debug>(xs: &[T]) -> String {
+/// The numbers of an output row, each finite.
+fn join<T: Real + Debug>(xs: &[T]) -> Result<String, String> {
+    if xs.iter().all(|x| x.is_finite()) {
+        Ok(join_unchecked(xs))
+    } else {
+        Err(format!(
+            "the result is not finite ({}): the input is beyond the range this conversion handles",
+            join_unchecked(xs)
+        ))
+    }
+}
+
+fn join_unchecked<T: Debug>(xs: &[T]) -> String {
     xs.iter()
         .map(|x| format!("{x:?}"))
         .collect::<Vec<_>>()
@@ -402,7 +441,7 @@ fn rows_of<T: Real>(m: Mat3<T>) -> [T; 9] {
 fn write_attitude<T: Real + Debug>(q: UnitQuat<T>, to: Rep, o: &Opts) -> Result<String, String> {
     let deg = T::from_f64(180.0) / T::PI;
     let ang = |x: T| if o.degrees { x * deg } else { x };
-    Ok(match to {
+    match to {
         Rep::Quat => join(&q.canonical().to_array()),
         Rep::QuatXyzw => {
             let [w, x, y, z] = q.canonical().to_array();
@@ -419,12 +458,10 @@ fn write_attitude<T: Real + Debug>(q: UnitQuat<T>, to: Rep, o: &Opts) -> Result<
         Rep::Mrp => join(&Mrp::from(q).vector().to_array()),
         Rep::Gibbs => match Gibbs::try_from_unit_quat(q) {
             Ok(g) => join(&g.vector().to_array()),
-            Err(_) => {
-                return Err(
-                    "the Gibbs vector is infinite: the rotation is 180 degrees (within rounding)"
-                        .to_string(),
-                );
-            }
+            Err(_) => Err(
+                "the Gibbs vector is infinite: the rotation is 180 degrees (within rounding)"
+                    .to_string(),
+            ),
         },
         Rep::AxisAngle => {
             let a = AxisAngle::from(q);
@@ -435,9 +472,9 @@ fn write_attitude<T: Real + Debug>(q: UnitQuat<T>, to: Rep, o: &Opts) -> Result<
             let sol = q.to_euler(seq, GimbalPolicy::ZeroThird);
             let [a, b, c] = sol.euler.angles;
             let flag = u8::from(sol.singularity.is_some());
-            format!("{},{flag}", join(&[ang(a), ang(b), ang(c)]))
+            Ok(format!("{},{flag}", join(&[ang(a), ang(b), ang(c)])?))
         }
-    })
+    }
 }
 
 /// One input row to one output row.
@@ -453,9 +490,7 @@ fn convert_row<T: Real + FromStr + Debug>(line: &str, o: &Opts) -> Result<String
         Op::Compose => write_attitude(a()? * b()?, to, o),
         Op::Relative => write_attitude(a()?.inverse() * b()?, to, o),
         Op::Slerp => write_attitude(a()?.slerp(b()?, v[2 * n]), to, o),
-        Op::Rotate => Ok(join(
-            &a()?.rotate(Vec3::new(v[n], v[n + 1], v[n + 2])).to_array(),
-        )),
+        Op::Rotate => join(&a()?.rotate(Vec3::new(v[n], v[n + 1], v[n + 2])).to_array()),
         Op::EulerRates | Op::EulerRatesLab => {
             let Rep::Euler(seq) = o.from else {
                 return Err("--op euler-rates needs --from euler:SEQ".into());
@@ -468,43 +503,68 @@ fn convert_row<T: Real + FromStr + Debug>(line: &str, o: &Opts) -> Result<String
             } else {
                 e.rates_to_lab_matrix()
             };
-            Ok(join(&rows_of(m)))
+            join(&rows_of(m))
         }
     }
 }
 
-fn run<T: Real + FromStr + Debug>(o: &Opts) -> io::Result<bool> {
-    let stdin = io::stdin();
-    let stdout = io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
+/// Converts stdin to stdout; `Ok(true)` when every row converted. A closed stdout ends the run
+/// as if the input ended there.
+fn run<T: Real + FromStr + Debug>(o: &Opts) -> Result<bool, String> {
+    let mut out = stream::Csv::stdout();
     let mut all_ok = true;
-    for (i, line) in stdin.lock().lines().enumerate() {
-        let line = line?;
-        if line.trim().is_empty() {
-            continue;
-        }
-        match convert_row::<T>(&line, o) {
-            Ok(row) => writeln!(out, "{row}")?,
-            Err(reason) => {
-                all_ok = false;
+    let r = (|| -> io::Result<()> {
+        let mut lines = stream::Lines::new(io::stdin().lock());
+        loop {
+            if lines.will_read() {
                 out.flush()?;
-                eprintln!("error: line {}: {reason}", i + 1);
+            }
+            let Some((n, line)) = lines
+                .next_line()
+                .map_err(|e| io::Error::other(format!("reading stdin: {e}")))?
+            else {
+                break;
+            };
+            let row = match line {
+                Ok(text) if text.trim().is_empty() => continue,
+                Ok(text) => convert_row::<T>(text, o),
+                Err(reason) => Err(reason),
+            };
+            match row {
+                Ok(row) => {
+                    writeln!(out, "{row}")?;
+                    out.row_done()?;
+                }
+                Err(reason) => {
+                    all_ok = false;
+                    out.flush()?;
+                    say!("error: line {n}: {reason}");
+                }
             }
         }
+        out.flush()
+    })();
+    match r {
+        Ok(()) => Ok(all_ok),
+        Err(e) if stream::is_closed_pipe(&e) => Ok(all_ok),
+        Err(e) => Err(e.to_string()),
     }
-    out.flush()?;
-    Ok(all_ok)
 }
 
 fn main() -> ExitCode {
     let o = match parse_args() {
         Ok(Some(o)) => o,
         Ok(None) => {
-            print!("{HELP}");
-            return ExitCode::SUCCESS;
+            return match stream::print_text(HELP) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    say!("error: writing stdout: {e}");
+                    ExitCode::FAILURE
+                }
+            };
         }
         Err(e) => {
-            eprintln!("error: {e}\n\n{HELP}");
+            say!("error: {e}\n\n{HELP}");
             return ExitCode::from(2);
         }
     };
@@ -517,7 +577,7 @@ fn main() -> ExitCode {
         Ok(true) => ExitCode::SUCCESS,
         Ok(false) => ExitCode::FAILURE,
         Err(e) => {
-            eprintln!("error: {e}");
+            say!("error: {e}");
             ExitCode::FAILURE
         }
     }
