@@ -5,11 +5,15 @@
 //! a plot. With flags it runs any case, reaction wheels and external torques included, and
 //! writes CSV; see `--help`.
 
+#[macro_use]
+#[path = "../cli/stream.rs"]
+mod stream;
+
 mod plot;
 mod torque;
 
-use std::fmt::Display;
-use std::io::{self, BufWriter, IsTerminal, Write};
+use std::fmt::{Display, Write as _};
+use std::io::{self, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -22,7 +26,13 @@ use gyrostat::dynamics::{
 use gyrostat::{Error, Quat, Real, UnitQuat, Vec3};
 
 use plot::{Figure, Series};
+use stream::Csv;
 use torque::{ExternalTorque, Schedule};
+
+/// The most a step may turn the body: half a turn. Beyond it a sampled rotation is aliased (a turn
+/// by θ and by θ − 2π give the same samples) and no fixed-step integrator resolves it; the
+/// library's own step limits may be smaller.
+const MAX_TURN_PER_STEP: f64 = std::f64::consts::PI;
 
 /// The most `--wheel`s a run takes. The library's wheel count is a compile-time constant; this
 /// tool instantiates it for 0 to 4 wheels (three orthogonal wheels plus a skewed spare, or a
@@ -124,7 +134,16 @@ OPTIONS:
 Columns: t (s); q = attitude body -> lab (w,x,y,z); w = body rate dH/dJ (rad/s); J = total
 body angular momentum (body plus wheels: R(q) J is the lab-frame total momentum); energy = H(J)
 (with wheels, at their current speeds; their own spin energy is not included); wheelI = speed
-of wheel I relative to the body (rad/s). Invalid input prints an error and exits with status 2.
+of wheel I relative to the body (rad/s). Rows are written as they are computed (flushed at
+least every 0.1 s).
+
+Errors print `simulate: error: reason` on stderr and exit with status 2: invalid input (before
+any output), and a run that cannot go on, after the rows written so far: a step that would turn
+the body more than half a turn (|w| dt > pi at the step's start: a sampled rotation that fast
+cannot be resolved; --integrator exact has no such limit), a step the library rejects, and a
+state that is no longer finite (values too large for f64, or f32 with --f32; checked at step 0
+too, before any output). When stdout is closed early (a pipe into `head`), the run stops
+quietly with status 0.
 
 With wheels or an external torque, a summary of the conserved-quantity monitors goes to stderr
 after the CSV: without external torque the lab-frame total momentum is conserved (its drift is
@@ -150,10 +169,15 @@ macro_rules! with_wheels {
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let args = match stream::args() {
+        Ok(a) => a,
+        Err(e) => return failed(&e),
+    };
     if args.iter().any(|a| a == "-h" || a == "--help") {
-        print!("{HELP}");
-        return ExitCode::SUCCESS;
+        return match stream::print_text(HELP) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => failed(&format!("writing stdout: {e}")),
+        };
     }
     let result = match args.as_slice() {
         [] => default_scenario(None),
@@ -168,12 +192,15 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("simulate: error: {e}");
-            eprintln!("(run `simulate --help` for the interface)");
-            ExitCode::from(2)
-        }
+        Err(e) => failed(&e),
     }
+}
+
+/// Reports `e` and returns the error status.
+fn failed(e: &str) -> ExitCode {
+    say!("simulate: error: {e}");
+    say!("(run `simulate --help` for the interface)");
+    ExitCode::from(2)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -304,8 +331,8 @@ fn parse_wheel(index: usize, s: &str) -> Result<WheelSpec, String> {
 }
 
 fn read_torque_file(path: &str) -> Result<Schedule, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("--torque-file {path}: {e}"))?;
-    Schedule::parse(&text).map_err(|e| format!("--torque-file {path}: {e}"))
+    let file = std::fs::File::open(path).map_err(|e| format!("--torque-file {path}: {e}"))?;
+    Schedule::parse(stream::Lines::new(file)).map_err(|e| format!("--torque-file {path}: {e}"))
 }
 
 fn parse(args: &[String]) -> Result<Config, String> {
@@ -610,7 +637,7 @@ impl Progress {
         if elapsed >= Self::QUIET && due {
             self.last = Some(now);
             let pct = 100.0 * k as f64 / self.total.max(1) as f64;
-            eprint!(
+            say_part!(
                 "\rsimulate: step {k} of {} ({pct:.0}%), {:.0} s",
                 self.total,
                 elapsed.as_secs_f64()
@@ -623,7 +650,7 @@ impl Drop for Progress {
     fn drop(&mut self) {
         if self.last.is_some() {
             // Clear the progress line.
-            eprint!("\r\x1b[2K");
+            say_part!("\r\x1b[2K");
         }
     }
 }
@@ -772,6 +799,14 @@ struct Sim<T, const N: usize> {
 }
 
 fn setup<T: Real, const N: usize>(cfg: &Config) -> Result<Sim<T, N>, String> {
+    let dt = T::from_f64(cfg.dt);
+    if !(dt.is_finite() && dt > T::ZERO) {
+        return Err(format!(
+            "--dt {:?} is not a positive finite {}",
+            cfg.dt,
+            if cfg.f32 { "f32" } else { "f64" }
+        ));
+    }
     let Model {
         hamiltonian: model,
         semi,
@@ -1002,6 +1037,18 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
         impulse: &mut Impulse,
     ) -> Result<State<T, N>, String> {
         let fail = |e: Error| format!("step {k}: {e} (the step is too long for these rates?)");
+        if let Method::Step(_) = cfg.method {
+            // The rate the integrator turns the attitude at (a semi-rigid rotor's isotropic turn
+            // is exact and not part of it).
+            let turn = self.body.omega(state).norm().to_f64() * cfg.dt;
+            if !(turn <= MAX_TURN_PER_STEP) {
+                return Err(format!(
+                    "step {k}: the body turns {turn:.3e} rad in one step (|w| dt at the step's \
+                     start), more than half a turn (pi): a sampled rotation that fast cannot be \
+                     resolved; give a smaller --dt"
+                ));
+            }
+        }
         let integ = match (cfg.method, &self.exact) {
             (Method::Exact, Some(x)) => {
                 let s = x.state_at(T::from_f64(k as f64 * cfg.dt));
@@ -1060,6 +1107,53 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
         Ok(s)
     }
 
+    /// Checks that the state after step `k` (0: the initial state) is finite and its attitude
+    /// a unit quaternion, as written: time, attitude, rate, momentum, energy, wheel speeds.
+    fn check(&self, cfg: &Config, k: u64, s: &State<T, N>) -> Result<(), String> {
+        let t = T::from_f64(k as f64 * cfg.dt);
+        let q = self.attitude_at(s, t).to_array();
+        let n2 = q.iter().fold(T::ZERO, |acc, &x| acc + x * x);
+        let (w, e) = (self.omega(s), self.energy(s));
+        // The integrators renormalise the attitude: a norm visibly off 1 is a collapsed step.
+        let unit = (n2 - T::ONE).abs() <= T::from_f64(1e-3);
+        if t.is_finite()
+            && q.iter().all(|x| x.is_finite())
+            && unit
+            && w.is_finite()
+            && s.momentum.is_finite()
+            && e.is_finite()
+            && s.wheel_speeds.iter().all(|x| x.is_finite())
+        {
+            return Ok(());
+        }
+        let at = if k == 0 {
+            "the initial state".to_string()
+        } else {
+            format!("step {k}: the state")
+        };
+        let g = |x: T| format!("{:.6e}", x.to_f64());
+        let v = |v: Vec3<T>| format!("({}, {}, {})", g(v.x), g(v.y), g(v.z));
+        let speeds: Vec<String> = s.wheel_speeds.iter().map(|&x| g(x)).collect();
+        Err(format!(
+            "{at} is not finite or its attitude not a unit quaternion (t = {}, q = ({}, {}, {}, \
+             {}), w = {}, J = {}, energy = {}{}): the values are too large for {}",
+            g(t),
+            g(q[0]),
+            g(q[1]),
+            g(q[2]),
+            g(q[3]),
+            v(w),
+            v(s.momentum),
+            g(e),
+            if speeds.is_empty() {
+                String::new()
+            } else {
+                format!(", wheels ({})", speeds.join(", "))
+            },
+            if cfg.f32 { "f32" } else { "f64" }
+        ))
+    }
+
     fn write_row(
         &self,
         out: &mut dyn Write,
@@ -1096,10 +1190,11 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
     fn run(
         &self,
         cfg: &Config,
-        mut csv: Option<&mut dyn Write>,
+        mut csv: Option<&mut Csv>,
         stride: Option<u64>,
     ) -> Result<Outcome, Fail> {
         let mut state = self.start;
+        self.check(cfg, 0, &state).map_err(Fail::Msg)?;
         let inv0 = self.invariants(&state);
         let mut monitor = DriftMonitor::new(inv0);
         let mut impulse = Impulse::default();
@@ -1123,6 +1218,7 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
             }
             writeln!(out)?;
             self.write_row(out, cfg, 0, &state)?;
+            out.flush()?;
         }
         if stride.is_some() {
             record(&mut traj, 0, &state, &impulse);
@@ -1131,12 +1227,14 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
         for k in 1..=cfg.steps {
             state = self
                 .advance(cfg, &state, k, &mut impulse)
+                .and_then(|s| self.check(cfg, k, &s).map(|()| s))
                 .map_err(Fail::Msg)?;
             monitor.record(&self.invariants(&state));
             if k % cfg.every == 0
                 && let Some(out) = csv.as_deref_mut()
             {
                 self.write_row(out, cfg, k, &state)?;
+                out.row_done()?;
             }
             if let Some(n) = stride
                 && (k % n == 0 || k == cfg.steps)
@@ -1167,31 +1265,36 @@ fn run_csv<T: Real + Display, const N: usize>(cfg: &Config) -> Result<(), String
     if cfg.semi_rigid.is_some() {
         let model = build::<f64>(cfg)?;
         if let Some(semi) = &model.semi {
-            eprint!("{}", describe_semi(cfg, semi, &model.hamiltonian));
+            say_part!("{}", describe_semi(cfg, semi, &model.hamiltonian));
         }
     }
     if let Some(path) = &cfg.plot {
         // Fail before any output when the plot cannot be written.
         std::fs::File::create(path).map_err(|e| format!("--plot {}: {e}", path.display()))?;
     }
-    let stdout = io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
+    let mut out = Csv::stdout();
     let stride = cfg.plot.as_ref().map(|_| plot_stride(cfg.steps));
     let outcome = match sim.run(cfg, Some(&mut out), stride) {
         Ok(o) => o,
         // A closed pipe (`simulate ... | head`) is not an error of the simulation.
-        Err(Fail::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => return Ok(()),
+        Err(Fail::Io(e)) if stream::is_closed_pipe(&e) => return Ok(()),
         Err(Fail::Io(e)) => return Err(format!("writing output: {e}")),
-        Err(Fail::Msg(m)) => return Err(m),
+        Err(Fail::Msg(m)) => {
+            // The rows before the failed step stay.
+            return match out.flush() {
+                Err(e) if !stream::is_closed_pipe(&e) => Err(format!("{m}; writing output: {e}")),
+                _ => Err(m),
+            };
+        }
     };
     drop(out);
     if cfg.has_actuators() {
-        eprint!("{}", summary::<N>(cfg, &outcome));
+        say_part!("{}", summary::<N>(cfg, &outcome));
     }
     if let Some(path) = &cfg.plot {
         let figure = csv_figure::<N>(cfg, &outcome)?;
         plot::write_svg(path, &figure)?;
-        eprintln!("simulate: plot written to {}", path.display());
+        say!("simulate: plot written to {}", path.display());
     }
     Ok(())
 }
@@ -1499,59 +1602,83 @@ fn default_scenario(plot_path: Option<PathBuf>) -> Result<(), String> {
         .collect();
     let err_vs_exact = |r: &Run| max_angle_deg(&r.attitudes, &exact_attitudes);
     let f32_vs_f64 = max_angle_deg(&r32.attitudes, &r64.attitudes);
+    let mut text = String::new();
     let fmt_opt = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4} s"));
-    println!("gyrostat simulate: the intermediate-axis (Dzhanibekov) flip");
-    println!(
+    let _ = writeln!(
+        text,
+        "gyrostat simulate: the intermediate-axis (Dzhanibekov) flip"
+    );
+    let _ = writeln!(
+        text,
         "  body: principal moments (6, 4, 3) kg m^2 (seed Fig. 6.8.1), spin w0 = (0.05, 1, 0.01) rad/s"
     );
-    println!(
+    let _ = writeln!(
+        text,
         "  integrator: yoshida4 (Lie-Poisson splitting), dt = {dt} s, {steps} steps ({:.0} s)",
         dt * steps as f64
     );
-    println!();
-    println!("                          f32 core        f64 reference   closed form");
-    println!(
+    let _ = writeln!(text);
+    let _ = writeln!(
+        text,
+        "                          f32 core        f64 reference   closed form"
+    );
+    let _ = writeln!(
+        text,
         "  flip interval (mean)    {:<15} {:<15} {}",
         fmt_opt(mean_interval(&r32.flips)),
         fmt_opt(mean_interval(&r64.flips)),
         closed.map_or("-".into(), |v| format!("{v:.4} s  (2K(m)/lambda)"))
     );
-    println!(
+    let _ = writeln!(
+        text,
         "  flips seen              {:<15} {:<15}",
         r32.flips.len(),
         r64.flips.len()
     );
-    println!(
+    let _ = writeln!(
+        text,
         "  max |dE/E|              {:<15.2e} {:<15.2e}",
         r32.energy_drift, r64.energy_drift
     );
-    println!(
+    let _ = writeln!(
+        text,
         "  max |d|J|/|J||          {:<15.2e} {:<15.2e}",
         r32.norm_drift, r64.norm_drift
     );
-    println!(
+    let _ = writeln!(
+        text,
         "  max |dJ_lab|/|J|        {:<15.2e} {:<15.2e}",
         r32.lab_drift, r64.lab_drift
     );
-    println!(
+    let _ = writeln!(
+        text,
         "  attitude error (deg)    {:<15.2e} {:<15.2e} (max over the run, vs the closed form)",
         err_vs_exact(&r32),
         err_vs_exact(&r64)
     );
-    println!("  f32 vs f64 attitude     {f32_vs_f64:.2e} deg (max over the run)");
-    println!(
+    let _ = writeln!(
+        text,
+        "  f32 vs f64 attitude     {f32_vs_f64:.2e} deg (max over the run)"
+    );
+    let _ = writeln!(
+        text,
         "  (near the separatrix the flip time depends on E logarithmically: the f32 rounding of E\n   \
          shifts the flips, which is most of the f32 attitude error; |J| and E stay bounded)"
     );
     if let (Some(c), Some(m)) = (closed, mean_interval(&r64.flips)) {
-        println!();
-        println!(
+        let _ = writeln!(text);
+        let _ = writeln!(
+            text,
             "  f64 flip interval vs closed form: {:.2e} relative",
             (m - c).abs() / c
         );
     }
-    println!();
-    println!("  run any case with flags; `simulate --help` lists them (CSV output).");
+    let _ = writeln!(text);
+    let _ = writeln!(
+        text,
+        "  run any case with flags; `simulate --help` lists them (CSV output)."
+    );
+    print_quietly(&text)?;
     let times: Vec<f64> = (1..=steps / every)
         .map(|k| (k * every) as f64 * dt)
         .collect();
@@ -1588,8 +1715,12 @@ fn default_scenario(plot_path: Option<PathBuf>) -> Result<(), String> {
     };
     let path = plot_path.unwrap_or_else(default_plot_path);
     plot::write_svg(&path, &figure)?;
-    println!("  plot: {}", shown(&path).display());
-    Ok(())
+    print_quietly(&format!("  plot: {}\n", shown(&path).display()))
+}
+
+/// Writes `text` to stdout; a closed stdout is not an error.
+fn print_quietly(text: &str) -> Result<(), String> {
+    stream::print_text(text).map_err(|e| format!("writing stdout: {e}"))
 }
 
 /// Where the default scenario's plot goes: `simulate-default.svg` in the Cargo target directory

@@ -1,6 +1,10 @@
 //! External body torque: none, constant, or a schedule read from a CSV file and held between its
 //! rows (zero-order hold).
 
+use std::io::{self, Read};
+
+use crate::stream::Lines;
+
 /// The external body-frame torque of a run.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ExternalTorque {
@@ -21,12 +25,15 @@ pub struct Schedule {
 }
 
 impl Schedule {
-    /// Parses the CSV text of a torque file: the header `t,tx,ty,tz`, then one row per line,
+    /// Parses the CSV lines of a torque file: the header `t,tx,ty,tz`, then one row per line,
     /// times strictly ascending; blank lines are skipped (but counted). The error is
-    /// `line N: reason` with N 1-based.
-    pub fn parse(text: &str) -> Result<Self, String> {
-        let mut lines = text.lines().enumerate();
-        let header = lines.next().map(|(_, l)| l).unwrap_or("");
+    /// `line N: reason` with N 1-based (a line that is not UTF-8 text is one).
+    pub fn parse<R: Read>(mut lines: Lines<R>) -> Result<Self, String> {
+        let io = |e: io::Error| format!("reading: {e}");
+        let header = match lines.next_line().map_err(io)? {
+            None => String::new(),
+            Some((_, line)) => line.map_err(|e| format!("line 1: {e}"))?.to_string(),
+        };
         let fields: Vec<&str> = header.split(',').map(str::trim).collect();
         if fields != ["t", "tx", "ty", "tz"] {
             return Err(format!(
@@ -35,8 +42,8 @@ impl Schedule {
             ));
         }
         let (mut times, mut torques) = (Vec::new(), Vec::<[f64; 3]>::new());
-        for (i, line) in lines {
-            let n = i + 1;
+        while let Some((n, line)) = lines.next_line().map_err(io)? {
+            let line = line.map_err(|e| format!("line {n}: {e}"))?;
             if line.trim().is_empty() {
                 continue;
             }
