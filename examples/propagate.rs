@@ -409,7 +409,6 @@ fn rates<T: Real + FromStr + Debug, R: io::Read>(
             .map_err(|e| Failure::Row(n, e.to_string()))
             .and_then(|qs| qs.into_iter().try_for_each(|q| emit(p, q, n)));
         if let Err(e) = pushed {
-            drop(emit);
             if reached > 0 {
                 p.print_last(reached - 1, last)?;
             }
@@ -417,7 +416,6 @@ fn rates<T: Real + FromStr + Debug, R: io::Read>(
         }
     };
     let finished = integ.finish().into_iter().try_for_each(|q| emit(p, q, n));
-    drop(emit);
     if reached > 0 {
         p.print_last(reached - 1, last)?;
     }

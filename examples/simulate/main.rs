@@ -1041,7 +1041,7 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
             // The rate the integrator turns the attitude at (a semi-rigid rotor's isotropic turn
             // is exact and not part of it).
             let turn = self.body.omega(state).norm().to_f64() * cfg.dt;
-            if !(turn <= MAX_TURN_PER_STEP) {
+            if turn.is_nan() || turn > MAX_TURN_PER_STEP {
                 return Err(format!(
                     "step {k}: the body turns {turn:.3e} rad in one step (|w| dt at the step's \
                      start), more than half a turn (pi): a sampled rotation that fast cannot be \
