@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! cargo run --release --example propagate -- --input increments|rates --algo ALGO --dt SECONDS \
-//!     [--q0 w,x,y,z] [--f32] [--every N]
+//!     [--q0 w,x,y,z] [--f32 | --fixed] [--every N]
 //! ```
 //! Run with `--help` for the full description of the input and output formats.
 
@@ -15,6 +15,7 @@ use std::io::{self, Write};
 use std::process::ExitCode;
 use std::str::FromStr;
 
+use gyrostat::fixed::Q30;
 use gyrostat::propagation::{
     ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
@@ -26,7 +27,8 @@ const HELP: &str = "\
 propagate: integrate gyro increments or rate samples into attitude quaternions
 
 USAGE:
-    propagate --input increments|rates --algo ALGO --dt SECONDS [--q0 w,x,y,z] [--f32] [--every N]
+    propagate --input increments|rates --algo ALGO --dt SECONDS [--q0 w,x,y,z] [--f32 | --fixed]
+              [--every N]
 
 INPUT (stdin): one sample per line, three comma-separated numbers `dx,dy,dz` (body frame).
     --input increments   sample k (0-based) is the integral of omega over [k*dt, (k+1)*dt], rad
@@ -52,6 +54,13 @@ OPTIONS:
     --q0 w,x,y,z   initial attitude (scalar first, maps body to lab), default 1,0,0,0;
                    its norm must be within 1e-3 of 1 (it is then normalised exactly)
     --f32          run the propagation in f32 (default f64)
+    --fixed        run the propagation in Q1.30 fixed point, the integer code of the firmware
+                   (--input increments only): each number is rounded to the nearest multiple of
+                   2^-30 rad (ties to even; |value| < 2 rad, else a row error), q0 likewise after
+                   its exact normalisation in f64, and the attitude gets the fast
+                   renormalisation q + q(1 - |q|^2)/2 after every update, as on the firmware.
+                   The output is bit for bit what gyrostat's fixed-point firmware computes from
+                   the same increments: every printed number is an exact multiple of 2^-30.
     --every N      print every N-th sample (N >= 1, default 1)
     --help         print this text
 
@@ -60,7 +69,7 @@ OUTPUT (stdout): `k,qw,qx,qy,qz` after sample k (0-based) whenever k is a multip
     Rows are written as they are computed (flushed at least every 0.1 s and whenever the input
     stalls). Numbers are printed in the shortest form that
     round-trips to the same f64 (or f32 with --f32). The attitude is renormalised exactly after
-    every update.
+    every update (with --fixed: the fast renormalisation, see above).
     increments: the line for sample k is the attitude at time (k+1)*dt, after increments 0..=k.
         coningN updates the attitude once per N increments (after samples N-1, 2N-1, ...). A
         line printed inside a group, and the final line if the input ends inside a group,
@@ -86,11 +95,19 @@ enum Algo {
     Rates(RateMethod),
 }
 
+/// The arithmetic a run uses.
+#[derive(Clone, Copy, PartialEq)]
+enum Arith {
+    F64,
+    F32,
+    Fixed,
+}
+
 struct Args {
     algo: Algo,
     dt: f64,
     q0: [f64; 4],
-    f32: bool,
+    arith: Arith,
     every: u64,
 }
 
@@ -98,8 +115,8 @@ fn parse_args() -> Result<Option<Args>, String> {
     let mut input: Option<String> = None;
     let mut algo: Option<String> = None;
     let mut dt: Option<f64> = None;
-    let mut q0 = [1.0, 0.0, 0.0, 0.0];
-    let mut f32 = false;
+    let mut q0 = [1.0f64, 0.0, 0.0, 0.0];
+    let mut arith = Arith::F64;
     let mut every = 1u64;
     let mut it = stream::args()?.into_iter();
     while let Some(a) = it.next() {
@@ -138,7 +155,16 @@ fn parse_args() -> Result<Option<Args>, String> {
                     }
                 }
             }
-            "--f32" => f32 = true,
+            "--f32" | "--fixed" => {
+                if arith != Arith::F64 {
+                    return Err("--f32 and --fixed exclude each other".into());
+                }
+                arith = if a == "--f32" {
+                    Arith::F32
+                } else {
+                    Arith::Fixed
+                };
+            }
             "--every" => {
                 let v = value("--every")?;
                 every = v
@@ -176,11 +202,14 @@ fn parse_args() -> Result<Option<Args>, String> {
         }
         (i, _) => return Err(format!("--input must be increments or rates, got '{i}'")),
     };
+    if arith == Arith::Fixed && matches!(algo, Algo::Rates(_)) {
+        return Err("--fixed supports --input increments only".into());
+    }
     Ok(Some(Args {
         algo,
         dt,
         q0,
-        f32,
+        arith,
         every,
     }))
 }
@@ -214,8 +243,7 @@ struct Printer {
 }
 
 impl Printer {
-    fn print<T: Real>(&mut self, k: u64, q: UnitQuat<T>) -> io::Result<()> {
-        let [w, x, y, z] = q.to_array();
+    fn print<T: Debug>(&mut self, k: u64, [w, x, y, z]: [T; 4]) -> io::Result<()> {
         self.last_printed = Some(k);
         writeln!(self.out, "{k},{w:?},{x:?},{y:?},{z:?}")?;
         self.out.row_done()
@@ -224,7 +252,7 @@ impl Printer {
         k.is_multiple_of(self.every)
     }
     /// Prints `q` as the attitude after sample `k` unless that row is out already.
-    fn print_last<T: Real>(&mut self, k: u64, q: UnitQuat<T>) -> io::Result<()> {
+    fn print_last<T: Debug>(&mut self, k: u64, q: [T; 4]) -> io::Result<()> {
         if self.last_printed == Some(k) {
             return Ok(());
         }
@@ -350,19 +378,22 @@ fn increments<T: Real + FromStr + Debug, R: io::Read>(
             Err(e) => {
                 // The integrator is spoilt: the attitude after the previous sample is the last.
                 if k > 0 {
-                    p.print_last(k - 1, last)?;
+                    p.print_last(k - 1, last.to_array())?;
                 }
                 return Err(e);
             }
         };
         if p.due(k) {
-            p.print(k, q)?;
+            p.print(k, q.to_array())?;
         }
         last = q;
         k += 1;
     };
     if k > 0 {
-        p.print_last(k - 1, checked(integ.flush(), n, "after the last sample")?)?;
+        p.print_last(
+            k - 1,
+            checked(integ.flush(), n, "after the last sample")?.to_array(),
+        )?;
     }
     stop.map_or(Ok(()), Err)
 }
@@ -384,7 +415,7 @@ fn rates<T: Real + FromStr + Debug, R: io::Read>(
     let mut emit = |p: &mut Printer, q: UnitQuat<T>, n: u64| -> Result<(), Failure> {
         let q = checked(q, n, &format!("at the time of sample {reached}"))?;
         if p.due(reached) {
-            p.print(reached, q)?;
+            p.print(reached, q.to_array())?;
         }
         last = q;
         reached += 1;
@@ -410,14 +441,14 @@ fn rates<T: Real + FromStr + Debug, R: io::Read>(
             .and_then(|qs| qs.into_iter().try_for_each(|q| emit(p, q, n)));
         if let Err(e) = pushed {
             if reached > 0 {
-                p.print_last(reached - 1, last)?;
+                p.print_last(reached - 1, last.to_array())?;
             }
             return Err(e);
         }
     };
     let finished = integ.finish().into_iter().try_for_each(|q| emit(p, q, n));
     if reached > 0 {
-        p.print_last(reached - 1, last)?;
+        p.print_last(reached - 1, last.to_array())?;
     }
     finished?;
     stop.map_or(Ok(()), Err)
@@ -447,6 +478,69 @@ fn run<T: Real + FromStr + Debug>(args: &Args) -> Result<(), Failure> {
         Algo::Increments(rule) => increments(&mut lines, &mut p, q0, rule),
         Algo::Rates(method) => rates(&mut lines, &mut p, q0, method, dt),
     };
+    finish(result, &mut p)
+}
+
+/// `--fixed`: the increment path in Q1.30, the firmware's integer code; lines, errors and the
+/// last attitude as [`increments`] (a Q1.30 attitude is always finite: no check of it).
+fn run_fixed(args: &Args) -> Result<(), Failure> {
+    let Algo::Increments(rule) = args.algo else {
+        return Err(Failure::Usage(
+            "--fixed supports --input increments only".into(),
+        ));
+    };
+    let [w, x, y, z] = args.q0;
+    let q0 = UnitQuat::try_from_near_unit(Quat::new(w, x, y, z), 1e-3)
+        .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
+    let q0 = UnitQuat::<Q30>::try_from_f64(q0).map_err(|e| Failure::Usage(format!("--q0: {e}")))?;
+    let mut integ = IncrementIntegrator::new(q0, rule, Normalization::Fast);
+    let mut p = Printer {
+        out: Csv::stdout(),
+        every: args.every,
+        last_printed: None,
+    };
+    let mut lines = Lines::new(io::stdin().lock());
+    let exact = |q: UnitQuat<Q30>| q.to_f64().to_array();
+    let mut k: u64 = 0; // samples consumed
+    let mut last = q0; // the attitude after sample k - 1
+    let result = (|| -> Result<(), Failure> {
+        let stop = loop {
+            let (n, v) = match next_sample::<f64, _>(&mut lines, &mut p.out) {
+                Ok(Some(s)) => s,
+                Ok(None) => break None,
+                Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
+                Err(e) => return Err(e),
+            };
+            let v = half_turn(v, 1.0, "increment", n).and_then(|()| {
+                Vec3::<Q30>::try_from_f64(v)
+                    .map_err(|e| Failure::Row(n, format!("{e} (Q1.30 holds |value| < 2 rad)")))
+            });
+            let v = match v {
+                Ok(v) => v,
+                Err(e) => break Some(e),
+            };
+            if let Err(e) = integ.push(v) {
+                if k > 0 {
+                    p.print_last(k - 1, exact(last))?;
+                }
+                return Err(Failure::Row(n, e.to_string()));
+            }
+            last = integ.provisional_attitude();
+            if p.due(k) {
+                p.print(k, exact(last))?;
+            }
+            k += 1;
+        };
+        if k > 0 {
+            p.print_last(k - 1, exact(integ.flush()))?;
+        }
+        stop.map_or(Ok(()), Err)
+    })();
+    finish(result, &mut p)
+}
+
+/// Flushes the rows; a closed stdout is a quiet end, as if the input ended there.
+fn finish(result: Result<(), Failure>, p: &mut Printer) -> Result<(), Failure> {
     let flushed = p.out.flush();
     match (result, flushed) {
         (Err(Failure::Io(e)), _) | (Ok(()), Err(e)) if stream::is_closed_pipe(&e) => Ok(()),
@@ -473,10 +567,10 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let r = if args.f32 {
-        run::<f32>(&args)
-    } else {
-        run::<f64>(&args)
+    let r = match args.arith {
+        Arith::F64 => run::<f64>(&args),
+        Arith::F32 => run::<f32>(&args),
+        Arith::Fixed => run_fixed(&args),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

@@ -30,6 +30,8 @@ pub enum Error {
     NotConverged,
     /// An argument is outside the documented domain (for example a negative step or count).
     InvalidArgument,
+    /// A value does not fit the fixed-point format it is converted to (see [`crate::fixed`]).
+    OutOfRange,
 }
 
 impl fmt::Display for Error {
@@ -43,6 +45,7 @@ impl fmt::Display for Error {
             Error::NonPhysicalInertia => "inertia tensor is not physical",
             Error::NotConverged => "iterative solve did not converge",
             Error::InvalidArgument => "argument outside the documented domain",
+            Error::OutOfRange => "value outside the range of the fixed-point format",
         };
         f.write_str(s)
     }

@@ -51,7 +51,7 @@ pub fn example(name: &str) -> PathBuf {
         cmd.current_dir(&root)
             .args(["test", "-q", "--workspace", "--no-run", "--target-dir"])
             .arg(&target);
-        // `cargo test --release` builds with the bench profile, plain `cargo test` with test/dev.
+        // The same profile as the running test: `--release` when it is optimised.
         if !cfg!(debug_assertions) {
             cmd.arg("--release");
         }

@@ -36,6 +36,7 @@ pub mod kinematics;
 pub mod normalization;
 pub mod rate_samples;
 
-pub use coning::{ConingAccumulator, ConingRule, IncrementIntegrator};
+pub use coning::{ConingAccumulator, ConingRule, ConingTerms, IncrementIntegrator};
+pub use exponential::RotationVectorForm;
 pub use normalization::Normalization;
 pub use rate_samples::{RateIntegrator, RateMethod};
