@@ -80,9 +80,10 @@ OUTPUT (stdout): `k,qw,qx,qy,qz` after sample k (0-based) whenever k is a multip
 
 ERRORS (stderr, nothing else on stdout after them):
     error: line N: reason      (N counts every line from 1, blank ones too) exit status 1
-        A line that is not three finite numbers, not UTF-8 text, or longer than 1 MiB, and a
-        sample whose attitude would not be a finite unit quaternion (increments or rates too
-        large for the step) stop the run there. The rows before it are kept, and the attitude
+        A line that is not three finite numbers, not UTF-8 text, or longer than 1 MiB, a sample
+        that turns the body so far that the angle itself is not known to 1e-3 rad (beyond
+        4.5e12 rad in f64, 8.4e3 rad with --f32: its attitude would be noise), and a sample whose
+        attitude would not be a finite unit quaternion stop the run there. The rows before it are kept, and the attitude
         after the last valid sample is printed as promised above (after a malformed line the
         samples before it are integrated to their end, as if the input ended there).
     error: reason              bad command-line arguments: exit status 2, no output
@@ -321,24 +322,32 @@ fn checked<T: Real + Debug>(q: UnitQuat<T>, n: u64, what: &str) -> Result<UnitQu
     ))
 }
 
-/// The most a sample may turn the body: half a turn. Beyond it a sampled rotation is aliased (a
-/// turn by θ and by θ − 2π give the same samples) and every rule here, a series in small
-/// angles, is meaningless; the library's own step limits may be smaller.
-const MAX_TURN_PER_SAMPLE: f64 = std::f64::consts::PI;
+/// The largest rounding of one sample's turn angle the tool accepts (rad). An angle `θ` is held
+/// to `θ·ε` of the run's type, and the attitude of that sample can be no better: beyond this
+/// (`θ > 1e-3/ε`: 4.5e12 rad in f64, 8.4e3 rad in f32) its rows would be noise however exactly
+/// the rule computes. (Smaller angles can still be too large for a rule's accuracy; that is the
+/// library's step limit.)
+const TURN_RESOLUTION: f64 = 1e-3;
 
-/// Checks that `v · scale` (an increment, or a rate times the step) turns the body at most
-/// [`MAX_TURN_PER_SAMPLE`].
-fn half_turn<T: Real>(v: Vec3<T>, scale: f64, what: &str, n: u64) -> Result<(), Failure> {
+/// Checks that `v · scale` (an increment, or a rate times the step) turns the body by an angle
+/// whose rounding in `T` stays within [`TURN_RESOLUTION`].
+fn resolvable<T: Real>(v: Vec3<T>, scale: f64, what: &str, n: u64) -> Result<(), Failure> {
     let [x, y, z] = v.to_array().map(|c| c.to_f64() * scale);
     let turn = x.hypot(y).hypot(z);
-    if turn <= MAX_TURN_PER_SAMPLE {
+    let limit = TURN_RESOLUTION / T::EPSILON.to_f64();
+    if turn <= limit {
         return Ok(());
     }
     Err(Failure::Row(
         n,
         format!(
-            "the {what} turns the body {turn:.3e} rad in one sample, more than half a turn (pi): \
-             a sampled rotation that fast cannot be resolved"
+            "the {what} turns the body {turn:.3e} rad in one sample: beyond {limit:.2e} rad \
+             the angle itself is not known to {TURN_RESOLUTION:e} rad in {}",
+            if T::EPSILON.to_f64() < 1e-10 {
+                "f64"
+            } else {
+                "f32"
+            }
         ),
     ))
 }
@@ -366,7 +375,7 @@ fn increments<T: Real + FromStr + Debug, R: io::Read>(
             Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
             Err(e) => return Err(e),
         };
-        if let Err(e) = half_turn(v, 1.0, "increment", n) {
+        if let Err(e) = resolvable(v, 1.0, "increment", n) {
             break Some(e);
         }
         let q = integ
@@ -432,7 +441,7 @@ fn rates<T: Real + FromStr + Debug, R: io::Read>(
             Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
             Err(e) => return Err(e),
         };
-        if let Err(e) = half_turn(v, args_dt, "rate times --dt", n) {
+        if let Err(e) = resolvable(v, args_dt, "rate times --dt", n) {
             break Some(e);
         }
         let pushed = integ
@@ -511,10 +520,8 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
                 Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
                 Err(e) => return Err(e),
             };
-            let v = half_turn(v, 1.0, "increment", n).and_then(|()| {
-                Vec3::<Q30>::try_from_f64(v)
-                    .map_err(|e| Failure::Row(n, format!("{e} (Q1.30 holds |value| < 2 rad)")))
-            });
+            let v = Vec3::<Q30>::try_from_f64(v)
+                .map_err(|e| Failure::Row(n, format!("{e} (Q1.30 holds |value| < 2 rad)")));
             let v = match v {
                 Ok(v) => v,
                 Err(e) => break Some(e),

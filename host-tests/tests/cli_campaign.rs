@@ -358,6 +358,8 @@ fn propagate_stops_at_the_first_bad_line_with_what_the_lines_before_give() {
 
 #[test]
 fn propagate_rejects_values_too_large_for_a_step() {
+    // Non-finite results, and turns whose angle is not known to 1e-3 rad (beyond 1e-3/eps:
+    // 4.5e12 rad in f64, 8.4e3 rad in f32).
     for (args, input, line) in [
         (
             &["--input", "increments", "--algo", "coning2", "--dt", "0.01"][..],
@@ -379,8 +381,21 @@ fn propagate_rejects_values_too_large_for_a_step() {
         ),
         (
             &["--input", "increments", "--algo", "coning4", "--dt", "0.01"][..],
-            "0.001,0,0\n\n0,4,0\n",
+            "0.001,0,0\n\n0,1e13,0\n",
             3,
+        ),
+        (
+            &[
+                "--input",
+                "increments",
+                "--algo",
+                "coning3",
+                "--dt",
+                "0.01",
+                "--f32",
+            ][..],
+            "0.001,0,0\n0,1e4,0\n",
+            2,
         ),
         (
             &["--input", "rates", "--algo", "rk4", "--dt", "1e300"][..],
@@ -388,8 +403,8 @@ fn propagate_rejects_values_too_large_for_a_step() {
             2,
         ),
         (
-            &["--input", "rates", "--algo", "cf4", "--dt", "0.1"][..],
-            "0,0,1\n0,0,100\n",
+            &["--input", "rates", "--algo", "cf4", "--dt", "0.1", "--f32"][..],
+            "0,0,1\n0,0,1e5\n",
             2,
         ),
     ] {
