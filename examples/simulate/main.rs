@@ -1280,8 +1280,14 @@ fn run_csv<T: Real + Display, const N: usize>(cfg: &Config) -> Result<(), String
     let stride = cfg.plot.as_ref().map(|_| plot_stride(cfg.steps));
     let outcome = match sim.run(cfg, Some(&mut out), stride) {
         Ok(o) => o,
-        // A closed pipe (`simulate ... | head`) is not an error of the simulation.
-        Err(Fail::Io(e)) if stream::is_closed_pipe(&e) => return Ok(()),
+        // A closed pipe (`simulate ... | head`) is not an error of the simulation; the run
+        // stops there, and the plot file made empty above goes.
+        Err(Fail::Io(e)) if stream::is_closed_pipe(&e) => {
+            if let Some(path) = &cfg.plot {
+                let _ = std::fs::remove_file(path);
+            }
+            return Ok(());
+        }
         Err(Fail::Io(e)) => return Err(format!("writing output: {e}")),
         Err(Fail::Msg(m)) => {
             // The rows before the failed step stay.

@@ -947,3 +947,51 @@ fn simulate_shows_its_header_before_a_long_run_ends() {
     // Not a timing assertion of speed: a bound far above any start-up time, far below the run.
     assert!(waited.as_secs() < 30, "header after {waited:?}");
 }
+
+#[test]
+fn convert_and_propagate_answer_a_line_while_the_input_stays_open() {
+    use std::io::{BufRead, BufReader, Write};
+    use std::process::{Command, Stdio};
+    use std::sync::mpsc;
+    use std::time::Duration;
+    // A live stream (a sensor feeding a pipe): the row of a line must come out before the next
+    // line arrives, i.e. the tool flushes before it waits for input.
+    for (tool, args, line) in [
+        (
+            "convert",
+            &["--from", "quat", "--to", "quat"][..],
+            "1,0,0,0\n",
+        ),
+        (
+            "propagate",
+            &["--input", "increments", "--algo", "exp", "--dt", "0.01"][..],
+            "0.001,0,0\n",
+        ),
+    ] {
+        let mut child = Command::new(host_tests::cli::example(tool))
+            .args(args)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("the tool runs");
+        let mut stdin = child.stdin.take().expect("stdin");
+        stdin.write_all(line.as_bytes()).expect("one line in");
+        stdin.flush().expect("flushed");
+        let stdout = child.stdout.take().expect("stdout");
+        let (tx, rx) = mpsc::channel();
+        let reader = std::thread::spawn(move || {
+            let mut row = String::new();
+            let _ = BufReader::new(stdout).read_line(&mut row);
+            let _ = tx.send(row);
+        });
+        // A bound far above any start-up time; without the flush the row never comes.
+        let row = rx.recv_timeout(Duration::from_secs(60));
+        drop(stdin);
+        let _ = child.kill();
+        let _ = child.wait();
+        let _ = reader.join();
+        let row = row.unwrap_or_else(|_| panic!("{tool}: no row while the input stays open"));
+        assert!(!row.is_empty(), "{tool}: no row");
+    }
+}
