@@ -15,7 +15,10 @@
 //! - [`tolerance`]: the one tolerance trait, [`tolerance::Tolerance`].
 //! - [`cast`]: gyrostat values of any scalar type to and from f64 arrays.
 //! - [`per_type!`]: runs test items for f32 and for f64.
+//! - [`campaign`]: the adversarial input campaign (generators, checks, runner, `ROBUSTNESS.md`
+//!   tables); [`family!`] declares one API family.
 
+pub mod campaign;
 pub mod cast;
 pub mod ref_dynamics;
 pub mod ref_exact;

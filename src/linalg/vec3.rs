@@ -109,18 +109,22 @@ impl<T: Real> Vec3<T> {
 
     /// The unit vector along `self`.
     ///
+    /// The vector is first divided by its largest absolute component, so that neither the norm
+    /// nor its reciprocal overflows or underflows: any non-zero finite vector is normalised,
+    /// however short (subnormal components included) or long.
+    ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite component; [`Error::ZeroNorm`] when `|self|` is zero
-    /// (no direction). Any non-zero finite vector is normalised, however short: floating-point
-    /// division keeps full relative precision.
+    /// (no direction).
     pub fn try_normalize(self) -> Result<Self, Error> {
         let v = self.try_finite()?;
-        let n = v.norm();
-        if n > T::ZERO && n.is_finite() {
-            Ok(v.scale(T::ONE / n))
-        } else {
-            Err(Error::ZeroNorm)
+        let m = v.max_abs();
+        if m == T::ZERO {
+            return Err(Error::ZeroNorm);
         }
+        // Division, not a reciprocal: 1/m overflows for a subnormal m. |v/m| ∈ [1, √3].
+        let s = v / m;
+        Ok(s.scale(T::ONE / s.norm_squared().sqrt()))
     }
 }
 

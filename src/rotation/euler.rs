@@ -522,14 +522,19 @@ impl<T: Real> UnitQuat<T> {
 }
 
 /// Wraps any finite angle into `(−π, π]` (for caller-provided angles of unknown range).
+///
+/// Within `[−3π, 3π]` one subtraction of `2π` does it. Beyond, `x − n·2π` would round (for
+/// `|x|` of 1e12 in f32 the product `n·2π` is off by thousands of radians), so the residue is
+/// taken as `atan2(sin x, cos x)`, whose argument reduction is exact.
 #[inline]
 pub(crate) fn wrap_any<T: Real>(x: T) -> T {
-    let two_pi = T::PI + T::PI;
-    if x > T::PI || x <= -T::PI {
-        let n = ((x + T::PI) / two_pi).floor();
-        wrap(x - n * two_pi)
+    let three_pi = T::from_f64(3.0) * T::PI;
+    if x.abs() <= three_pi {
+        wrap(x)
     } else {
-        x
+        let (s, c) = x.sin_cos();
+        let r = s.atan2(c);
+        if r <= -T::PI { T::PI } else { r }
     }
 }
 
