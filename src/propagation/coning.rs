@@ -36,8 +36,8 @@
 
 use heapless::Vec as HVec;
 
-use crate::propagation::Normalization;
 use crate::propagation::exponential::apply_rotation_vector;
+use crate::propagation::{Normalization, within_step_limit};
 use crate::{Error, Real, UnitQuat, Vec3};
 
 /// An increment (coning) rule: how the rotation vector of one attitude update is formed.
@@ -79,6 +79,9 @@ impl ConingRule {
 }
 
 /// `θₖ + (1/12) θₖ₋₁ × θₖ`: one increment with the previous-interval coning correction.
+///
+/// Domain (of this and the other rule functions): finite increments of at most
+/// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) rad each; the result is then finite (at most a few times `π`).
 #[inline]
 pub fn one_plus_previous<T: Real>(previous: Vec3<T>, current: Vec3<T>) -> Vec3<T> {
     current + previous.cross(current).scale(T::from_f64(1.0 / 12.0))
@@ -125,8 +128,10 @@ pub fn rotation_vector_for<T: Real>(previous: Vec3<T>, samples: &[Vec3<T>]) -> V
 /// renormalisation `q·(3 − |q|²)/2`.
 ///
 /// Unchecked (a non-finite increment gives a non-finite attitude): for an inner loop whose
-/// increments were validated when they were read. The exponential of the small per-update
-/// angle uses the series of [`UnitQuat::exp`] (no trigonometric call below 0.37 rad in f32).
+/// increments were validated when they were read. Domain: finite increments of at most
+/// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) rad each (the checks of [`IncrementIntegrator::push`]). The exponential of
+/// the small per-update angle uses the series of [`UnitQuat::exp`] (no trigonometric call below
+/// 0.37 rad in f32).
 #[inline]
 pub fn coning2_update<T: Real>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
     apply_rotation_vector(q, two_sample(t1, t2), Normalization::Fast)
@@ -176,10 +181,14 @@ impl<T: Real> IncrementIntegrator<T> {
     /// Returns the new attitude when it completes an update group, `None` otherwise.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite component; the increment is then discarded and
-    /// the state is unchanged.
+    /// [`Error::NonFinite`] for a NaN or infinite component; [`Error::StepTooLong`] for an
+    /// increment larger than [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) (the coning rules are truncated series in the
+    /// increments, see there). Either way the increment is discarded and the state is unchanged.
     pub fn push(&mut self, dtheta: Vec3<T>) -> Result<Option<UnitQuat<T>>, Error> {
         let dtheta = dtheta.try_finite()?;
+        if !within_step_limit(dtheta.norm_squared()) {
+            return Err(Error::StepTooLong);
+        }
         let n = self.rule.samples_per_update();
         if self.group.push(dtheta).is_err() {
             // Unreachable: the group is cleared whenever it reaches n ≤ 4 = capacity. Handled
@@ -276,14 +285,25 @@ impl<T: Real> ConingAccumulator<T> {
     /// Accumulates one increment (the high-rate step).
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite component (the increment is discarded).
+    /// [`Error::NonFinite`] for a NaN or infinite component; [`Error::StepTooLong`] when the
+    /// increment, or the increment sum `α` of the interval with it, is longer than
+    /// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE): the two-speed correction is a truncated series in `α` (take the
+    /// rotation vector more often). Either way the increment is discarded and the state is
+    /// unchanged.
     #[inline]
     pub fn push(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
-        self.push_unchecked(dtheta.try_finite()?);
+        let dtheta = dtheta.try_finite()?;
+        if !within_step_limit(dtheta.norm_squared())
+            || !within_step_limit((self.alpha + dtheta).norm_squared())
+        {
+            return Err(Error::StepTooLong);
+        }
+        self.push_unchecked(dtheta);
         Ok(())
     }
 
-    /// [`ConingAccumulator::push`] without the finiteness check.
+    /// [`ConingAccumulator::push`] without the checks. Domain: finite increments whose interval
+    /// sum stays within [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE); then `α` and `β` stay finite.
     #[inline]
     pub fn push_unchecked(&mut self, dtheta: Vec3<T>) {
         let lever = self.alpha + self.previous.scale(T::from_f64(1.0 / 6.0));
