@@ -105,14 +105,14 @@ pub fn probe<I: Debug>(input: &I, f: impl FnOnce() -> Check) -> Trial {
     match r {
         Ok(Ok(())) => Trial::Ok,
         Ok(Err(Fail::Error(e))) => Trial::Err(e),
-        Ok(Err(Fail::Bad(why))) => Trial::Bad(format!("input {input:?}: {why}")),
+        Ok(Err(Fail::Bad(why))) => Trial::Bad(format!("{why}; input {input:?}")),
         Err(payload) => {
             let msg = payload
                 .downcast_ref::<&str>()
                 .map(|s| s.to_string())
                 .or_else(|| payload.downcast_ref::<String>().cloned())
                 .unwrap_or_else(|| "non-string panic payload".into());
-            Trial::Panic(format!("input {input:?}: panicked: {msg}"))
+            Trial::Panic(format!("panicked: {msg}; input {input:?}"))
         }
     }
 }

@@ -16,7 +16,10 @@
 //! [`Gyrostat::step`] advances a torque-free body (wheels coasting); [`Gyrostat::step_with`]
 //! takes an input, either a [`Control`] held over the step (the firmware form, see
 //! [`Gyrostat::control`]) or a law `f(t, state)` evaluated at the integrator's stages (the host
-//! form). Both check the step once and return a typed error for a non-finite result.
+//! form). Both check the step once and return a typed error for a non-finite result or a step
+//! beyond the methods' validity limit: the body may turn by at most
+//! [`MAX_STEP_ANGLE`](crate::propagation::MAX_STEP_ANGLE) (half a turn) per step, `|ω|·dt ≤ π` at
+//! the start and at the end of the step ([`Error::StepTooLong`]).
 //!
 //! ```
 //! use gyrostat::dynamics::{Gyrostat, Inertia, Integrator, State, lab_momentum};
@@ -39,6 +42,7 @@ use crate::dynamics::monitors::{Invariants, lab_momentum, momentum_norm};
 use crate::dynamics::splitting::Stages;
 use crate::dynamics::state::{Control, ControlLaw, State, WheelCommand};
 use crate::dynamics::{rk4, splitting};
+use crate::propagation::within_step_limit;
 use crate::{Error, Real, UnitQuat, Vec3};
 
 /// The integration method of a step.
@@ -184,6 +188,10 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     }
 
     /// The body rate `ω = ∇H(J) = I⁻¹(J − h) + ∇quartic(J)`.
+    ///
+    /// Domain (of this, [`Gyrostat::energy`] and [`Gyrostat::invariants`]): a finite state whose
+    /// rate and energy are representable (see [`BodyHamiltonian::energy_with_rotor`] with the
+    /// rotor momentum `h` of the wheel speeds); outside it the result is infinite or NaN.
     #[inline]
     pub fn omega(&self, state: &State<T, N>) -> Vec3<T> {
         self.model
@@ -267,9 +275,19 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
 
     /// One torque-free step of length `dt`, the wheels coasting.
     ///
+    /// Validity limit: the body turns by at most
+    /// [`MAX_STEP_ANGLE`](crate::propagation::MAX_STEP_ANGLE) in the step, `|ω|·dt ≤ π` with the
+    /// body rate `ω` of the state before and of the state after the step. Every method here is a
+    /// series in that angle (RK4's polynomial, the splittings' composition error); beyond half a
+    /// turn per step none of them approximates the motion. (`|J|` and the energy of a state are
+    /// otherwise unrestricted: a fast body needs short steps, not a different method.)
+    ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite `dt` or a non-finite result (a step far too long
-    /// for the dynamics); [`Error::InvalidArgument`] for `dt ≤ 0`.
+    /// [`Error::NonFinite`] for a non-finite `dt` or state, or a non-finite result;
+    /// [`Error::InvalidArgument`] for `dt ≤ 0`; [`Error::StepTooLong`] beyond the validity limit,
+    /// or when the result's attitude has left the unit sphere by more than any step within the
+    /// limit could (`|q|²` outside `[½, 2]` before renormalisation: a collapsed or exploded
+    /// norm, never renormalised into a valid-looking attitude).
     pub fn step(
         &self,
         integrator: Integrator,
@@ -277,6 +295,7 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         dt: T,
     ) -> Result<State<T, N>, Error> {
         check_step(T::ZERO, dt)?;
+        self.check_start(state, dt)?;
         let next = match Stages::of(integrator, dt) {
             Some(stages) => splitting::free(self, state, stages.as_slice()),
             None => {
@@ -284,7 +303,7 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
                 rk4::step(self, state, T::ZERO, dt, &mut torque_free)
             }
         };
-        finish(next)
+        self.finish(next, dt)
     }
 
     /// One step from time `t` with an input: a [`Control`] held over the step (see
@@ -294,8 +313,8 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     /// state argument's type: `|t, s: &State<T, N>| …`.
     ///
     /// # Errors
-    /// As [`Gyrostat::step`], plus [`Error::NonFinite`] for a non-finite `t` and for an input
-    /// that makes the result non-finite (a non-finite torque).
+    /// As [`Gyrostat::step`] (with the same validity limit), plus [`Error::NonFinite`] for a
+    /// non-finite `t` and for an input that makes the result non-finite (a non-finite torque).
     ///
     /// ```
     /// use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State};
@@ -320,11 +339,46 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         mut input: L,
     ) -> Result<State<T, N>, Error> {
         check_step(t, dt)?;
+        self.check_start(state, dt)?;
         let next = match Stages::of(integrator, dt) {
             Some(stages) => splitting::kicked(self, state, t, stages.as_slice(), &mut input),
             None => rk4::step(self, state, t, dt, &mut input),
         };
-        finish(next)
+        self.finish(next, dt)
+    }
+
+    /// The checks of a step's initial state: finite, and `|ω|·dt` within the validity limit.
+    #[inline]
+    fn check_start(&self, state: &State<T, N>, dt: T) -> Result<(), Error> {
+        if !state.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        if !within_step_limit(self.omega(state).scale(dt).norm_squared()) {
+            return Err(Error::StepTooLong);
+        }
+        Ok(())
+    }
+
+    /// Renormalises the attitude of a step's result after checking it: finite, its norm not
+    /// collapsed or exploded (`|q|² ∈ [½, 2]`; the splittings keep `|q| = 1` to rounding and an
+    /// RK4 step within the limit keeps `|q|²` above 0.85, so anything outside is a step far
+    /// beyond its validity, for example a torque law that blew up within the step), and `|ω|·dt`
+    /// within the validity limit at the end of the step. The norm is then near 1, far from
+    /// overflow, so [`UnitQuat::renormalize`]'s plain square root is safe.
+    #[inline]
+    fn finish(&self, mut state: State<T, N>, dt: T) -> Result<State<T, N>, Error> {
+        if !state.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        let n2 = state.attitude.as_quat().norm_squared();
+        if !(n2 >= T::HALF && n2 <= T::TWO) {
+            return Err(Error::StepTooLong);
+        }
+        state.attitude = state.attitude.renormalize();
+        if !within_step_limit(self.omega(&state).scale(dt).norm_squared()) {
+            return Err(Error::StepTooLong);
+        }
+        Ok(state)
     }
 }
 
@@ -338,19 +392,6 @@ fn check_step<T: Real>(t: T, dt: T) -> Result<(), Error> {
         return Err(Error::InvalidArgument);
     }
     Ok(())
-}
-
-/// Renormalises the attitude of a step's result and rejects a non-finite one. The norm is within
-/// a truncation error of 1, far from overflow, so [`UnitQuat::renormalize`]'s plain square root
-/// is safe.
-#[inline]
-fn finish<T: Real, const N: usize>(mut state: State<T, N>) -> Result<State<T, N>, Error> {
-    state.attitude = state.attitude.renormalize();
-    if state.is_finite() {
-        Ok(state)
-    } else {
-        Err(Error::NonFinite)
-    }
 }
 
 /// The Euler equation with a full inertia tensor, rotor momentum and torque, solved for the body

@@ -99,18 +99,30 @@ impl<T: Real> Inertia<T> {
 
     /// Validates a full body-frame tensor (seed (6.5.5b)) and computes its principal frame.
     ///
+    /// The checks and the eigen-decomposition run on the tensor divided by its largest entry, so
+    /// that entries anywhere in the type's range are handled without overflow or underflow.
+    /// Domain: a tensor whose inverse is representable too (principal moments above about
+    /// `3/MAX`, so that `I⁻¹` and the body rates `I⁻¹J` of ordinary momenta are finite).
+    ///
     /// # Errors
     /// - [`Error::NonFinite`]: an entry is NaN or infinite;
     /// - [`Error::NonPhysicalInertia`]: not symmetric within [`SYMMETRY_TOLERANCE_EPS`], not
     ///   positive definite, or principal moments violating `I_a ≤ I_b + I_c` (both within
-    ///   [`EIGEN_TOLERANCE_EPS`]).
+    ///   [`EIGEN_TOLERANCE_EPS`]);
+    /// - [`Error::InvalidArgument`]: a physical tensor whose inverse overflows the type
+    ///   (moments below the domain).
     pub fn try_from_tensor(tensor: Mat3<T>) -> Result<Self, Error> {
         if !tensor.is_finite() {
             return Err(Error::NonFinite);
         }
-        let m = tensor.m;
         let scale = tensor.max_abs();
-        let sym_tol = T::from_f64(SYMMETRY_TOLERANCE_EPS) * T::EPSILON * scale;
+        if scale == T::ZERO {
+            return Err(Error::NonPhysicalInertia);
+        }
+        // Divided (not multiplied by a reciprocal, which overflows for a subnormal scale): the
+        // largest entry is now ±1.
+        let m = tensor.m.map(|row| row.map(|x| x / scale));
+        let sym_tol = T::from_f64(SYMMETRY_TOLERANCE_EPS) * T::EPSILON;
         if (m[0][1] - m[1][0]).abs() > sym_tol
             || (m[0][2] - m[2][0]).abs() > sym_tol
             || (m[1][2] - m[2][1]).abs() > sym_tol
@@ -120,25 +132,41 @@ impl<T: Real> Inertia<T> {
         let o01 = (m[0][1] + m[1][0]) * T::HALF;
         let o02 = (m[0][2] + m[2][0]) * T::HALF;
         let o12 = (m[1][2] + m[2][1]) * T::HALF;
-        let sym = Mat3::from_rows(
+        let unit_sym = Mat3::from_rows(
             [m[0][0], o01, o02],
             [o01, m[1][1], o12],
             [o02, o12, m[2][2]],
         );
-        let (moments, axes) = symmetric_eigen(&sym);
-        let trace = moments.x + moments.y + moments.z;
+        let (unit_moments, axes) = symmetric_eigen(&unit_sym);
+        let trace = unit_moments.x + unit_moments.y + unit_moments.z;
         let tol = T::from_f64(EIGEN_TOLERANCE_EPS) * T::EPSILON * trace.abs();
-        let min = moments.x.min(moments.y).min(moments.z);
+        let min = unit_moments.x.min(unit_moments.y).min(unit_moments.z);
         if min <= tol {
             return Err(Error::NonPhysicalInertia);
         }
-        let (a, b, c) = (moments.x, moments.y, moments.z);
+        let (a, b, c) = (unit_moments.x, unit_moments.y, unit_moments.z);
         if a > b + c + tol || b > a + c + tol || c > a + b + tol {
             return Err(Error::NonPhysicalInertia);
         }
+        // Back to the caller's scale. A diagonal tensor keeps its entries exactly: Jacobi leaves
+        // it untouched (V = 1), so its moments are the input's diagonal itself.
+        let diagonal = o01 == T::ZERO && o02 == T::ZERO && o12 == T::ZERO;
+        let (moments, sym) = if diagonal {
+            (tensor.diagonal(), Mat3::from_diagonal(tensor.diagonal()))
+        } else {
+            let sym = Mat3::from_rows(
+                [tensor.m[0][0], o01 * scale, o02 * scale],
+                [o01 * scale, tensor.m[1][1], o12 * scale],
+                [o02 * scale, o12 * scale, tensor.m[2][2]],
+            );
+            (unit_moments.scale(scale), sym)
+        };
+        let (a, b, c) = (moments.x, moments.y, moments.z);
         let inv = Vec3::new(T::ONE / a, T::ONE / b, T::ONE / c);
         let inverse = axes * Mat3::from_diagonal(inv) * axes.transpose();
-        let diagonal = o01 == T::ZERO && o02 == T::ZERO && o12 == T::ZERO;
+        if !(inverse.is_finite() && moments.is_finite() && sym.is_finite()) {
+            return Err(Error::InvalidArgument);
+        }
         Ok(Self {
             tensor: sym,
             inverse,
@@ -208,15 +236,17 @@ impl<T: Real> Inertia<T> {
     /// Principal radii of gyration `kᵢ = √(λᵢ / M)` for a body of mass `mass`.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite mass, [`Error::InvalidArgument`] for `mass ≤ 0`.
+    /// [`Error::NonFinite`] for a non-finite mass, [`Error::InvalidArgument`] for `mass ≤ 0` or
+    /// a radius that overflows the type (a mass far below the moments).
     pub fn radii_of_gyration(&self, mass: T) -> Result<Vec3<T>, Error> {
-        let inv_m = inverse_mass(mass)?;
+        check_mass(mass)?;
         let m = self.moments;
-        Ok(Vec3::new(
-            (m.x * inv_m).sqrt(),
-            (m.y * inv_m).sqrt(),
-            (m.z * inv_m).sqrt(),
-        ))
+        let k = Vec3::new(
+            (m.x / mass).sqrt(),
+            (m.y / mass).sqrt(),
+            (m.z / mass).sqrt(),
+        );
+        representable_vec(k)
     }
 
     /// Radius of gyration about a body-frame axis through the reference point:
@@ -226,20 +256,35 @@ impl<T: Real> Inertia<T> {
     /// As [`Inertia::radii_of_gyration`], plus the errors of normalising `axis`
     /// ([`Error::ZeroNorm`], [`Error::NonFinite`]).
     pub fn radius_of_gyration_about(&self, axis: Vec3<T>, mass: T) -> Result<T, Error> {
-        let inv_m = inverse_mass(mass)?;
+        check_mass(mass)?;
         let n = axis.try_normalize()?;
-        Ok((n.dot(self.tensor * n) * inv_m).sqrt())
+        let k = (n.dot(self.tensor * n) / mass).sqrt();
+        if k.is_finite() {
+            Ok(k)
+        } else {
+            Err(Error::InvalidArgument)
+        }
     }
 }
 
-fn inverse_mass<T: Real>(mass: T) -> Result<T, Error> {
+fn check_mass<T: Real>(mass: T) -> Result<(), Error> {
     if !mass.is_finite() {
         return Err(Error::NonFinite);
     }
     if mass <= T::ZERO {
         return Err(Error::InvalidArgument);
     }
-    Ok(T::ONE / mass)
+    Ok(())
+}
+
+/// A result computed from finite input, rejected with [`Error::InvalidArgument`] if it
+/// overflowed (an input outside the documented domain of magnitudes).
+fn representable_vec<T: Real>(v: Vec3<T>) -> Result<Vec3<T>, Error> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::InvalidArgument)
+    }
 }
 
 /// Eigen-decomposition of a symmetric 3×3 matrix by the cyclic Jacobi method.
