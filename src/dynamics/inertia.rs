@@ -79,7 +79,10 @@ impl<T: Real> Inertia<T> {
     /// # Ok::<(), Error>(())
     /// ```
     pub fn try_from_principal(moments: Vec3<T>) -> Result<Self, Error> {
-        Self::try_from_tensor(Mat3::from_diagonal(moments))
+        if !moments.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        Self::from_checked_diagonal(moments)
     }
 
     /// The inertia from its six independent components: the diagonal `(I₁₁, I₂₂, I₃₃)` and the
@@ -115,13 +118,20 @@ impl<T: Real> Inertia<T> {
         if !tensor.is_finite() {
             return Err(Error::NonFinite);
         }
-        let scale = tensor.max_abs();
-        if scale == T::ZERO {
-            return Err(Error::NonPhysicalInertia);
+        let m = tensor.m;
+        let diagonal = m[0][1] == T::ZERO
+            && m[1][0] == T::ZERO
+            && m[0][2] == T::ZERO
+            && m[2][0] == T::ZERO
+            && m[1][2] == T::ZERO
+            && m[2][1] == T::ZERO;
+        if diagonal {
+            return Self::from_checked_diagonal(tensor.diagonal());
         }
+        let scale = tensor.max_abs();
         // Divided (not multiplied by a reciprocal, which overflows for a subnormal scale): the
         // largest entry is now ±1.
-        let m = tensor.m.map(|row| row.map(|x| x / scale));
+        let m = m.map(|row| row.map(|x| x / scale));
         let sym_tol = T::from_f64(SYMMETRY_TOLERANCE_EPS) * T::EPSILON;
         if (m[0][1] - m[1][0]).abs() > sym_tol
             || (m[0][2] - m[2][0]).abs() > sym_tol
@@ -138,43 +148,59 @@ impl<T: Real> Inertia<T> {
             [o02, o12, m[2][2]],
         );
         let (unit_moments, axes) = symmetric_eigen(&unit_sym);
-        let trace = unit_moments.x + unit_moments.y + unit_moments.z;
-        let tol = T::from_f64(EIGEN_TOLERANCE_EPS) * T::EPSILON * trace.abs();
-        let min = unit_moments.x.min(unit_moments.y).min(unit_moments.z);
-        if min <= tol {
+        check_moments(unit_moments)?;
+        let sym = Mat3::from_rows(
+            [tensor.m[0][0], o01 * scale, o02 * scale],
+            [o01 * scale, tensor.m[1][1], o12 * scale],
+            [o02 * scale, o12 * scale, tensor.m[2][2]],
+        );
+        // `axes` is a proper rotation (orthonormal columns to rounding, det +1 by construction):
+        // Shepperd's method of `Dcm` applies.
+        let rotation = Dcm::from_matrix_unchecked(axes).to_unit_quat();
+        Self::assemble(sym, unit_moments.scale(scale), axes, rotation, false)
+    }
+
+    /// A diagonal tensor of finite moments: principal frame = body frame, no decomposition (so
+    /// that code building bodies only from principal moments links no eigen-solver).
+    fn from_checked_diagonal(d: Vec3<T>) -> Result<Self, Error> {
+        let scale = d.max_abs();
+        if scale == T::ZERO {
             return Err(Error::NonPhysicalInertia);
         }
-        let (a, b, c) = (unit_moments.x, unit_moments.y, unit_moments.z);
-        if a > b + c + tol || b > a + c + tol || c > a + b + tol {
-            return Err(Error::NonPhysicalInertia);
-        }
-        // Back to the caller's scale. A diagonal tensor keeps its entries exactly: Jacobi leaves
-        // it untouched (V = 1), so its moments are the input's diagonal itself.
-        let diagonal = o01 == T::ZERO && o02 == T::ZERO && o12 == T::ZERO;
-        let (moments, sym) = if diagonal {
-            (tensor.diagonal(), Mat3::from_diagonal(tensor.diagonal()))
+        check_moments(d / scale)?;
+        Self::assemble(
+            Mat3::from_diagonal(d),
+            d,
+            Mat3::IDENTITY,
+            UnitQuat::IDENTITY,
+            true,
+        )
+    }
+
+    /// The inertia of a validated principal frame, rejected with [`Error::InvalidArgument`] if
+    /// its inverse (or, scaled back, a moment) is not representable.
+    fn assemble(
+        tensor: Mat3<T>,
+        moments: Vec3<T>,
+        axes: Mat3<T>,
+        rotation: UnitQuat<T>,
+        diagonal: bool,
+    ) -> Result<Self, Error> {
+        let inv = Vec3::new(T::ONE / moments.x, T::ONE / moments.y, T::ONE / moments.z);
+        let inverse = if diagonal {
+            Mat3::from_diagonal(inv)
         } else {
-            let sym = Mat3::from_rows(
-                [tensor.m[0][0], o01 * scale, o02 * scale],
-                [o01 * scale, tensor.m[1][1], o12 * scale],
-                [o02 * scale, o12 * scale, tensor.m[2][2]],
-            );
-            (unit_moments.scale(scale), sym)
+            axes * Mat3::from_diagonal(inv) * axes.transpose()
         };
-        let (a, b, c) = (moments.x, moments.y, moments.z);
-        let inv = Vec3::new(T::ONE / a, T::ONE / b, T::ONE / c);
-        let inverse = axes * Mat3::from_diagonal(inv) * axes.transpose();
-        if !(inverse.is_finite() && moments.is_finite() && sym.is_finite()) {
+        if !(inverse.is_finite() && moments.is_finite() && tensor.is_finite()) {
             return Err(Error::InvalidArgument);
         }
         Ok(Self {
-            tensor: sym,
+            tensor,
             inverse,
             moments,
             axes,
-            // `axes` is a proper rotation (orthonormal columns to rounding, det +1 by
-            // construction): Shepperd's method of `Dcm` applies.
-            rotation: Dcm::from_matrix_unchecked(axes).to_unit_quat(),
+            rotation,
             diagonal,
         })
     }
@@ -215,16 +241,26 @@ impl<T: Real> Inertia<T> {
         self.diagonal
     }
 
-    /// Angular momentum of a rigid rotation, `L = I·ω` (6.5.3).
+    /// Angular momentum of a rigid rotation, `L = I·ω` (6.5.3). For a diagonal tensor only the
+    /// diagonal is multiplied (the same result: the products with the zero entries add nothing).
     #[inline]
     pub fn mul_vec(&self, omega: Vec3<T>) -> Vec3<T> {
-        self.tensor * omega
+        if self.diagonal {
+            self.moments.component_mul(omega)
+        } else {
+            self.tensor * omega
+        }
     }
 
-    /// Angular velocity from angular momentum, `ω = I⁻¹·J` (6.5.14a).
+    /// Angular velocity from angular momentum, `ω = I⁻¹·J` (6.5.14a). For a diagonal tensor
+    /// only the diagonal of `I⁻¹` is multiplied (as [`Inertia::mul_vec`]).
     #[inline]
     pub fn solve(&self, momentum: Vec3<T>) -> Vec3<T> {
-        self.inverse * momentum
+        if self.diagonal {
+            self.inverse.diagonal().component_mul(momentum)
+        } else {
+            self.inverse * momentum
+        }
     }
 
     /// Rotational kinetic energy `½ J·I⁻¹·J` (6.5.11).
@@ -265,6 +301,20 @@ impl<T: Real> Inertia<T> {
             Err(Error::InvalidArgument)
         }
     }
+}
+
+/// The checks of principal moments (scaled to a largest magnitude of about one, so that the
+/// trace cannot overflow): positive definite and obeying the triangle inequality, both within
+/// [`EIGEN_TOLERANCE_EPS`].
+fn check_moments<T: Real>(moments: Vec3<T>) -> Result<(), Error> {
+    let (a, b, c) = (moments.x, moments.y, moments.z);
+    let tol = T::from_f64(EIGEN_TOLERANCE_EPS) * T::EPSILON * (a + b + c).abs();
+    let min = a.min(b).min(c);
+    // Written so that a NaN fails.
+    if !(min > tol) || a > b + c + tol || b > a + c + tol || c > a + b + tol {
+        return Err(Error::NonPhysicalInertia);
+    }
+    Ok(())
 }
 
 fn check_mass<T: Real>(mass: T) -> Result<(), Error> {
