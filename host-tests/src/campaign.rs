@@ -39,7 +39,7 @@ use crate::tolerance::Tolerance;
 
 /// Inputs per family and type when `GYROSTAT_CAMPAIGN_N` is not set: enough to meet every kind
 /// of adversarial input many times, small enough that the README test command stays fast.
-pub const DEFAULT_INPUTS: u64 = 4000;
+pub const DEFAULT_INPUTS: u64 = 20_000;
 
 /// The base seed when `GYROSTAT_CAMPAIGN_SEED` is not set.
 pub const DEFAULT_SEED: u64 = 0x6779_726f_7374_6174; // "gyrostat"

@@ -391,6 +391,19 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                 })
             }
         ),
+        family!("interop: mint and nalgebra conversions", |g| {
+            let q = g.quat();
+            let u = g.unit_quat();
+            let v = g.vec();
+            probe(&(q, u, v), || {
+                let m: mint::Quaternion<T> = q.into();
+                let na: nalgebra::UnitQuaternion<T> = u.into();
+                unit(UnitQuat::from(na))?;
+                let back: gyrostat::Vec3<T> = nalgebra::Vector3::from(v).into();
+                ensure(back == v || !v.is_finite(), || format!("{v:?} -> {back:?}"))?;
+                unit(UnitQuat::try_from(m)?)
+            })
+        }),
     ]
 }
 
