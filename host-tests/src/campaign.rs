@@ -78,6 +78,8 @@ pub type Check = Result<(), Fail>;
 thread_local! {
     /// Set while a probe runs, so that the panic hook stays quiet for panics the probe reports.
     static PROBING: Cell<bool> = const { Cell::new(false) };
+    /// The largest `||q| − 1|` (in ε of the type) that [`unit`] accepted in the current family.
+    static WORST_UNIT: Cell<f64> = const { Cell::new(0.0) };
 }
 
 static HOOK: Once = Once::new();
@@ -167,9 +169,13 @@ pub fn norm_error<T: Real>(q: UnitQuat<T>) -> f64 {
     (n2.sqrt() - 1.0).abs()
 }
 
-/// A unit quaternion: finite, `||q| − 1| ≤` [`unit_tolerance`].
+/// A unit quaternion: finite, `||q| − 1| ≤` [`unit_tolerance`]. The largest accepted error is
+/// recorded for the family's row.
 pub fn unit<T: Tolerance>(q: UnitQuat<T>) -> Check {
-    unit_within(q, unit_tolerance::<T>())
+    unit_within(q, unit_tolerance::<T>())?;
+    let e = norm_error(q) / T::EPSILON.to_f64();
+    WORST_UNIT.with(|w| w.set(w.get().max(e)));
+    Ok(())
 }
 
 /// A unit quaternion with a stated tolerance on `||q| − 1|` (for results whose norm error is
@@ -922,6 +928,9 @@ pub struct Tally {
     pub panics: u64,
     /// The first few failures (input and reason).
     pub examples: Vec<String>,
+    /// The largest `||q| − 1|`, in ε of the type, of the unit quaternions the family's checks
+    /// accepted (0 when it returns none).
+    pub worst_unit: f64,
     /// Wall time, seconds.
     pub seconds: f64,
 }
@@ -958,6 +967,7 @@ pub fn run_family<T: Tolerance>(f: &Family<T>, n: u64) -> Tally {
         ..Tally::default()
     };
     let start = Instant::now();
+    WORST_UNIT.with(|w| w.set(0.0));
     for _ in 0..n {
         t.inputs += 1;
         match (f.trial)(&mut g) {
@@ -978,6 +988,7 @@ pub fn run_family<T: Tolerance>(f: &Family<T>, n: u64) -> Tally {
         }
     }
     t.seconds = start.elapsed().as_secs_f64();
+    t.worst_unit = WORST_UNIT.with(Cell::get);
     t
 }
 
@@ -993,11 +1004,13 @@ fn group(n: u64) -> String {
     out
 }
 
-/// The Markdown table of a campaign section.
+/// The Markdown table of a campaign section: one row per family and type.
 pub fn table(tallies: &[Tally]) -> String {
     let mut s = String::new();
-    s.push_str("| family | type | inputs | `Ok` | typed errors | bad `Ok` | panics |\n");
-    s.push_str("|---|---|--:|--:|---|--:|--:|\n");
+    s.push_str(
+        "| family | type | inputs | `Ok` | typed errors | bad `Ok` | panics | max ‖q‖−1 (ε) | s |\n",
+    );
+    s.push_str("|---|---|--:|--:|---|--:|--:|--:|--:|\n");
     for t in tallies {
         let errors = if t.errors.is_empty() {
             "—".to_string()
@@ -1008,16 +1021,23 @@ pub fn table(tallies: &[Tally]) -> String {
                 .collect::<Vec<_>>()
                 .join(", ")
         };
+        let worst = if t.worst_unit > 0.0 {
+            format!("{:.1}", t.worst_unit)
+        } else {
+            "—".into()
+        };
         let _ = writeln!(
             s,
-            "| `{}` | {} | {} | {} | {} | {} | {} |",
+            "| `{}` | {} | {} | {} | {} | {} | {} | {} | {:.2} |",
             t.name,
             t.type_name,
             group(t.inputs),
             group(t.ok),
             errors,
             t.bad,
-            t.panics
+            t.panics,
+            worst,
+            t.seconds
         );
     }
     s
@@ -1046,7 +1066,11 @@ pub fn run_campaign(section: &str, f32s: Vec<Family<f32>>, f64s: Vec<Family<f64>
     }
     let t = table(&rows);
     let calls: u64 = rows.iter().map(|r| r.inputs).sum();
-    println!("campaign `{section}`: {n} inputs per family and type, {calls} in all, {wall:.1} s");
+    let cpu: f64 = rows.iter().map(|r| r.seconds).sum();
+    println!(
+        "campaign `{section}`: {n} inputs per family and type, {calls} in all, {wall:.1} s wall, \
+         {cpu:.1} s in the families"
+    );
     for r in &rows {
         println!(
             "  {:<44} {} {:>8.2} s  ok {:>9}  errors {:>9}  bad {}  panics {}",
@@ -1061,7 +1085,7 @@ pub fn run_campaign(section: &str, f32s: Vec<Family<f32>>, f64s: Vec<Family<f64>
     }
     println!("{t}");
     if std::env::var("GYROSTAT_CAMPAIGN_WRITE").as_deref() == Ok("1") {
-        write_section(section, n, calls, &t);
+        write_section(section, n, calls, cpu, &t);
     }
     let failures: Vec<String> = rows
         .iter()
@@ -1084,18 +1108,36 @@ pub fn run_campaign(section: &str, f32s: Vec<Family<f32>>, f64s: Vec<Family<f64>
     );
 }
 
-/// Rewrites the table of `section` in `ROBUSTNESS.md` (between `<!-- campaign:SECTION -->` and
-/// `<!-- /campaign:SECTION -->`).
-fn write_section(section: &str, n: u64, calls: u64, table: &str) {
+/// The setting a count belongs to in `ROBUSTNESS.md`: `ci` for [`DEFAULT_INPUTS`] (what the
+/// README test command runs), `long` for any other count (the count is written beside the table).
+fn setting(n: u64) -> &'static str {
+    if n == DEFAULT_INPUTS { "ci" } else { "long" }
+}
+
+/// Rewrites the table of `section` for the setting of `n` in `ROBUSTNESS.md` (between
+/// `<!-- campaign:SECTION:SETTING -->` and `<!-- /campaign:SECTION:SETTING -->`).
+fn write_section(section: &str, n: u64, calls: u64, cpu: f64, table: &str) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../ROBUSTNESS.md");
     let doc = std::fs::read_to_string(&path).expect("ROBUSTNESS.md");
-    let open = format!("<!-- campaign:{section} -->");
-    let close = format!("<!-- /campaign:{section} -->");
+    let tag = format!("campaign:{section}:{}", setting(n));
+    let open = format!("<!-- {tag} -->");
+    let close = format!("<!-- /{tag} -->");
     let (Some(a), Some(b)) = (doc.find(&open), doc.find(&close)) else {
-        panic!("ROBUSTNESS.md has no markers for section {section}");
+        panic!("ROBUSTNESS.md has no markers {open} … {close}");
+    };
+    let seed = match std::env::var("GYROSTAT_CAMPAIGN_SEED") {
+        Ok(s) => format!("GYROSTAT_CAMPAIGN_SEED={s} "),
+        Err(_) => String::new(),
+    };
+    let count = if n == DEFAULT_INPUTS {
+        String::new()
+    } else {
+        format!("GYROSTAT_CAMPAIGN_N={n} ")
     };
     let body = format!(
-        "{open}\n{} inputs per family and type ({} calls in all), seed {:#x}:\n\n{table}",
+        "{open}\n`{seed}{count}cargo test --release -p host-tests --test robustness_{section} \
+         -- --nocapture`: {} inputs per family and type, {} calls in all, seed {:#x}, \
+         {cpu:.1} s of one core in the families.\n\n{table}",
         group(n),
         group(calls),
         base_seed()

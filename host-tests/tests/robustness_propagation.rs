@@ -26,7 +26,7 @@ use gyrostat::propagation::{
     ConingAccumulator, ConingRule, IncrementIntegrator, MAX_STEP_ANGLE, Normalization,
     RateIntegrator, RateMethod,
 };
-use gyrostat::{Real, UnitQuat, Vec3};
+use gyrostat::{UnitQuat, Vec3};
 use host_tests::campaign::*;
 use host_tests::family;
 use host_tests::tolerance::Tolerance;

@@ -1,7 +1,7 @@
 //! Named regression tests: every library case listed by the robustness issue (an adversarial
 //! campaign found them returning `Ok` with NaN, infinity, a zero quaternion or a wrong
 //! rotation), each pinned to its typed error or to a correct finite result, in f32 and f64 where
-//! the case has a value for both. The command-line cases are in `robustness_cli.rs`.
+//! the case has a value for both. The command-line tools have their own tests.
 
 use gyrostat::dynamics::analysis::rotational_energy;
 use gyrostat::dynamics::elliptic::{carlson_rf, incomplete_f, sn_cn_dn};
