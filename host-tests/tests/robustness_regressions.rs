@@ -11,8 +11,8 @@ use gyrostat::propagation::kinematics::body_rate_between;
 use gyrostat::propagation::{
     ConingAccumulator, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
-use gyrostat::rotation::{AxisAngle, Euler, EulerSequence, GimbalPolicy, Mrp};
-use gyrostat::{Dcm, Error, Mat3, Quat, UnitQuat, Vec3};
+use gyrostat::rotation::{AxisAngle, Euler, EulerSequence, Frame, GimbalPolicy, Mrp};
+use gyrostat::{Axis, Dcm, Error, Mat3, Quat, UnitQuat, Vec3};
 use host_tests::campaign::{Limits, norm_error};
 use host_tests::cast::vec3;
 
@@ -155,6 +155,32 @@ fn inertia_huge_off_diagonal_f32() {
         Vec3::new(4.130_128_4e37, 1.820_296_4e38, 1.029_570_8e37),
     );
     assert_eq!(r, Err(Error::NonPhysicalInertia));
+}
+
+/// Found by the long campaign: an f32 attitude 1.5e-7 rad from the pole of `ZXY` (extrinsic)
+/// came back from `to_euler` encoding a rotation 1.0e-6 rad off (over the 1e-6 contract), with
+/// every gimbal policy at 0.9e-6 or more. Cause: the locked combination `first + s·third` was
+/// summed from the wrapped outer angles (four roundings of angles up to π) and each wrap took
+/// `2π` rounded to f32 (off by 1.7e-7). Now it is twice one half-angle, wrapped once with `2π`
+/// in two parts; what remains is libm's `atan2f` (2e-7 here, doubled) and the split.
+#[test]
+fn euler_pole_f32_contract() {
+    let a = [-0.332_099_38f32, -0.332_099_3, -0.624_267_7, 0.624_267_64];
+    let q = UnitQuat::new_unchecked(Quat::from_array(a));
+    let exact = UnitQuat::try_new(Quat::from_array(a.map(f64::from))).unwrap();
+    let seq = EulerSequence::new(Axis::Z, Axis::X, Axis::Y, Frame::Extrinsic).unwrap();
+    for policy in [
+        GimbalPolicy::ZeroFirst,
+        GimbalPolicy::ZeroThird,
+        GimbalPolicy::ClosestTo([-3.212_433_8e25, -4.635_519_3e-21, 2.141_285_7e35]),
+        GimbalPolicy::ClosestTo([1.0, 0.0, 2.0]),
+    ] {
+        let sol = q.to_euler(seq, policy);
+        assert!(sol.singularity.is_some(), "{policy:?}");
+        let back = Euler::new(seq, sol.euler.angles.map(f64::from)).to_unit_quat();
+        let err = back.angle_to(exact);
+        assert!(err < 6e-7, "{policy:?}: {:?} is {err:e} rad off", sol.euler);
+    }
 }
 
 host_tests::per_type! {
