@@ -23,7 +23,7 @@ case "$mode" in "" | --check | --update) ;; *) echo "usage: $0 [--check|--update
 
 targets=(thumbv6m-none-eabi thumbv7em-none-eabihf)
 labels=(M0 M4F)
-caps=(baseline gyro2 euler gyro2_euler strang exact all)
+caps=(baseline gyro2 gyro2_q30 euler gyro2_euler strang exact all)
 snapshot=benches/footprint.snapshot
 target_dir="${CARGO_TARGET_DIR:-target}"
 dir="$target_dir/footprint"
@@ -64,16 +64,17 @@ describe() {
   case "$1" in
     baseline) echo "runtime alone: cortex-m-rt reset, \`main\`, idle loop" ;;
     gyro2) echo "2-sample gyro update + fast renormalisation, \`coning2_update\`" ;;
+    gyro2_q30) echo "\`gyro2\` in Q1.30 fixed point (integer only), \`coning2_update\` on \`UnitQuat<Q30>\`" ;;
     euler) echo "quaternion → Euler ZYX with gimbal-lock record, \`to_euler(ZYX, ZeroThird)\`" ;;
     strang) echo "rigid body from principal moments + one Strang step" ;;
     exact) echo "exact free rigid body from principal moments, \`FreeRigidBody::try_new\` + \`try_state_at\`" ;;
     gyro2_euler) echo "\`gyro2\` and \`euler\` together" ;;
-    all) echo "all four together" ;;
+    all) echo "the four f32 capabilities together" ;;
   esac
 }
 value() { echo "$rows" | awk -v t="$1" -v c="$2" -v k="$3" '$1==t && $2==c {print $k}'; }
 
-header="| capability (f32)"; rule="|---"
+header="| capability (f32 unless named)"; rule="|---"
 for l in "${labels[@]}"; do
   header="$header | $l flash | $l image | $l stack"; rule="$rule|---:|---:|---:"
 done

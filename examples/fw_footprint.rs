@@ -12,22 +12,24 @@
 //!   and an idle loop, the cost every other image shares;
 //! - `gyro2`: the 2-sample gyro update with the exponential and the fast renormalisation,
 //!   `coning2_update(q, θ₁, θ₂)`;
+//! - `gyro2_q30`: the same update in Q1.30 fixed point (`coning2_update` on `UnitQuat<Q30>`),
+//!   the integer hot path for FPU-less cores;
 //! - `euler`: quaternion → Euler angles in one convention, intrinsic ZYX (yaw, pitch, roll) with
 //!   the gimbal-lock record, `q.to_euler(ZYX, ZeroThird)`;
 //! - `strang`: a rigid body built from principal moments (`Inertia::try_from_principal`,
 //!   `Gyrostat::rigid`) and one torque-free Strang splitting step, `body.step(Strang, …)`;
 //! - `exact`: the exact free rigid body from principal moments (`Inertia::try_from_principal`,
 //!   `FreeRigidBody::try_new`) and `try_state_at(t)`;
-//! - `gyro2_euler`: the first two together (attitude propagation and reporting);
-//! - `all` (the default): the four together. Shared code (the f32 `sin`/`cos` kernel, the
-//!   quaternion product, soft-float routines) is linked once, so a combination costs less than
-//!   the sum of its parts.
+//! - `gyro2_euler`: `gyro2` and `euler` together (attitude propagation and reporting);
+//! - `all` (the default): the four f32 capabilities together (not `gyro2_q30`). Shared code
+//!   (the f32 `sin`/`cos` kernel, the quaternion product, soft-float routines) is linked once,
+//!   so a combination costs less than the sum of its parts.
 //!
-//! All in f32. The size image (no `GYROSTAT_FOOTPRINT_STACK`) holds no formatting and no
-//! semihosting: only the runtime, `main`, one call of the capability with the typical operands
-//! of `CASES`, and an idle loop. It is built to be measured, not run. Its panic handler calls a
-//! function that exists nowhere, as in `fw_nopanic`, so the image also proves that the
-//! capability alone has no panicking branch.
+//! All in f32 except `gyro2_q30`. The size image (no `GYROSTAT_FOOTPRINT_STACK`) holds no
+//! formatting and no semihosting: only the runtime, `main`, one call of the capability with the
+//! typical operands of `CASES`, and an idle loop. It is built to be measured, not run. Its panic
+//! handler calls a function that exists nowhere, as in `fw_nopanic`, so the image also proves
+//! that the capability alone has no panicking branch.
 //!
 //! Stack: with `GYROSTAT_FOOTPRINT_STACK=1`, `main` instead measures the stack of one call per
 //! case of `CASES` and reports the numbers over semihosting. For each case it reads its own stack
@@ -56,11 +58,13 @@ mod firmware {
     const EULER: u8 = 2;
     const STRANG: u8 = 4;
     const EXACT: u8 = 8;
+    const GYRO2_Q30: u8 = 16;
 
     /// The capabilities `GYROSTAT_FOOTPRINT` can name, with the parts each links.
-    const CAPABILITIES: [(&str, u8); 7] = [
+    const CAPABILITIES: [(&str, u8); 8] = [
         ("baseline", 0),
         ("gyro2", GYRO2),
+        ("gyro2_q30", GYRO2_Q30),
         ("euler", EULER),
         ("gyro2_euler", GYRO2 | EULER),
         ("strang", STRANG),
@@ -78,7 +82,7 @@ mod firmware {
             i += 1;
         }
         panic!(
-            "GYROSTAT_FOOTPRINT must be one of: baseline gyro2 euler gyro2_euler strang exact all"
+            "GYROSTAT_FOOTPRINT must be one of: baseline gyro2 gyro2_q30 euler gyro2_euler strang exact all"
         )
     }
 
@@ -119,40 +123,73 @@ mod firmware {
         attitude: [f32; 4],
         /// Scale of the two gyro increments (rad).
         angle: f32,
+        /// `attitude` in Q1.30 (raw integers, truncated), for `gyro2_q30`.
+        attitude_q30: [i32; 4],
+        /// Scale of the two Q1.30 gyro increments: raw units (2⁻³⁰ rad) per tenth of a unit of
+        /// their directions (`DIRECTIONS_Q30`).
+        angle_q30: i32,
         /// Strang step (s).
         dt: f32,
         /// Time at which the exact free body is evaluated (s).
         t: f32,
     }
 
+    /// A generic attitude.
+    const GENERIC: [f32; 4] = [0.923_381, 0.102_598, -0.307_794, 0.205_196];
+    /// The ZYX gimbal lock (pitch +90°).
+    const LOCK: [f32; 4] = [
+        core::f32::consts::FRAC_1_SQRT_2,
+        0.0,
+        core::f32::consts::FRAC_1_SQRT_2,
+        0.0,
+    ];
+
+    /// The raw Q1.30 integers of an attitude (truncated: operands, not results).
+    const fn q30_bits(a: [f32; 4]) -> [i32; 4] {
+        let scale = (1u32 << 30) as f32;
+        [
+            (a[0] * scale) as i32,
+            (a[1] * scale) as i32,
+            (a[2] * scale) as i32,
+            (a[3] * scale) as i32,
+        ]
+    }
+
+    /// The directions of the two Q1.30 increments in tenths: `(1, −2, 0.5)` and
+    /// `(1.2, −1.9, 0.6)`, as the f32 increments.
+    const DIRECTIONS_Q30: [[i32; 3]; 2] = [[10, -20, 5], [12, -19, 6]];
+
     /// The size image calls the capability once with `CASES[0]`; the stack run calls it with
     /// every case, so that its high-water mark covers the deepest path: the small-angle series
     /// and the `sin`/`cos` kernel, the gimbal-lock branch of the Euler conversion, and libm's
-    /// `sincosf` fallback beyond the kernel's range (6000 rad).
+    /// `sincosf` fallback beyond the kernel's range (6000 rad). For `gyro2_q30`: the fused
+    /// series update, scaling and squaring (≈ 1.4 rad), and the largest increments (components
+    /// at the edge of Q1.30, their sum saturating).
     const CASES: [Inputs; 3] = [
         // Typical: a generic attitude, mrad increments, a 10 ms step.
         Inputs {
-            attitude: [0.923_381, 0.102_598, -0.307_794, 0.205_196],
+            attitude: GENERIC,
             angle: 1e-3,
+            attitude_q30: q30_bits(GENERIC),
+            angle_q30: 107_374, // 1e-4 rad per tenth: the f32 case's 1e-3 rad
             dt: 0.01,
             t: 7.5,
         },
         // ZYX gimbal lock (pitch +90°); increments past the exponential's series, a 1 s step.
         Inputs {
-            attitude: [
-                core::f32::consts::FRAC_1_SQRT_2,
-                0.0,
-                core::f32::consts::FRAC_1_SQRT_2,
-                0.0,
-            ],
+            attitude: LOCK,
             angle: 0.3,
+            attitude_q30: q30_bits(LOCK),
+            angle_q30: 32_212_255, // 0.03 rad per tenth: 0.3 rad
             dt: 1.0,
             t: 1e3,
         },
-        // Angles beyond the f32 `sin`/`cos` kernel's range.
+        // Angles beyond the f32 `sin`/`cos` kernel's range; the largest Q1.30 increments.
         Inputs {
-            attitude: [0.923_381, 0.102_598, -0.307_794, 0.205_196],
+            attitude: GENERIC,
             angle: 1e4,
+            attitude_q30: q30_bits(GENERIC),
+            angle_q30: i32::MAX / 20, // 0.1 rad per tenth: components up to 2 rad
             dt: 1e4,
             t: 1e6,
         },
@@ -170,6 +207,16 @@ mod firmware {
             let t1 = black_box(Vec3::new(1.0f32, -2.0, 0.5)).scale(inputs.angle);
             let t2 = black_box(Vec3::new(1.2f32, -1.9, 0.6)).scale(inputs.angle);
             black_box(coning2_update(attitude, t1, t2));
+        }
+        if links(GYRO2_Q30) {
+            use gyrostat::fixed::Q30;
+            use gyrostat::propagation::coning::coning2_update;
+            let q =
+                UnitQuat::new_unchecked(Quat::from_array(inputs.attitude_q30.map(Q30::from_bits)));
+            let [d1, d2] = black_box(DIRECTIONS_Q30);
+            let inc =
+                |d: [i32; 3]| Vec3::from_array(d.map(|c| Q30::from_bits(c * inputs.angle_q30)));
+            black_box(coning2_update(q, inc(d1), inc(d2)));
         }
         if links(EULER) {
             use gyrostat::rotation::{EulerSequence, GimbalPolicy};

@@ -12,6 +12,7 @@
 //! is subtracted, and the count is per call. Counts are guest
 //! instructions (QEMU has no cycle model), identical on every run.
 //!
+//! Rows ending in `_q30` are the fixed-point (Q1.30) path on the same operands as the f32 rows.
 //! Each operation is one line in `main` (`count!("name", || expression)`); operands go through
 //! `black_box`, so the count includes loading them, as in real firmware. Output, one line each:
 //! `icount <name> <instructions>`. `calibration_check_1000` (1000 loop instructions plus about 3
@@ -181,7 +182,7 @@ mod firmware {
         ));
         {
             use gyrostat::propagation::coning::{
-                coning2_update, four_sample, one_plus_previous, three_sample,
+                coning2_update, four_sample_terms, one_plus_previous_terms, three_sample_terms,
             };
             use gyrostat::propagation::exponential::{
                 apply_rotation_vector, step_constant_rate_unchecked,
@@ -213,17 +214,17 @@ mod firmware {
             ));
             count!(table, "prop_coning1_fast_f32", || apply_rotation_vector(
                 black_box(a),
-                one_plus_previous(black_box(t1), black_box(t2)),
+                one_plus_previous_terms(black_box(t1), black_box(t2)),
                 fast
             ));
             count!(table, "prop_coning3_fast_f32", || apply_rotation_vector(
                 black_box(a),
-                three_sample(black_box(t1), black_box(t2), black_box(t3)),
+                three_sample_terms(black_box(t1), black_box(t2), black_box(t3)),
                 fast
             ));
             count!(table, "prop_coning4_fast_f32", || apply_rotation_vector(
                 black_box(a),
-                four_sample(black_box(t1), black_box(t2), black_box(t3), black_box(t4)),
+                four_sample_terms(black_box(t1), black_box(t2), black_box(t3), black_box(t4)),
                 fast
             ));
             let mut acc = ConingAccumulator::<f32>::new();
@@ -255,6 +256,61 @@ mod firmware {
                     x[3],
                     black_box(dt),
                 ))
+            });
+        }
+
+        {
+            // Fixed point (Q1.30), the same operations and operands as the f32 rows above.
+            use gyrostat::fixed::Q30;
+            use gyrostat::propagation::coning::{
+                coning2_update, four_sample_terms, one_plus_previous_terms,
+            };
+            use gyrostat::propagation::exponential::apply_rotation_vector;
+            use gyrostat::propagation::{ConingAccumulator, Normalization};
+            let q = |q: UnitQuat<f32>| UnitQuat::<Q30>::try_from_f32(q).unwrap_or_default();
+            let v3 = |v: Vec3<f32>| Vec3::<Q30>::try_from_f32(v).unwrap_or_default();
+            let (aq, bq, vq, phiq) = (q(a), q(b), v3(v), v3(phi));
+            let t1 = v3(Vec3::new(1.0e-3f32, -2.0e-3, 0.5e-3));
+            let t2 = v3(Vec3::new(1.2e-3f32, -1.9e-3, 0.6e-3));
+            let t3 = v3(Vec3::new(1.4e-3f32, -1.7e-3, 0.7e-3));
+            let t4 = v3(Vec3::new(1.5e-3f32, -1.4e-3, 0.8e-3));
+            let big = v3(Vec3::new(0.9f32, -0.6, 0.3));
+            let fast = Normalization::Fast;
+            count!(table, "quat_product_q30", || black_box(aq) * black_box(bq));
+            count!(table, "vector_rotation_q30", || black_box(aq)
+                .rotate(black_box(vq)));
+            count!(table, "quat_to_matrix_q30", || black_box(aq)
+                .to_rotation_matrix());
+            count!(table, "renormalize_fast_q30", || black_box(aq)
+                .renormalize_fast());
+            count!(table, "renormalize_exact_q30", || black_box(aq)
+                .renormalize());
+            count!(table, "exp_small_angle_q30", || UnitQuat::exp_unchecked(
+                black_box(phiq)
+            ));
+            count!(table, "exp_large_angle_q30", || UnitQuat::exp_unchecked(
+                black_box(big)
+            ));
+            count!(table, "prop_coning2_update_q30", || coning2_update(
+                black_box(aq),
+                black_box(t1),
+                black_box(t2)
+            ));
+            count!(table, "prop_coning1_fast_q30", || apply_rotation_vector(
+                black_box(aq),
+                one_plus_previous_terms(black_box(t1), black_box(t2)),
+                fast
+            ));
+            count!(table, "prop_coning4_fast_q30", || apply_rotation_vector(
+                black_box(aq),
+                four_sample_terms(black_box(t1), black_box(t2), black_box(t3), black_box(t4)),
+                fast
+            ));
+            let acc = ConingAccumulator::<Q30>::new();
+            count!(table, "prop_two_speed_push_q30", || {
+                let mut x = black_box(acc);
+                x.push_unchecked(black_box(t3));
+                x
             });
         }
 

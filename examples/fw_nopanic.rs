@@ -31,6 +31,24 @@ mod firmware {
         black_box(x);
     }
 
+    /// Every coning rule's integrator in scalar type `T`, fed `d` seven times (complete and
+    /// partial groups, the provisional attitude, the flush).
+    fn every_rule<T: gyrostat::Ring>(
+        q: UnitQuat<T>,
+        d: Vec3<T>,
+        norm: gyrostat::propagation::Normalization,
+    ) {
+        use gyrostat::propagation::{ConingRule, IncrementIntegrator};
+        for rule in ConingRule::ALL {
+            let mut integ = IncrementIntegrator::new(q, black_box(rule), norm);
+            for _ in 0..black_box(7) {
+                sink(integ.push(d));
+                sink(integ.provisional_attitude());
+            }
+            sink(integ.flush());
+        }
+    }
+
     fn exercise() -> bool {
         let v = black_box(Vec3::new(0.3f32, -0.2, 0.9));
         let raw = black_box(Quat::new(0.9f32, 0.1, -0.3, 0.2));
@@ -73,8 +91,7 @@ mod firmware {
             };
             use gyrostat::propagation::normalization::norm_deviation;
             use gyrostat::propagation::{
-                ConingAccumulator, ConingRule, IncrementIntegrator, Normalization, RateIntegrator,
-                RateMethod,
+                ConingAccumulator, Normalization, RateIntegrator, RateMethod,
             };
             let d = black_box(Vec3::new(1e-3f32, -2e-3, 5e-4));
             let dt = black_box(1e-3f32);
@@ -87,14 +104,7 @@ mod firmware {
             sink(lab_rate_between(q, q, dt));
             sink(quat_rate_body(raw, v));
             sink(norm_deviation(q));
-            for rule in ConingRule::ALL {
-                let mut integ = IncrementIntegrator::new(q, black_box(rule), norm);
-                for _ in 0..black_box(7) {
-                    sink(integ.push(d));
-                    sink(integ.provisional_attitude());
-                }
-                sink(integ.flush());
-            }
+            every_rule(q, d, norm);
             let mut acc = ConingAccumulator::new();
             sink(acc.push(d));
             sink(acc.take());
@@ -163,6 +173,70 @@ mod firmware {
                 && let Ok(exact) = FreeRigidBody::try_new(&diagonal, &State::new(q, j0))
             {
                 sink(exact.try_state_at(black_box(7.5)));
+            }
+        }
+        {
+            // Fixed point (Q1.30): conversions with their typed errors, the integer hot path,
+            // the raw-register scale, every rule, the accumulator.
+            use gyrostat::Ring;
+            use gyrostat::fixed::{IncrementScale, Q24, Q30, increment_from_rate};
+            use gyrostat::propagation::coning::{coning2_update, rotation_vector_for};
+            use gyrostat::propagation::exponential::apply_rotation_vector;
+            use gyrostat::propagation::normalization::norm_squared_deviation;
+            use gyrostat::propagation::{ConingAccumulator, Normalization};
+            let norm = black_box(Normalization::Fast);
+            sink(Q30::try_from_f64(black_box(3.0)));
+            sink(Q30::try_from_f32(black_box(f32::NAN)));
+            sink(Q30::from_bits(black_box(i32::MIN)).to_f32());
+            let qx = match UnitQuat::<Q30>::try_from_f32(q) {
+                Ok(qx) => qx,
+                Err(_) => return false,
+            };
+            sink(UnitQuat::<Q30>::try_from_f64(black_box(UnitQuat::IDENTITY)));
+            let dx = match Vec3::<Q30>::try_from_f32(black_box(Vec3::new(1e-3f32, -2e-3, 5e-4))) {
+                Ok(dx) => dx,
+                Err(_) => return false,
+            };
+            let big = black_box(Vec3::new(Q30::MAX, Q30::MIN, Q30::MAX));
+            let vx = black_box(Vec3::new(Q30::HALF, Q30::ZERO, Q30::MIN));
+            sink(qx * qx.inverse());
+            sink(qx.rotate(vx));
+            sink(qx.to_rotation_matrix());
+            sink(qx.renormalize());
+            sink(qx.renormalize_fast());
+            sink(norm_squared_deviation(qx));
+            sink(UnitQuat::exp_unchecked(dx));
+            sink(UnitQuat::exp_unchecked(big));
+            sink(qx.mul_exp(big));
+            sink(coning2_update(qx, dx, dx));
+            sink(rotation_vector_for(
+                dx,
+                black_box(&[dx, dx, dx, dx, dx][..]),
+            ));
+            sink(apply_rotation_vector(
+                qx,
+                big,
+                black_box(Normalization::Exact),
+            ));
+            sink(qx.to_f64());
+            sink(vx.to_f32());
+            every_rule(qx, dx, norm);
+            let mut acc = ConingAccumulator::<Q30>::new();
+            sink(acc.push(big));
+            acc.push_unchecked(big);
+            sink(acc.take());
+            if let Ok(scale) = IncrementScale::try_new(black_box(1e-6)) {
+                sink(scale.increment(black_box([i16::MIN, -1, i16::MAX])));
+            }
+            sink(IncrementScale::try_from_rate(
+                black_box(1e-3),
+                black_box(1.0),
+            ));
+            if let (Ok(w), Ok(h)) = (
+                Vec3::<Q24>::try_from_f64(black_box(Vec3::new(100.0, -1.0, 0.5))),
+                Q30::try_from_f64(black_box(1e-3)),
+            ) {
+                sink(increment_from_rate(w, h));
             }
         }
         // f64 (soft float on every Cortex-M) goes through the same paths.

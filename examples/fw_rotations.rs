@@ -60,16 +60,7 @@ mod firmware {
 
     #[entry]
     fn main() -> ! {
-        match run() {
-            Ok(()) => {
-                hprintln!("done {}", N_CASES);
-                board::exit(true)
-            }
-            Err(e) => {
-                hprintln!("error {}", e);
-                board::exit(false)
-            }
-        }
+        board::finish(run(), format_args!("done {}", N_CASES))
     }
 
     #[panic_handler]

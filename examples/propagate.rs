@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! cargo run --release --example propagate -- --input increments|rates --algo ALGO --dt SECONDS \
-//!     [--q0 w,x,y,z] [--f32] [--every N]
+//!     [--q0 w,x,y,z] [--f32 | --fixed] [--every N]
 //! ```
 //! Run with `--help` for the full description of the input and output formats.
 
@@ -11,6 +11,7 @@ use std::io::{self, BufRead, BufWriter, Write};
 use std::process::ExitCode;
 use std::str::FromStr;
 
+use gyrostat::fixed::Q30;
 use gyrostat::propagation::{
     ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
@@ -20,7 +21,8 @@ const HELP: &str = "\
 propagate: integrate gyro increments or rate samples into attitude quaternions
 
 USAGE:
-    propagate --input increments|rates --algo ALGO --dt SECONDS [--q0 w,x,y,z] [--f32] [--every N]
+    propagate --input increments|rates --algo ALGO --dt SECONDS [--q0 w,x,y,z] [--f32 | --fixed]
+              [--every N]
 
 INPUT (stdin): one sample per line, three comma-separated numbers `dx,dy,dz` (body frame).
     --input increments   line k (0-based) is the integral of omega over [k*dt, (k+1)*dt], rad
@@ -46,13 +48,20 @@ OPTIONS:
     --q0 w,x,y,z   initial attitude (scalar first, maps body to lab), default 1,0,0,0;
                    its norm must be within 1e-3 of 1 (it is then normalised exactly)
     --f32          run the propagation in f32 (default f64)
+    --fixed        run the propagation in Q1.30 fixed point, the integer code of the firmware
+                   (--input increments only): each number is rounded to the nearest multiple of
+                   2^-30 rad (ties to even; |value| < 2 rad, else a row error), q0 likewise after
+                   its exact normalisation in f64, and the attitude gets the fast
+                   renormalisation q + q(1 - |q|^2)/2 after every update, as on the firmware.
+                   The output is bit for bit what gyrostat's fixed-point firmware computes from
+                   the same increments: every printed number is an exact multiple of 2^-30.
     --every N      print every N-th sample (N >= 1, default 1)
     --help         print this text
 
 OUTPUT (stdout): `k,qw,qx,qy,qz` after sample k (0-based) whenever k is a multiple of N, and
     always after the last sample consumed. Numbers are printed in the shortest form that
     round-trips to the same f64 (or f32 with --f32). The attitude is renormalised exactly after
-    every update.
+    every update (with --fixed: the fast renormalisation, see above).
     increments: the line for sample k is the attitude at time (k+1)*dt, after increments 0..=k.
         coningN updates the attitude once per N increments (after samples N-1, 2N-1, ...). A
         line printed inside a group, and the final line if the input ends inside a group,
@@ -68,11 +77,19 @@ enum Algo {
     Rates(RateMethod),
 }
 
+/// The arithmetic a run uses.
+#[derive(Clone, Copy, PartialEq)]
+enum Arith {
+    F64,
+    F32,
+    Fixed,
+}
+
 struct Args {
     algo: Algo,
     dt: f64,
     q0: [f64; 4],
-    f32: bool,
+    arith: Arith,
     every: u64,
 }
 
@@ -81,7 +98,7 @@ fn parse_args() -> Result<Option<Args>, String> {
     let mut algo: Option<String> = None;
     let mut dt: Option<f64> = None;
     let mut q0 = [1.0, 0.0, 0.0, 0.0];
-    let mut f32 = false;
+    let mut arith = Arith::F64;
     let mut every = 1u64;
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -117,7 +134,16 @@ fn parse_args() -> Result<Option<Args>, String> {
                         .map_err(|_| format!("--q0: invalid number '{}'", p.trim()))?;
                 }
             }
-            "--f32" => f32 = true,
+            "--f32" | "--fixed" => {
+                if arith != Arith::F64 {
+                    return Err("--f32 and --fixed exclude each other".into());
+                }
+                arith = if a == "--f32" {
+                    Arith::F32
+                } else {
+                    Arith::Fixed
+                };
+            }
             "--every" => {
                 let v = value("--every")?;
                 every = v
@@ -155,11 +181,14 @@ fn parse_args() -> Result<Option<Args>, String> {
         }
         (i, _) => return Err(format!("--input must be increments or rates, got '{i}'")),
     };
+    if arith == Arith::Fixed && matches!(algo, Algo::Rates(_)) {
+        return Err("--fixed supports --input increments only".into());
+    }
     Ok(Some(Args {
         algo,
         dt,
         q0,
-        f32,
+        arith,
         every,
     }))
 }
@@ -192,8 +221,7 @@ struct Printer<W: Write> {
 }
 
 impl<W: Write> Printer<W> {
-    fn print<T: Real>(&mut self, k: u64, q: UnitQuat<T>) -> io::Result<()> {
-        let [w, x, y, z] = q.to_array();
+    fn print<T: Debug>(&mut self, k: u64, [w, x, y, z]: [T; 4]) -> io::Result<()> {
         self.last_printed = Some(k);
         writeln!(self.out, "{k},{w:?},{x:?},{y:?},{z:?}")
     }
@@ -240,12 +268,12 @@ fn run<T: Real + FromStr + Debug>(args: &Args) -> Result<(), Failure> {
                         .push(v)
                         .map_err(|e| Failure::Row(k + 1, e.to_string()))?;
                     if p.due(k) {
-                        p.print(k, integ.provisional_attitude())?;
+                        p.print(k, integ.provisional_attitude().to_array())?;
                     }
                     k += 1;
                 }
                 if k > 0 && p.last_printed != Some(k - 1) {
-                    p.print(k - 1, integ.flush())?;
+                    p.print(k - 1, integ.flush().to_array())?;
                 }
             }
             Algo::Rates(method) => {
@@ -261,7 +289,7 @@ fn run<T: Real + FromStr + Debug>(args: &Args) -> Result<(), Failure> {
                         .map_err(|e| Failure::Row(k + 1, e.to_string()))?
                     {
                         if p.due(reached) {
-                            p.print(reached, q)?;
+                            p.print(reached, q.to_array())?;
                         }
                         last = q;
                         reached += 1;
@@ -270,15 +298,58 @@ fn run<T: Real + FromStr + Debug>(args: &Args) -> Result<(), Failure> {
                 }
                 for q in integ.finish() {
                     if p.due(reached) {
-                        p.print(reached, q)?;
+                        p.print(reached, q.to_array())?;
                     }
                     last = q;
                     reached += 1;
                 }
                 if k > 0 && p.last_printed != Some(k - 1) {
-                    p.print(k - 1, last)?;
+                    p.print(k - 1, last.to_array())?;
                 }
             }
+        }
+        Ok(())
+    })();
+    p.out.flush()?;
+    result
+}
+
+/// `--fixed`: the increment path in Q1.30, the firmware's integer code.
+fn run_fixed(args: &Args) -> Result<(), Failure> {
+    let Algo::Increments(rule) = args.algo else {
+        return Err(Failure::Usage(
+            "--fixed supports --input increments only".into(),
+        ));
+    };
+    let [w, x, y, z] = args.q0;
+    let q0 = UnitQuat::try_from_near_unit(Quat::new(w, x, y, z), 1e-3)
+        .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
+    let q0 = UnitQuat::<Q30>::try_from_f64(q0).map_err(|e| Failure::Usage(format!("--q0: {e}")))?;
+    let mut integ = IncrementIntegrator::new(q0, rule, Normalization::Fast);
+    let stdin = io::stdin().lock();
+    let mut p = Printer {
+        out: BufWriter::new(io::stdout().lock()),
+        every: args.every,
+        last_printed: None,
+    };
+    let exact = |q: UnitQuat<Q30>| q.to_f64().to_array();
+    let mut k: u64 = 0;
+    let result = (|| -> Result<(), Failure> {
+        for line in stdin.lines() {
+            let line = line?;
+            let v = parse_row::<f64>(&line).map_err(|e| Failure::Row(k + 1, e))?;
+            let v = Vec3::<Q30>::try_from_f64(v)
+                .map_err(|e| Failure::Row(k + 1, format!("{e} (Q1.30 holds |value| < 2 rad)")))?;
+            integ
+                .push(v)
+                .map_err(|e| Failure::Row(k + 1, e.to_string()))?;
+            if p.due(k) {
+                p.print(k, exact(integ.provisional_attitude()))?;
+            }
+            k += 1;
+        }
+        if k > 0 && p.last_printed != Some(k - 1) {
+            p.print(k - 1, exact(integ.flush()))?;
         }
         Ok(())
     })();
@@ -298,10 +369,10 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let r = if args.f32 {
-        run::<f32>(&args)
-    } else {
-        run::<f64>(&args)
+    let r = match args.arith {
+        Arith::F64 => run::<f64>(&args),
+        Arith::F32 => run::<f32>(&args),
+        Arith::Fixed => run_fixed(&args),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

@@ -36,6 +36,9 @@ pub enum Error {
     /// An argument is outside the documented domain (for example a negative step or count, or a
     /// magnitude whose square, product or reciprocal would overflow the type).
     InvalidArgument,
+    /// A value does not fit the fixed-point format it is converted to, or a sum of a checked
+    /// fixed-point update would saturate it (see [`crate::fixed`]).
+    OutOfRange,
 }
 
 impl fmt::Display for Error {
@@ -50,6 +53,7 @@ impl fmt::Display for Error {
             Error::NotConverged => "iterative solve did not converge",
             Error::StepTooLong => "step too long: beyond the method's validity limit",
             Error::InvalidArgument => "argument outside the documented domain",
+            Error::OutOfRange => "value outside the range of the fixed-point format",
         };
         f.write_str(s)
     }

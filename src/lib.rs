@@ -1,9 +1,11 @@
 //! # gyrostat
 //!
 //! Attitude kinematics and rigid-body (gyrostat) dynamics for flight software and simulation:
-//! `#![no_std]`, no allocation, no panicking paths, generic over f32 and f64 through a narrow
-//! scalar trait designed so that a Q-format fixed-point type for FPU-less MCUs can implement it
-//! (that type is not implemented yet).
+//! `#![no_std]`, no allocation, no panicking paths, generic over f32 and f64 through two narrow
+//! scalar traits ([`Ring`] below [`Real`]). The Q-format fixed-point type of [`fixed`] implements
+//! [`Ring`], so that on FPU-less MCUs the attitude hot path (quaternion product, rotation,
+//! exponential map, coning rules, renormalisation) runs in integer arithmetic, with the same bits
+//! on every target.
 //!
 //! The physics follows W. G. Harter, *Unit 6: rigid and semi-rigid body rotation*; doc comments
 //! cite its equation numbers, like `(6.6.4)`.
@@ -44,9 +46,11 @@
 //! |-------------|--------------|
 //! | *(none)*    | everything; math from `libm`, except f32 `sin`/`cos` from gyrostat's own f32 kernel ([`real`]) |
 //! | `micromath` | micromath's fast f32 `sin`/`cos`/`atan2`/`sqrt` instead of libm (see [`real`] for the measured errors) |
-//! | `defmt`     | `defmt::Format` for the foundation types, [`Error`] and the propagation types ([`interop`] lists them) |
+//! | `defmt`     | `defmt::Format` for the foundation types, [`Error`], the propagation types and the fixed-point types ([`interop`] lists them) |
 //! | `nalgebra`  | `From`/`Into` nalgebra's `UnitQuaternion`, `Quaternion`, `Vector3`, `Matrix3` (no std) |
 //! | `mint`      | `From`/`Into` mint's types, so glam, cgmath and others convert for free |
+//!
+//! Fixed point ([`fixed`]) needs no feature: it is plain integer code.
 //!
 //! ## Example
 //! ```
@@ -66,6 +70,7 @@
 
 pub mod dynamics;
 mod error;
+pub mod fixed;
 pub mod interop;
 pub mod linalg;
 pub mod propagation;
@@ -79,7 +84,7 @@ pub use error::Error;
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 pub use linalg::{Axis, Complex, Mat3, Vec3};
-pub use real::Real;
+pub use real::{Real, Ring};
 pub use rotation::{
     AxisAngle, Dcm, Euler, EulerSequence, Gibbs, GimbalPolicy, Mrp, PolarAxisAngle, RotationVector,
 };

@@ -1,15 +1,30 @@
-//! The scalar layer: a narrow, sealed [`Real`] trait.
+//! The scalar layer: two narrow, sealed traits, [`Ring`] and [`Real`].
 //!
-//! Every algorithm in gyrostat is generic over `T: Real`. The trait holds exactly the operations
-//! the library needs and nothing else, so that a Q-format fixed-point type can implement all of it
-//! honestly (no `unimplemented!()` bodies), and so that f32 is a first-class citizen rather than an
+//! Every algorithm in gyrostat is generic over one of them, and each holds exactly the operations
+//! the library needs, so that a Q-format fixed-point type can implement what it can honestly (no
+//! `unimplemented!()` bodies), and so that f32 is a first-class citizen rather than an
 //! afterthought of f64.
 //!
-//! Rules the library follows so that a non-IEEE type can implement the trait:
+//! - [`Ring`]: `+ − ×`, negation, comparisons, `0`, `1`, `½`, exact ratios of small integers,
+//!   sums of products rounded once ([`Ring::dot`]), and the two per-type kernels that an
+//!   attitude path needs beyond a polynomial: the exponential map past its series and the inverse
+//!   square root of a norm near one. Implemented for f32, f64 and the fixed-point
+//!   [`crate::fixed::Fixed`] (saturating, see [`crate::fixed`]). Everything on the attitude hot
+//!   path is generic over `Ring`: `Vec3`/`Quat` arithmetic, the quaternion product, vector
+//!   rotation, the rotation matrix, the exponential map, renormalisation, the coning rules, the
+//!   two-speed accumulator and the increment integrator.
+//! - [`Real`]` : Ring`: division, square root, trigonometry, `exp`/`ln`, `2`, `π`, the machine
+//!   epsilon, conversions from and to f64. Implemented for f32 and f64. Everything else (Euler
+//!   angles, the log map, dynamics, elliptic functions) is generic over `Real`.
+//!
+//! Rules the library follows so that a non-IEEE type can implement [`Ring`]:
 //! - no logic relies on NaN or infinity propagating; finiteness is asked through
-//!   [`Real::is_finite`] and inputs are validated up front;
+//!   [`Ring::is_finite`] and inputs are validated up front;
 //! - comparisons go through `PartialOrd` and the trait's `min`/`max`/`abs`;
-//! - constants come from associated consts or [`Real::from_f64`] (exact for the constants used).
+//! - constants are associated consts or exact ratios ([`Ring::ratio`], evaluated at compile
+//!   time), all within `[−2, 2)`; no constant is built at run time from a float;
+//! - series thresholds are associated consts per type ([`Ring::EXP_SERIES_MAX_SQ`]), never
+//!   derived from the machine epsilon at run time.
 //!
 //! # Math backend
 //! f64 uses [`libm`] (a port of musl's libm). f32 uses libm for `sqrt`, `atan2`, `hypot`,
@@ -42,18 +57,22 @@
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
-mod sealed {
+use crate::{Quat, Vec3};
+
+pub(crate) mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}
     impl Sealed for f64 {}
+    impl<const F: u32> Sealed for crate::fixed::Fixed<F> {}
 }
 
-/// The scalar type of every gyrostat algorithm: implemented for f32 and f64. The trait is kept
-/// narrow so that a Q-format fixed-point type (not implemented yet) can implement it honestly.
+/// The ring layer: what the attitude hot path needs, implemented for f32, f64 and the
+/// fixed-point [`crate::fixed::Fixed`].
 ///
-/// Sealed: only gyrostat implements it, so that the library can rely on every method being exact
-/// or documented-accurate for every implementer.
-pub trait Real:
+/// Arithmetic is IEEE for the floats and saturating, round-to-nearest (ties to even) for fixed
+/// point (see [`crate::fixed`]). Sealed: only gyrostat implements it, so that the library can
+/// rely on every method being exact or documented-accurate for every implementer.
+pub trait Ring:
     sealed::Sealed
     + Copy
     + Debug
@@ -63,33 +82,25 @@ pub trait Real:
     + Add<Output = Self>
     + Sub<Output = Self>
     + Mul<Output = Self>
-    + Div<Output = Self>
     + Neg<Output = Self>
     + AddAssign
     + SubAssign
     + MulAssign
-    + DivAssign
     + 'static
 {
     /// 0.
     const ZERO: Self;
     /// 1.
     const ONE: Self;
-    /// 2.
-    const TWO: Self;
     /// 1/2.
     const HALF: Self;
-    /// π.
-    const PI: Self;
-    /// π/2.
-    const FRAC_PI_2: Self;
-    /// The machine epsilon: the distance from 1 to the next representable value.
-    const EPSILON: Self;
-
-    /// Converts an f64 literal or reference value, rounding to nearest.
-    fn from_f64(x: f64) -> Self;
-    /// Widens to f64 (exact for f32 and f64).
-    fn to_f64(self) -> f64;
+    /// The largest squared angle `θ²` for which the exponential map's series
+    /// `cos(θ/2) ≈ 1 − θ²/8 + θ⁴/384`, `sin(θ/2)/θ ≈ ½ − θ²/48 + θ⁴/3840` is accurate to the
+    /// type's rounding: the first dropped term, `θ⁶/46080` (relative, for the cosine), stays below
+    /// half a unit in the last place. f32 (ε = 2⁻²³): `θ² ≤ (23040 ε)^{1/3}` rounded down, 0.14
+    /// (θ ≤ 0.37 rad); f64 (ε = 2⁻⁵²): 1.7e-4 (θ ≤ 0.013 rad); Q1.30 (absolute resolution
+    /// 2⁻³⁰): 1/64 (θ ≤ 1/8 rad, dropped term ≤ 8.3e-11 < 2⁻³¹).
+    const EXP_SERIES_MAX_SQ: Self;
 
     /// `true` unless the value is NaN or ±∞ (always `true` for fixed point).
     fn is_finite(self) -> bool;
@@ -105,6 +116,96 @@ pub trait Real:
     fn max(self, other: Self) -> Self {
         if other > self { other } else { self }
     }
+    /// `2·self`: exact for the floats (`self + self`), saturating for fixed point.
+    fn twice(self) -> Self;
+    /// The ratio `N/D` of two integers, rounded to nearest, evaluated at compile time. A ratio
+    /// outside the type's range (for fixed point: `|N/D| ≥ 2` in Q1.30) is a compile-time error.
+    fn ratio<const N: i32, const D: i32>() -> Self;
+    /// The sum of products `a₀b₀ + a₁b₁ + …` (1 to 4 terms), left to right.
+    ///
+    /// The floats round every product and every sum, exactly as the written-out expression.
+    /// Fixed point forms every product exactly in 64 bits, accumulates them and rounds once, so
+    /// that a quaternion product or a cross product costs one rounding per component.
+    #[inline]
+    fn dot<const N: usize>(a: [Self; N], b: [Self; N]) -> Self {
+        a.into_iter()
+            .zip(b)
+            .map(|(x, y)| x * y)
+            .reduce(|s, p| s + p)
+            .unwrap_or(Self::ZERO)
+    }
+    /// `true` when [`Ring::dot`] of `a` and `b` is within the type's range: always for the
+    /// floats (an overflow there is an infinity, which the finiteness checks catch); for fixed
+    /// point, whether the exact sum needs no saturation. The checked entry points use it to
+    /// return [`crate::Error::OutOfRange`] where a fixed-point sum would otherwise saturate.
+    #[inline]
+    fn dot_fits<const N: usize>(a: [Self; N], b: [Self; N]) -> bool {
+        let _ = (a, b);
+        true
+    }
+    /// The exponential map `exp(φ) = (cos(θ/2), sin(θ/2)·φ/θ)`, `θ = |φ|`, for
+    /// `theta_sq = |φ|² >` [`Ring::EXP_SERIES_MAX_SQ`] (or not finite): the part of
+    /// [`crate::UnitQuat::exp_unchecked`] past its series. The floats take `sin`/`cos` of the
+    /// half angle; fixed point halves the angle until the series applies and doubles back
+    /// (see [`crate::fixed`]).
+    fn exp_beyond_series(phi: Vec3<Self>, theta_sq: Self) -> Quat<Self>;
+    /// `q ⊗ exp(φ)`: the attitude update by a body-frame rotation vector, the step of every
+    /// increment integrator ([`crate::UnitQuat::mul_exp`]).
+    ///
+    /// The floats form `exp(φ)` and multiply. Fixed point fuses the two on the series domain:
+    /// `sin(θ/2)/θ·φ`, a small vector, is kept with 3 more fraction bits than the format, and each
+    /// component of the product is summed in 64 bits and rounded once, so that the rotation
+    /// increment itself is never rounded to the format's resolution (a constant rate would
+    /// otherwise integrate that rounding linearly).
+    #[inline]
+    fn mul_exp(q: Quat<Self>, phi: Vec3<Self>) -> Quat<Self> {
+        q * *crate::UnitQuat::exp_unchecked(phi).as_quat()
+    }
+    /// `q ⊗ exp(sum + lever × last)`: the attitude update of a coning rule
+    /// ([`crate::UnitQuat::mul_exp_coning`]). The floats form the rotation vector and call
+    /// [`Ring::mul_exp`]; fixed point forms the cross product exactly and adds it to the sum at
+    /// the finer resolution of its fused exponential, so that the small coning term is rounded to
+    /// 2^−(F+3), not to the format's step.
+    #[inline]
+    fn mul_exp_coning(
+        q: Quat<Self>,
+        sum: Vec3<Self>,
+        lever: Vec3<Self>,
+        last: Vec3<Self>,
+    ) -> Quat<Self> {
+        Self::mul_exp(q, sum + lever.cross(last))
+    }
+    /// `1/√x` for `x` near one (the squared norm of a drifting unit quaternion): the scale of
+    /// [`crate::UnitQuat::renormalize`]. The floats compute `1/√x` for any positive `x`; fixed
+    /// point iterates Newton steps and is accurate for `x ∈ [¼, 2)`.
+    fn inv_sqrt_near_one(x: Self) -> Self;
+}
+
+/// The scalar type of every gyrostat algorithm outside the ring layer: implemented for f32 and
+/// f64.
+///
+/// Sealed: only gyrostat implements it, so that the library can rely on every method being exact
+/// or documented-accurate for every implementer.
+pub trait Real: Ring + Div<Output = Self> + DivAssign {
+    /// 2.
+    const TWO: Self;
+    /// π.
+    const PI: Self;
+    /// π/2.
+    const FRAC_PI_2: Self;
+    /// The machine epsilon: the distance from 1 to the next representable value.
+    const EPSILON: Self;
+    /// The largest `s² = |v|²` (sine of the half angle, squared) for which the logarithm map's
+    /// series `2·asin(s)/s ≈ 2(1 + s²/6 + 3s⁴/40)` is accurate to rounding: the dropped
+    /// `15 s⁶/336` stays below ε/2. f32: 7e-3 (dropped term ≤ 1.5e-8); f64: 8.5e-6
+    /// (≤ 2.7e-17).
+    const LOG_SERIES_MAX_SQ: Self;
+
+    /// Converts an f64 literal or reference value, rounding to nearest.
+    fn from_f64(x: f64) -> Self;
+    /// Widens to f64 (exact for f32 and f64).
+    fn to_f64(self) -> f64;
+
     /// `self` with the sign of `sign` (a zero `sign` counts as positive).
     #[inline]
     fn copysign(self, sign: Self) -> Self {
@@ -138,20 +239,57 @@ pub trait Real:
     fn ln(self) -> Self;
 }
 
+macro_rules! float_ring {
+    ($t:ident, $series:expr) => {
+        impl Ring for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const HALF: Self = 0.5;
+            const EXP_SERIES_MAX_SQ: Self = $series;
+            #[inline]
+            fn is_finite(self) -> bool {
+                $t::is_finite(self)
+            }
+            #[inline]
+            fn abs(self) -> Self {
+                $t::abs(self)
+            }
+            #[inline]
+            fn twice(self) -> Self {
+                self + self
+            }
+            #[inline]
+            fn ratio<const N: i32, const D: i32>() -> Self {
+                // Rounded once to f64, then to the type, as `from_f64(N as f64 / D as f64)`.
+                const { (N as f64 / D as f64) as $t }
+            }
+            #[inline]
+            fn exp_beyond_series(phi: Vec3<Self>, theta_sq: Self) -> Quat<Self> {
+                crate::rotation::exp_beyond_series_real(phi, theta_sq)
+            }
+            #[inline]
+            fn inv_sqrt_near_one(x: Self) -> Self {
+                1.0 / Real::sqrt(x)
+            }
+        }
+    };
+}
+
+float_ring!(f32, 0.14);
+float_ring!(f64, 1.7e-4);
+
 macro_rules! consts {
-    ($t:ident) => {
-        const ZERO: Self = 0.0;
-        const ONE: Self = 1.0;
+    ($t:ident, $log:expr) => {
         const TWO: Self = 2.0;
-        const HALF: Self = 0.5;
         const PI: Self = core::$t::consts::PI;
         const FRAC_PI_2: Self = core::$t::consts::FRAC_PI_2;
         const EPSILON: Self = $t::EPSILON;
+        const LOG_SERIES_MAX_SQ: Self = $log;
     };
 }
 
 impl Real for f64 {
-    consts!(f64);
+    consts!(f64, 8.5e-6);
     #[inline]
     fn from_f64(x: f64) -> Self {
         x
@@ -159,14 +297,6 @@ impl Real for f64 {
     #[inline]
     fn to_f64(self) -> f64 {
         self
-    }
-    #[inline]
-    fn is_finite(self) -> bool {
-        f64::is_finite(self)
-    }
-    #[inline]
-    fn abs(self) -> Self {
-        libm::fabs(self)
     }
     #[inline]
     fn sqrt(self) -> Self {
@@ -207,7 +337,7 @@ impl Real for f64 {
 }
 
 impl Real for f32 {
-    consts!(f32);
+    consts!(f32, 7e-3);
     #[inline]
     fn from_f64(x: f64) -> Self {
         x as f32
@@ -215,14 +345,6 @@ impl Real for f32 {
     #[inline]
     fn to_f64(self) -> f64 {
         self as f64
-    }
-    #[inline]
-    fn is_finite(self) -> bool {
-        f32::is_finite(self)
-    }
-    #[inline]
-    fn abs(self) -> Self {
-        libm::fabsf(self)
     }
     #[inline]
     fn sqrt(self) -> Self {
@@ -496,8 +618,8 @@ mod tests {
 
     #[test]
     fn min_max_copysign_do_not_depend_on_nan_semantics() {
-        assert_eq!(Real::min(1.0f32, 2.0), 1.0);
-        assert_eq!(Real::max(1.0f64, 2.0), 2.0);
+        assert_eq!(super::Ring::min(1.0f32, 2.0), 1.0);
+        assert_eq!(super::Ring::max(1.0f64, 2.0), 2.0);
         assert_eq!(Real::copysign(3.0f32, -0.5), -3.0);
         assert_eq!(Real::copysign(-3.0f64, 0.0), 3.0);
         assert_eq!(Real::atan2(0.0f32, 0.0), 0.0);

@@ -33,3 +33,19 @@ pub fn exit(success: bool) -> ! {
         riscv::asm::wfi();
     }
 }
+
+/// Ends a run that prints: `done` (the given line) and exit status 0 after success, `error <e>`
+/// and exit status 1 after a library error.
+#[allow(dead_code)] // for the examples that print
+pub fn finish(result: Result<(), gyrostat::Error>, done: core::fmt::Arguments<'_>) -> ! {
+    match result {
+        Ok(()) => {
+            hprintln!("{}", done);
+            exit(true)
+        }
+        Err(e) => {
+            hprintln!("error {}", e);
+            exit(false)
+        }
+    }
+}

@@ -14,12 +14,14 @@
 //!   tiny-step RK4 free rigid body.
 //! - [`tolerance`]: the one tolerance trait, [`tolerance::Tolerance`].
 //! - [`cast`]: gyrostat values of any scalar type to and from f64 arrays.
+//! - [`examples`]: the firmware targets and the host tools of the repository's examples.
 //! - [`per_type!`]: runs test items for f32 and for f64.
 //! - [`campaign`]: the adversarial input campaign (generators, checks, runner, `ROBUSTNESS.md`
 //!   tables); [`family!`] declares one API family.
 
 pub mod campaign;
 pub mod cast;
+pub mod examples;
 pub mod ref_dynamics;
 pub mod ref_exact;
 pub mod ref_propagation;
@@ -28,8 +30,9 @@ pub mod reference;
 pub mod tolerance;
 
 /// Instantiates the enclosed items once per scalar type: in `mod on_f32` with `type T = f32`
-/// and in `mod on_f64` with `type T = f64` (the pattern of glam's `impl_quat_tests!`). A test is
-/// written once, in terms of `T`, and its per-type bounds come from
+/// and in `mod on_f64` with `type T = f64`, with `Real`, `Ring` and `Tolerance` in scope (the
+/// pattern of glam's `impl_quat_tests!`). A test is written once, in terms of `T`, and its
+/// per-type bounds come from
 /// [`tolerance::Tolerance`] (`T::SHORT`, `T::CONTRACT`, `T::per_type(f32_bound, f64_bound)`);
 /// the two instances run as `on_f32::name` and `on_f64::name`. The items see the enclosing
 /// module (`use super::*`), so shared helpers stay outside; invoke it once per module.
@@ -51,7 +54,7 @@ macro_rules! per_type {
         mod on_f32 {
             use super::*;
             use $crate::tolerance::Tolerance;
-            use gyrostat::Real;
+            use gyrostat::{Real, Ring};
             /// The scalar type of this instance.
             type T = f32;
             $($item)*
@@ -60,7 +63,7 @@ macro_rules! per_type {
         mod on_f64 {
             use super::*;
             use $crate::tolerance::Tolerance;
-            use gyrostat::Real;
+            use gyrostat::{Real, Ring};
             /// The scalar type of this instance.
             type T = f64;
             $($item)*

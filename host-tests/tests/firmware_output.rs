@@ -2,8 +2,8 @@
 //! RISC-V RV32IMAC) against the independent f64 reference.
 //!
 //! `.ci/run` runs the firmware, writes its output to `$GYROSTAT_FIRMWARE_OUTPUT/<target>.txt` for
-//! each target, and then runs this test with `GYROSTAT_FIRMWARE_OUTPUT` set and
-//! `--include-ignored`; every expected file must then exist and hold one line per case. The test
+//! each target, and then runs this test with `GYROSTAT_FIRMWARE_OUTPUT` set and `--ignored`;
+//! every expected file must then exist and hold one line per case. The test
 //! is `#[ignore]`d, so a plain `cargo test` lists it as ignored instead of passing without
 //! checking anything, and it fails when run without its input.
 //!
@@ -17,19 +17,12 @@
 //! ≤ 1-ulp `sinf`/`cosf` of the half angles; scaled by `max(1, |v|)` for the rotated vector (its
 //! components are `|v|`-sized). Observed worst case: about 1.1e-7.
 
+use host_tests::examples::firmware_output;
 use host_tests::reference::{
     C, mat_dist, mat_mul, mat_vec, rodrigues, su2_matrix, u2_dist, u2_mul,
 };
 
 include!("../../examples/fw/rotation_cases.rs");
-
-const TARGETS: [&str; 5] = [
-    "thumbv6m-none-eabi",
-    "thumbv7m-none-eabi",
-    "thumbv7em-none-eabihf",
-    "thumbv8m.main-none-eabihf",
-    "riscv32imac-unknown-none-elf",
-];
 
 struct Line {
     case: usize,
@@ -64,12 +57,7 @@ fn widen(a: [f32; 3]) -> [f64; 3] {
 #[test]
 #[ignore = "needs the firmware output of .ci/run in $GYROSTAT_FIRMWARE_OUTPUT"]
 fn firmware_output_matches_f64_reference() {
-    let dir = std::env::var("GYROSTAT_FIRMWARE_OUTPUT")
-        .expect("GYROSTAT_FIRMWARE_OUTPUT must name the directory of the firmware output");
-    for target in TARGETS {
-        let path = std::path::Path::new(&dir).join(format!("{target}.txt"));
-        let text =
-            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    for (target, text) in firmware_output("") {
         // QEMU may print its own notices; only `case` lines are data, and `done N` must close it.
         let lines: Vec<Line> = text
             .lines()

@@ -6,31 +6,14 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::sync::OnceLock;
 
+use host_tests::examples::build_example;
 use host_tests::ref_rotation::{euler_matrix, rot_dist, rotvec_matrix};
 use host_tests::reference::quat_matrix;
 
-/// Builds the example once (same profile as this test) and returns its path.
+/// The example, built once (same profile as this test).
 fn binary() -> &'static PathBuf {
     static BIN: OnceLock<PathBuf> = OnceLock::new();
-    BIN.get_or_init(|| {
-        let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
-        let release = !cfg!(debug_assertions);
-        let mut cmd = Command::new(env!("CARGO"));
-        cmd.current_dir(&root)
-            .args(["build", "-q", "-p", "gyrostat", "--example", "convert"]);
-        if release {
-            cmd.arg("--release");
-        }
-        let st = cmd.status().expect("cargo runs");
-        assert!(st.success(), "building the convert example failed");
-        let target = std::env::var_os("CARGO_TARGET_DIR")
-            .map(PathBuf::from)
-            .unwrap_or_else(|| root.join("target"));
-        target
-            .join(if release { "release" } else { "debug" })
-            .join("examples")
-            .join("convert")
-    })
+    BIN.get_or_init(|| build_example("convert"))
 }
 
 /// Runs `convert ARGS` with `input` on stdin: (stdout, stderr, success).

@@ -5,7 +5,7 @@
 use gyrostat::rotation::{
     Euler, EulerSequence, Frame, GimbalPolicy, PolarAxisAngle, Pole, gimbal_lock_threshold,
 };
-use gyrostat::{Quat, Real, UnitQuat};
+use gyrostat::{Quat, UnitQuat};
 use host_tests::cast::q64;
 use host_tests::ref_rotation::{all_sequences, euler_matrix, is_proper, poles, rot_dist};
 use host_tests::reference::quat_matrix;
@@ -187,7 +187,7 @@ fn angles_round_trip_off_pole() {
     for seq_s in all_sequences() {
         let seq = EulerSequence::parse(&seq_s).unwrap();
         let b = if is_proper(&seq_s) { 1.1 } else { -0.6 };
-        let input = [2.3, b, -0.4];
+        let input: [f64; 3] = [2.3, b, -0.4];
         let q = Euler::new(seq, input).to_unit_quat();
         let out = q.to_euler_angles(seq);
         for k in 0..3 {
@@ -294,7 +294,7 @@ fn seed_6_6_6cd_four_pi_sequence() {
 /// the combined angle α + γ, and the policies split it as asked.
 #[test]
 fn seed_gimbal_equivalence() {
-    let (alpha, gamma) = (0.7, -0.2);
+    let (alpha, gamma): (f64, f64) = (0.7, -0.2);
     let q = Euler::new(EulerSequence::ZYZ, [alpha, 0.0, gamma]).to_unit_quat();
     for phi in [-2.0, -0.3, 0.0, 0.5, 3.0] {
         let q2 = Euler::new(EulerSequence::ZYZ, [alpha - phi, 0.0, gamma + phi]).to_unit_quat();

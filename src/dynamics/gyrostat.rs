@@ -352,7 +352,7 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     /// path only, so the accepted path costs one rate evaluation.
     #[inline]
     fn check_start(&self, state: &State<T, N>, dt: T) -> Result<(), Error> {
-        if within_step_limit(self.omega(state).scale(dt).norm_squared()) {
+        if within_step_limit(self.omega(state).scale(dt)) {
             Ok(())
         } else if state.is_finite() {
             Err(Error::StepTooLong)
@@ -374,7 +374,7 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         let n2 = state.attitude.as_quat().norm_squared();
         if n2 >= T::HALF && n2 <= T::TWO {
             state.attitude = state.attitude.renormalize();
-            if within_step_limit(self.omega(&state).scale(dt).norm_squared()) {
+            if within_step_limit(self.omega(&state).scale(dt)) {
                 return Ok(state);
             }
         }

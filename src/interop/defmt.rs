@@ -3,15 +3,15 @@
 
 use defmt::{Format, Formatter, write};
 
-use crate::{Complex, Error, Mat3, Quat, Real, Su2, UnitQuat, Vec3};
+use crate::{Complex, Error, Mat3, Quat, Real, Ring, Su2, UnitQuat, Vec3};
 
-impl<T: Real + Format> Format for Vec3<T> {
+impl<T: Ring + Format> Format for Vec3<T> {
     fn format(&self, f: Formatter<'_>) {
         write!(f, "Vec3({}, {}, {})", self.x, self.y, self.z)
     }
 }
 
-impl<T: Real + Format> Format for Mat3<T> {
+impl<T: Ring + Format> Format for Mat3<T> {
     fn format(&self, f: Formatter<'_>) {
         let m = &self.m;
         write!(
@@ -28,7 +28,7 @@ impl<T: Real + Format> Format for Complex<T> {
     }
 }
 
-impl<T: Real + Format> Format for Quat<T> {
+impl<T: Ring + Format> Format for Quat<T> {
     fn format(&self, f: Formatter<'_>) {
         write!(
             f,
@@ -38,7 +38,7 @@ impl<T: Real + Format> Format for Quat<T> {
     }
 }
 
-impl<T: Real + Format> Format for UnitQuat<T> {
+impl<T: Ring + Format> Format for UnitQuat<T> {
     fn format(&self, f: Formatter<'_>) {
         write!(
             f,
@@ -69,6 +69,7 @@ impl Format for Error {
             Error::NotConverged => "NotConverged",
             Error::StepTooLong => "StepTooLong",
             Error::InvalidArgument => "InvalidArgument",
+            Error::OutOfRange => "OutOfRange",
         };
         write!(f, "Error::{}", s)
     }

@@ -2,7 +2,7 @@
 
 use core::ops::{Index, IndexMut};
 
-use crate::{Real, Vec3};
+use crate::{Ring, Vec3};
 
 /// A coordinate axis: the axes of an Euler sequence, a body or principal axis of a rigid body.
 ///
@@ -91,7 +91,7 @@ impl<T> IndexMut<Axis> for Vec3<T> {
     }
 }
 
-impl<T: Real> Vec3<T> {
+impl<T: Ring> Vec3<T> {
     /// The unit vector along `axis`.
     #[inline]
     pub fn unit(axis: Axis) -> Self {

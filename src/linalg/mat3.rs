@@ -2,7 +2,7 @@
 
 use core::ops::{Add, Mul, Neg, Sub};
 
-use crate::{Error, Real, Vec3};
+use crate::{Error, Real, Ring, Vec3};
 
 /// A 3×3 matrix stored row-major: `m[row][col]`.
 ///
@@ -14,7 +14,7 @@ pub struct Mat3<T> {
     pub m: [[T; 3]; 3],
 }
 
-impl<T: Real> Mat3<T> {
+impl<T: Ring> Mat3<T> {
     /// The zero matrix.
     pub const ZERO: Self = Self {
         m: [[T::ZERO; 3]; 3],
@@ -112,7 +112,9 @@ impl<T: Real> Mat3<T> {
     pub fn is_finite(&self) -> bool {
         self.row(0).is_finite() && self.row(1).is_finite() && self.row(2).is_finite()
     }
+}
 
+impl<T: Real> Mat3<T> {
     /// The inverse, by the adjugate over the determinant of the matrix scaled to a largest entry
     /// of one (so that the cofactors neither overflow nor underflow for entries anywhere in the
     /// type's range).
@@ -150,7 +152,7 @@ impl<T: Real> Mat3<T> {
     }
 }
 
-impl<T: Real> Mul<Vec3<T>> for Mat3<T> {
+impl<T: Ring> Mul<Vec3<T>> for Mat3<T> {
     type Output = Vec3<T>;
     #[inline]
     fn mul(self, v: Vec3<T>) -> Vec3<T> {
@@ -158,7 +160,7 @@ impl<T: Real> Mul<Vec3<T>> for Mat3<T> {
     }
 }
 
-impl<T: Real> Mul for Mat3<T> {
+impl<T: Ring> Mul for Mat3<T> {
     type Output = Self;
     #[inline]
     fn mul(self, o: Self) -> Self {
@@ -166,7 +168,7 @@ impl<T: Real> Mul for Mat3<T> {
     }
 }
 
-impl<T: Real> Add for Mat3<T> {
+impl<T: Ring> Add for Mat3<T> {
     type Output = Self;
     #[inline]
     fn add(self, o: Self) -> Self {
@@ -178,7 +180,7 @@ impl<T: Real> Add for Mat3<T> {
     }
 }
 
-impl<T: Real> Sub for Mat3<T> {
+impl<T: Ring> Sub for Mat3<T> {
     type Output = Self;
     #[inline]
     fn sub(self, o: Self) -> Self {
@@ -190,7 +192,7 @@ impl<T: Real> Sub for Mat3<T> {
     }
 }
 
-impl<T: Real> Neg for Mat3<T> {
+impl<T: Ring> Neg for Mat3<T> {
     type Output = Self;
     #[inline]
     fn neg(self) -> Self {

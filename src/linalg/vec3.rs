@@ -2,7 +2,7 @@
 
 use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
-use crate::{Error, Real};
+use crate::{Error, Real, Ring};
 
 /// A 3-vector `(x, y, z)`. Plain data: which frame it lives in is said by the name of the variable
 /// or field holding it (`omega_body`, `j_lab`, ...).
@@ -16,7 +16,7 @@ pub struct Vec3<T> {
     pub z: T,
 }
 
-impl<T: Real> Vec3<T> {
+impl<T: Ring> Vec3<T> {
     /// The zero vector.
     pub const ZERO: Self = Self::new(T::ZERO, T::ZERO, T::ZERO);
     /// Unit vector along x.
@@ -44,19 +44,19 @@ impl<T: Real> Vec3<T> {
         [self.x, self.y, self.z]
     }
 
-    /// Dot product.
+    /// Dot product (one rounding in fixed point, see [`Ring::dot`]).
     #[inline]
     pub fn dot(self, o: Self) -> T {
-        self.x * o.x + self.y * o.y + self.z * o.z
+        T::dot([self.x, self.y, self.z], [o.x, o.y, o.z])
     }
 
-    /// Cross product `self × o` (right-handed).
+    /// Cross product `self × o` (right-handed; one rounding per component in fixed point).
     #[inline]
     pub fn cross(self, o: Self) -> Self {
         Self::new(
-            self.y * o.z - self.z * o.y,
-            self.z * o.x - self.x * o.z,
-            self.x * o.y - self.y * o.x,
+            T::dot([self.y, -self.z], [o.z, o.y]),
+            T::dot([self.z, -self.x], [o.x, o.z]),
+            T::dot([self.x, -self.y], [o.y, o.x]),
         )
     }
 
@@ -64,13 +64,6 @@ impl<T: Real> Vec3<T> {
     #[inline]
     pub fn norm_squared(self) -> T {
         self.dot(self)
-    }
-
-    /// Euclidean norm, computed with `hypot` so that it neither overflows nor underflows for
-    /// components near the range limits.
-    #[inline]
-    pub fn norm(self) -> T {
-        self.x.hypot(self.y).hypot(self.z)
     }
 
     /// `self * s`.
@@ -97,6 +90,22 @@ impl<T: Real> Vec3<T> {
         self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
     }
 
+    /// `true` when `self + o` needs no saturation ([`Ring::dot_fits`]; always for the floats).
+    #[inline]
+    pub(crate) fn add_fits(self, o: Self) -> bool {
+        T::dot_fits([self.x, o.x], [T::ONE, T::ONE])
+            && T::dot_fits([self.y, o.y], [T::ONE, T::ONE])
+            && T::dot_fits([self.z, o.z], [T::ONE, T::ONE])
+    }
+
+    /// `true` when `self × o` needs no saturation ([`Ring::dot_fits`]; always for the floats).
+    #[inline]
+    pub(crate) fn cross_fits(self, o: Self) -> bool {
+        T::dot_fits([self.y, -self.z], [o.z, o.y])
+            && T::dot_fits([self.z, -self.x], [o.x, o.z])
+            && T::dot_fits([self.x, -self.y], [o.y, o.x])
+    }
+
     /// Returns `self` if every component is finite, else [`Error::NonFinite`].
     #[inline]
     pub fn try_finite(self) -> Result<Self, Error> {
@@ -105,6 +114,15 @@ impl<T: Real> Vec3<T> {
         } else {
             Err(Error::NonFinite)
         }
+    }
+}
+
+impl<T: Real> Vec3<T> {
+    /// Euclidean norm, computed with `hypot` so that it neither overflows nor underflows for
+    /// components near the range limits.
+    #[inline]
+    pub fn norm(self) -> T {
+        self.x.hypot(self.y).hypot(self.z)
     }
 
     /// The unit vector along `self`.
@@ -128,7 +146,7 @@ impl<T: Real> Vec3<T> {
     }
 }
 
-impl<T: Real> Add for Vec3<T> {
+impl<T: Ring> Add for Vec3<T> {
     type Output = Self;
     #[inline]
     fn add(self, o: Self) -> Self {
@@ -136,7 +154,7 @@ impl<T: Real> Add for Vec3<T> {
     }
 }
 
-impl<T: Real> Sub for Vec3<T> {
+impl<T: Ring> Sub for Vec3<T> {
     type Output = Self;
     #[inline]
     fn sub(self, o: Self) -> Self {
@@ -144,21 +162,21 @@ impl<T: Real> Sub for Vec3<T> {
     }
 }
 
-impl<T: Real> AddAssign for Vec3<T> {
+impl<T: Ring> AddAssign for Vec3<T> {
     #[inline]
     fn add_assign(&mut self, o: Self) {
         *self = *self + o;
     }
 }
 
-impl<T: Real> SubAssign for Vec3<T> {
+impl<T: Ring> SubAssign for Vec3<T> {
     #[inline]
     fn sub_assign(&mut self, o: Self) {
         *self = *self - o;
     }
 }
 
-impl<T: Real> Neg for Vec3<T> {
+impl<T: Ring> Neg for Vec3<T> {
     type Output = Self;
     #[inline]
     fn neg(self) -> Self {
@@ -166,7 +184,7 @@ impl<T: Real> Neg for Vec3<T> {
     }
 }
 
-impl<T: Real> Mul<T> for Vec3<T> {
+impl<T: Ring> Mul<T> for Vec3<T> {
     type Output = Self;
     #[inline]
     fn mul(self, s: T) -> Self {

@@ -38,7 +38,7 @@ use heapless::Vec as HVec;
 
 use crate::propagation::exponential::apply_rotation_vector;
 use crate::propagation::{Normalization, within_step_limit};
-use crate::{Error, Real, UnitQuat, Vec3};
+use crate::{Error, Ring, UnitQuat, Vec3};
 
 /// An increment (coning) rule: how the rotation vector of one attitude update is formed.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -78,35 +78,128 @@ impl ConingRule {
     }
 }
 
+/// A rule's rotation vector in the form every rule shares, `φ = sum + lever × last`: the sum of
+/// the increments, the (scaled) earlier increments, and the last increment.
+///
+/// [`UnitQuat::mul_exp_coning`] takes this form, so that fixed point can form the coning term
+/// `lever × last` (small, and nearly constant under coning) at a finer resolution than the
+/// format instead of rounding it to 2⁻³⁰ every update.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConingTerms<T> {
+    /// `Σθ`.
+    pub sum: Vec3<T>,
+    /// The combination of earlier increments that multiplies the last one.
+    pub lever: Vec3<T>,
+    /// The last increment `θ_N`.
+    pub last: Vec3<T>,
+}
+
+impl<T: Ring> ConingTerms<T> {
+    /// `φ = sum + lever × last`.
+    #[inline]
+    pub fn rotation_vector(self) -> Vec3<T> {
+        self.sum + self.lever.cross(self.last)
+    }
+}
+
+/// One increment with the previous-interval correction, `θₖ + (1/12) θₖ₋₁ × θₖ`, as
+/// [`ConingTerms`].
+///
+/// Every rule scales the earlier operands of its cross product before multiplying: the
+/// coefficient's rounding then lands on an increment-sized value (negligible after the product).
+#[inline]
+pub fn one_plus_previous_terms<T: Ring>(previous: Vec3<T>, current: Vec3<T>) -> ConingTerms<T> {
+    ConingTerms {
+        sum: current,
+        lever: previous.scale(T::ratio::<1, 12>()),
+        last: current,
+    }
+}
+
+/// The 2-sample rule `θ₁ + θ₂ + ⅔ θ₁ × θ₂` as [`ConingTerms`].
+#[inline]
+pub fn two_sample_terms<T: Ring>(t1: Vec3<T>, t2: Vec3<T>) -> ConingTerms<T> {
+    ConingTerms {
+        sum: t1 + t2,
+        lever: t1.scale(T::ratio::<2, 3>()),
+        last: t2,
+    }
+}
+
+/// The 3-sample rule `Σθ + (9/20 θ₁ + 27/20 θ₂) × θ₃` as [`ConingTerms`].
+#[inline]
+pub fn three_sample_terms<T: Ring>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>) -> ConingTerms<T> {
+    ConingTerms {
+        sum: t1 + t2 + t3,
+        lever: t1.scale(T::ratio::<9, 20>()) + t2.scale(T::ratio::<27, 20>()),
+        last: t3,
+    }
+}
+
+/// The 4-sample rule `Σθ + (54 θ₁ + 92 θ₂ + 214 θ₃)/105 × θ₄` as [`ConingTerms`].
+///
+/// The lever is formed as `2·(27 θ₁ + 46 θ₂ + 107 θ₃)/105`, so that every coefficient lies in
+/// `[−2, 2)` (214/105 does not fit Q1.30); for the floats the halving and doubling are exact and
+/// the result is the same as with the written coefficients.
+#[inline]
+pub fn four_sample_terms<T: Ring>(
+    t1: Vec3<T>,
+    t2: Vec3<T>,
+    t3: Vec3<T>,
+    t4: Vec3<T>,
+) -> ConingTerms<T> {
+    let h = t1.scale(T::ratio::<27, 105>())
+        + t2.scale(T::ratio::<46, 105>())
+        + t3.scale(T::ratio::<107, 105>());
+    ConingTerms {
+        sum: t1 + t2 + t3 + t4,
+        lever: Vec3::new(h.x.twice(), h.y.twice(), h.z.twice()),
+        last: t4,
+    }
+}
+
 /// `θₖ + (1/12) θₖ₋₁ × θₖ`: one increment with the previous-interval coning correction.
 ///
 /// Domain (of this and the other rule functions): finite increments of at most
 /// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) rad each; the result is then finite (at most a few times `π`).
 #[inline]
-pub fn one_plus_previous<T: Real>(previous: Vec3<T>, current: Vec3<T>) -> Vec3<T> {
-    current + previous.cross(current).scale(T::from_f64(1.0 / 12.0))
+pub fn one_plus_previous<T: Ring>(previous: Vec3<T>, current: Vec3<T>) -> Vec3<T> {
+    one_plus_previous_terms(previous, current).rotation_vector()
 }
 
 /// `θ₁ + θ₂ + ⅔ θ₁ × θ₂`: the 2-sample coning rule.
 #[inline]
-pub fn two_sample<T: Real>(t1: Vec3<T>, t2: Vec3<T>) -> Vec3<T> {
-    t1 + t2 + t1.cross(t2).scale(T::from_f64(2.0 / 3.0))
+pub fn two_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>) -> Vec3<T> {
+    two_sample_terms(t1, t2).rotation_vector()
 }
 
 /// `θ₁ + θ₂ + θ₃ + (9/20 θ₁ + 27/20 θ₂) × θ₃`: the 3-sample coning rule.
 #[inline]
-pub fn three_sample<T: Real>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>) -> Vec3<T> {
-    let c = t1.scale(T::from_f64(9.0 / 20.0)) + t2.scale(T::from_f64(27.0 / 20.0));
-    t1 + t2 + t3 + c.cross(t3)
+pub fn three_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>) -> Vec3<T> {
+    three_sample_terms(t1, t2, t3).rotation_vector()
 }
 
-/// `Σθ + (54 θ₁ + 92 θ₂ + 214 θ₃)/105 × θ₄`: the 4-sample coning rule.
+/// `Σθ + (54 θ₁ + 92 θ₂ + 214 θ₃)/105 × θ₄`: the 4-sample coning rule (see
+/// [`four_sample_terms`] for how the coefficients are applied).
 #[inline]
-pub fn four_sample<T: Real>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>, t4: Vec3<T>) -> Vec3<T> {
-    let c = t1.scale(T::from_f64(54.0 / 105.0))
-        + t2.scale(T::from_f64(92.0 / 105.0))
-        + t3.scale(T::from_f64(214.0 / 105.0));
-    t1 + t2 + t3 + t4 + c.cross(t4)
+pub fn four_sample<T: Ring>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>, t4: Vec3<T>) -> Vec3<T> {
+    four_sample_terms(t1, t2, t3, t4).rotation_vector()
+}
+
+/// The [`ConingTerms`] of `samples` (1 to 4 increments in time order) by the highest-order rule
+/// that fits their number (see [`rotation_vector_for`]); all zero for an empty slice.
+pub fn coning_terms_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> ConingTerms<T> {
+    match samples {
+        [] => ConingTerms {
+            sum: Vec3::ZERO,
+            lever: Vec3::ZERO,
+            last: Vec3::ZERO,
+        },
+        [a] => one_plus_previous_terms(previous, *a),
+        [a, b] => two_sample_terms(*a, *b),
+        [a, b, c] => three_sample_terms(*a, *b, *c),
+        [a, b, c, d, ..] => four_sample_terms(*a, *b, *c, *d),
+    }
 }
 
 /// The rotation vector of `samples` (1 to 4 increments in time order) by the highest-order rule
@@ -114,27 +207,24 @@ pub fn four_sample<T: Real>(t1: Vec3<T>, t2: Vec3<T>, t3: Vec3<T>, t4: Vec3<T>) 
 /// 3 → [`three_sample`], 4 → [`four_sample`]. Zero for an empty slice; a slice longer than 4
 /// uses its first four. This is how a partial group (the end of a record, or a provisional
 /// attitude inside a group) is integrated.
-pub fn rotation_vector_for<T: Real>(previous: Vec3<T>, samples: &[Vec3<T>]) -> Vec3<T> {
-    match samples {
-        [] => Vec3::ZERO,
-        [a] => one_plus_previous(previous, *a),
-        [a, b] => two_sample(*a, *b),
-        [a, b, c] => three_sample(*a, *b, *c),
-        [a, b, c, d, ..] => four_sample(*a, *b, *c, *d),
-    }
+pub fn rotation_vector_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> Vec3<T> {
+    coning_terms_for(previous, samples).rotation_vector()
 }
 
 /// The complete 2-sample update on the hot path: `q ⊗ exp(θ₁ + θ₂ + ⅔ θ₁ × θ₂)`, then the fast
-/// renormalisation `q·(3 − |q|²)/2`.
+/// renormalisation `q + q·(1 − |q|²)/2`. Generic over [`Ring`]: with `T = Q30` it is the
+/// fixed-point update, integer arithmetic only (see [`crate::fixed`]).
 ///
 /// Unchecked (a non-finite increment gives a non-finite attitude): for an inner loop whose
 /// increments were validated when they were read. Domain: finite increments of at most
-/// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) rad each (the checks of [`IncrementIntegrator::push`]). The exponential of
-/// the small per-update angle uses the series of [`UnitQuat::exp`] (no trigonometric call below
-/// 0.37 rad in f32).
+/// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) rad each (the checks of
+/// [`IncrementIntegrator::push`]). The exponential of the small per-update angle uses the series
+/// of [`UnitQuat::exp`] (no trigonometric call below 0.37 rad in f32, 1/8 rad in Q1.30); the
+/// rule's [`ConingTerms`] go through the update kernel [`apply_rotation_vector`] (in fixed point:
+/// [`UnitQuat::mul_exp_coning`]).
 #[inline]
-pub fn coning2_update<T: Real>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
-    apply_rotation_vector(q, two_sample(t1, t2), Normalization::Fast)
+pub fn coning2_update<T: Ring>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
+    apply_rotation_vector(q, two_sample_terms(t1, t2), Normalization::Fast)
 }
 
 /// Buffer of the increments of the current update group.
@@ -165,7 +255,7 @@ pub struct IncrementIntegrator<T> {
     previous: Vec3<T>,
 }
 
-impl<T: Real> IncrementIntegrator<T> {
+impl<T: Ring> IncrementIntegrator<T> {
     /// Starts at attitude `q0`.
     pub fn new(q0: UnitQuat<T>, rule: ConingRule, norm: Normalization) -> Self {
         Self {
@@ -182,12 +272,20 @@ impl<T: Real> IncrementIntegrator<T> {
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite component; [`Error::StepTooLong`] for an
-    /// increment larger than [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) (the coning rules are truncated series in the
-    /// increments, see there). Either way the increment is discarded and the state is unchanged.
+    /// increment larger than [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) (the coning rules are
+    /// truncated series in the increments, see there); in fixed point, [`Error::OutOfRange`] for
+    /// an increment component of a quarter of the format's range or more (0.25 rad in Q1.30:
+    /// below it a group of four increments, its rule's lever and cross product cannot saturate).
+    /// Either way the increment is discarded and the state is unchanged.
     pub fn push(&mut self, dtheta: Vec3<T>) -> Result<Option<UnitQuat<T>>, Error> {
         let dtheta = dtheta.try_finite()?;
-        if !within_step_limit(dtheta.norm_squared()) {
+        if !within_step_limit(dtheta) {
             return Err(Error::StepTooLong);
+        }
+        // 8·|Δθᵢ| within the range (always for the floats).
+        let fits = |c: T| T::dot_fits([c.twice(); 4], [T::ONE; 4]);
+        if !(fits(dtheta.x) && fits(dtheta.y) && fits(dtheta.z)) {
+            return Err(Error::OutOfRange);
         }
         let n = self.rule.samples_per_update();
         if self.group.push(dtheta).is_err() {
@@ -203,17 +301,24 @@ impl<T: Real> IncrementIntegrator<T> {
         Ok(None)
     }
 
-    fn phi(&self) -> Vec3<T> {
+    /// `normalise(q ⊗ exp(φ))` for the pending group: the update kernel with the rule's `φ`, a
+    /// plain vector for [`ConingRule::Exp`], the rule's [`ConingTerms`] otherwise.
+    fn advanced(&self) -> UnitQuat<T> {
         match (self.rule, self.group.as_slice()) {
-            (ConingRule::Exp, [a]) => *a,
-            (ConingRule::Exp, s) => s.iter().fold(Vec3::ZERO, |acc, t| acc + *t),
-            (_, s) => rotation_vector_for(self.previous, s),
+            (ConingRule::Exp, s) => {
+                let phi = match s {
+                    [a] => *a,
+                    s => s.iter().fold(Vec3::ZERO, |acc, t| acc + *t),
+                };
+                apply_rotation_vector(self.q, phi, self.norm)
+            }
+            (_, s) => apply_rotation_vector(self.q, coning_terms_for(self.previous, s), self.norm),
         }
     }
 
     fn commit(&mut self) {
         if let Some(last) = self.group.last().copied() {
-            self.q = apply_rotation_vector(self.q, self.phi(), self.norm);
+            self.q = self.advanced();
             self.previous = last;
             self.group.clear();
         }
@@ -237,7 +342,7 @@ impl<T: Real> IncrementIntegrator<T> {
         if self.group.is_empty() {
             self.q
         } else {
-            apply_rotation_vector(self.q, self.phi(), self.norm)
+            self.advanced()
         }
     }
 
@@ -271,7 +376,7 @@ pub struct ConingAccumulator<T> {
     count: u32,
 }
 
-impl<T: Real> ConingAccumulator<T> {
+impl<T: Ring> ConingAccumulator<T> {
     /// An empty accumulator with no previous increment.
     pub const fn new() -> Self {
         Self {
@@ -287,27 +392,48 @@ impl<T: Real> ConingAccumulator<T> {
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite component; [`Error::StepTooLong`] when the
     /// increment, or the increment sum `α` of the interval with it, is longer than
-    /// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE): the two-speed correction is a truncated series in `α` (take the
-    /// rotation vector more often). Either way the increment is discarded and the state is
-    /// unchanged.
+    /// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE): the two-speed correction is a truncated series
+    /// in `α` (take the rotation vector more often). In fixed point, [`Error::OutOfRange`] when a
+    /// sum of the update (`α`, the lever `α + Δθₗ₋₁/6`, the cross product, `β`, `α + β`) would
+    /// saturate the format. Either way the increment is discarded and the state is unchanged.
     #[inline]
     pub fn push(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
         let dtheta = dtheta.try_finite()?;
-        if !within_step_limit(dtheta.norm_squared())
-            || !within_step_limit((self.alpha + dtheta).norm_squared())
-        {
+        if !within_step_limit(dtheta) {
             return Err(Error::StepTooLong);
+        }
+        if !self.alpha.add_fits(dtheta) {
+            return Err(Error::OutOfRange);
+        }
+        if !within_step_limit(self.alpha + dtheta) {
+            return Err(Error::StepTooLong);
+        }
+        if !self.update_fits(dtheta) {
+            return Err(Error::OutOfRange);
         }
         self.push_unchecked(dtheta);
         Ok(())
+    }
+
+    /// `true` when no sum of [`ConingAccumulator::push_unchecked`] with `dtheta` saturates
+    /// (always for the floats).
+    #[inline]
+    fn update_fits(&self, dtheta: Vec3<T>) -> bool {
+        let sixth = self.previous.scale(T::ratio::<1, 6>());
+        let half = (self.alpha + sixth).scale(T::HALF);
+        let dbeta = half.cross(dtheta);
+        self.alpha.add_fits(sixth)
+            && half.cross_fits(dtheta)
+            && self.beta.add_fits(dbeta)
+            && (self.alpha + dtheta).add_fits(self.beta + dbeta)
     }
 
     /// [`ConingAccumulator::push`] without the checks. Domain: finite increments whose interval
     /// sum stays within [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE); then `α` and `β` stay finite.
     #[inline]
     pub fn push_unchecked(&mut self, dtheta: Vec3<T>) {
-        let lever = self.alpha + self.previous.scale(T::from_f64(1.0 / 6.0));
-        self.beta += lever.cross(dtheta).scale(T::HALF);
+        let lever = self.alpha + self.previous.scale(T::ratio::<1, 6>());
+        self.beta += lever.scale(T::HALF).cross(dtheta);
         self.alpha += dtheta;
         self.previous = dtheta;
         self.count = self.count.saturating_add(1);
@@ -335,7 +461,7 @@ impl<T: Real> ConingAccumulator<T> {
 }
 
 #[cfg(feature = "defmt")]
-impl<T: Real + defmt::Format> defmt::Format for IncrementIntegrator<T> {
+impl<T: Ring + defmt::Format> defmt::Format for IncrementIntegrator<T> {
     fn format(&self, f: defmt::Formatter<'_>) {
         defmt::write!(
             f,
@@ -349,7 +475,7 @@ impl<T: Real + defmt::Format> defmt::Format for IncrementIntegrator<T> {
 }
 
 #[cfg(feature = "defmt")]
-impl<T: Real + defmt::Format> defmt::Format for ConingAccumulator<T> {
+impl<T: Ring + defmt::Format> defmt::Format for ConingAccumulator<T> {
     fn format(&self, f: defmt::Formatter<'_>) {
         defmt::write!(
             f,

@@ -7,8 +7,8 @@
 //! [`UnitQuat::exp`], which uses a series for small angles: no division by a tiny angle and no
 //! cutoff that returns the identity.
 
-use crate::propagation::{Normalization, exact_step_angle_limit};
-use crate::{Error, Real, UnitQuat, Vec3};
+use crate::propagation::{ConingTerms, Normalization, exact_step_angle_limit};
+use crate::{Error, Real, Ring, UnitQuat, Vec3};
 
 /// `q ⊗ exp(ω_body Δt)`: the exact attitude after a constant body rate held for `dt` (6.6.4).
 ///
@@ -60,14 +60,50 @@ pub fn step_constant_rate_unchecked<T: Real>(
 
 /// The update kernel of every exponential-map rule: `q ⊗ exp(φ)` followed by the normalisation
 /// policy, for a body-frame rotation vector `φ` accumulated over one update interval (by a coning
-/// rule, the two-speed accumulator, Magnus-4 or CF4). The exponential is
-/// [`UnitQuat::exp_unchecked`] (series below its small-angle threshold). Unchecked: a non-finite
-/// `φ` (or one whose norm overflows) gives a non-finite attitude.
+/// rule, the two-speed accumulator, Magnus-4 or CF4). Unchecked: a non-finite `φ` (or one whose
+/// norm overflows) gives a non-finite attitude.
+///
+/// `φ` is a plain [`Vec3`] or, from a coning rule, its [`ConingTerms`] `sum + lever × last`
+/// (see [`RotationVectorForm`]). For the floats both are `q * UnitQuat::exp_unchecked(φ)` (series
+/// below the type's small-angle threshold). Fixed point fuses the product with the exponential
+/// ([`UnitQuat::mul_exp`]: one rounding per component, the rotation increment carried 3 bits finer
+/// than the format) and, for a coning rule, also forms the cross product exactly and adds it at
+/// that finer resolution ([`UnitQuat::mul_exp_coning`]).
 #[inline(always)]
-pub fn apply_rotation_vector<T: Real>(
+pub fn apply_rotation_vector<T: Ring, P: RotationVectorForm<T>>(
     q: UnitQuat<T>,
-    phi: Vec3<T>,
+    phi: P,
     norm: Normalization,
 ) -> UnitQuat<T> {
-    norm.apply(q * UnitQuat::exp_unchecked(phi))
+    norm.apply(phi.mul_exp_onto(q))
+}
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// The forms of a rotation vector `φ` that [`apply_rotation_vector`] takes: a plain [`Vec3`], or
+/// a coning rule's [`ConingTerms`] (`φ = sum + lever × last`). Sealed.
+pub trait RotationVectorForm<T: Ring>: Copy + sealed::Sealed {
+    /// `q ⊗ exp(φ)`, not renormalised.
+    fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T>;
+}
+
+impl<T> sealed::Sealed for Vec3<T> {}
+impl<T> sealed::Sealed for ConingTerms<T> {}
+
+/// [`UnitQuat::mul_exp`].
+impl<T: Ring> RotationVectorForm<T> for Vec3<T> {
+    #[inline(always)]
+    fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T> {
+        q.mul_exp(self)
+    }
+}
+
+/// [`UnitQuat::mul_exp_coning`].
+impl<T: Ring> RotationVectorForm<T> for ConingTerms<T> {
+    #[inline(always)]
+    fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T> {
+        q.mul_exp_coning(self)
+    }
 }

@@ -30,7 +30,7 @@
 //! inner loop whose input was validated upstream: [`coning::coning2_update`] is the complete
 //! 2-sample update (rotation vector, exponential by series, product, fast renormalisation).
 
-use crate::Real;
+use crate::{Real, Ring, Vec3};
 
 /// The largest rotation one step of an approximate propagation or dynamics method may take:
 /// `π` rad, half a turn. A longer step gives [`crate::Error::StepTooLong`].
@@ -51,12 +51,16 @@ use crate::Real;
 /// [`crate::dynamics::Gyrostat::step`]); the unchecked step functions state it as their domain.
 pub const MAX_STEP_ANGLE: f64 = core::f64::consts::PI;
 
-/// `true` when a rotation vector `v` turns by at most [`MAX_STEP_ANGLE`], given `|v|²`
-/// (`|v|² ≤ π²`). An overflowing square fails, and so does a NaN: the callers check their
-/// inputs for finiteness first, so a NaN here is a rate that could not be represented.
+/// `true` when a rotation vector `v` turns by at most [`MAX_STEP_ANGLE`]: `|v/4|² ≤ π²/16`.
+///
+/// The quarter keeps the square inside Q1.30's range (`|v/4|² < 0.75` for components below
+/// 2 rad); for the floats it is exact, so the test is `|v|² ≤ π²` (the rational
+/// 223764909/362754007 is π²/16 to 7e-19). An overflowing square fails, and so does a NaN: the
+/// callers check their inputs for finiteness first, so a NaN here is a rate that could not be
+/// represented.
 #[inline]
-pub(crate) fn within_step_limit<T: Real>(v_norm_squared: T) -> bool {
-    v_norm_squared <= T::from_f64(MAX_STEP_ANGLE * MAX_STEP_ANGLE)
+pub(crate) fn within_step_limit<T: Ring>(v: Vec3<T>) -> bool {
+    v.scale(T::ratio::<1, 4>()).norm_squared() <= T::ratio::<223_764_909, 362_754_007>()
 }
 
 /// The validity limit of the exact steps (the exponential of a rate held constant,
@@ -76,6 +80,7 @@ pub mod kinematics;
 pub mod normalization;
 pub mod rate_samples;
 
-pub use coning::{ConingAccumulator, ConingRule, IncrementIntegrator};
+pub use coning::{ConingAccumulator, ConingRule, ConingTerms, IncrementIntegrator};
+pub use exponential::RotationVectorForm;
 pub use normalization::Normalization;
 pub use rate_samples::{RateIntegrator, RateMethod};

@@ -4,20 +4,21 @@
 //! one ulp per update, a random walk); a Runge–Kutta update also leaves a truncation error in the
 //! norm. Either way the attitude needs an occasional projection back onto `|q| = 1`.
 
-use crate::{Quat, Real, UnitQuat};
+use crate::{Quat, Real, Ring, UnitQuat};
 
 /// How an integrator restores `|q| = 1` after each attitude update.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Normalization {
-    /// `q / |q|` ([`UnitQuat::renormalize`]): exact to rounding; costs a square root and a
-    /// division (a plain square root of `|q|²`: the norm of a propagated attitude is near 1, so
-    /// no overflow-safe `hypot` is needed).
+    /// `q / |q|` ([`UnitQuat::renormalize`]): exact to rounding; the floats pay a square root
+    /// and a division (a plain square root of `|q|²`: the norm of a propagated attitude is near 1,
+    /// so no overflow-safe `hypot` is needed), fixed point Newton's iteration to convergence (for
+    /// `|q|² ∈ (¼, 2)`).
     Exact,
-    /// `q · (3 − |q|²)/2` ([`UnitQuat::renormalize_fast`]): one Newton step for `1/|q|`, no square
-    /// root. If `|q|² = 1 + δ` the result has `|q|² = 1 − 3δ²/4 + O(δ³)`, so it suits per-update
-    /// drift (δ of a few ulp for exponential updates, the truncation error of an RK4 step), not
-    /// arbitrary input. The default.
+    /// `q + q·(1 − |q|²)/2` ([`UnitQuat::renormalize_fast`]): one Newton step for `1/|q|`, no
+    /// square root or division. If `|q|² = 1 + δ` the result has `|q|² = 1 − 3δ²/4 + O(δ³)`, so
+    /// it suits per-update drift (δ of a few ulp for exponential updates, the truncation error of
+    /// an RK4 step), not arbitrary input. The default.
     #[default]
     Fast,
     /// No renormalisation: `|q|` random-walks by rounding (and, for RK4, drifts by its
@@ -28,7 +29,7 @@ pub enum Normalization {
 impl Normalization {
     /// Applies the policy to an attitude.
     #[inline]
-    pub fn apply<T: Real>(self, q: UnitQuat<T>) -> UnitQuat<T> {
+    pub fn apply<T: Ring>(self, q: UnitQuat<T>) -> UnitQuat<T> {
         match self {
             Normalization::Exact => q.renormalize(),
             Normalization::Fast => q.renormalize_fast(),
@@ -79,4 +80,15 @@ fn fast_range<T: Real>() -> T {
 pub fn norm_deviation<T: Real>(q: UnitQuat<T>) -> T {
     let n2 = q.as_quat().norm_squared();
     (n2 - T::ONE) / (n2.sqrt() + T::ONE)
+}
+
+/// The health value `|q|² − 1` of a propagated attitude (signed; `≈ 2(|q| − 1)` for a small
+/// deviation): the [`Ring`] form of [`norm_deviation`], for fixed point.
+///
+/// One [`Ring::dot`] and an exact subtraction: in fixed point the squared norm is formed exactly
+/// in 64 bits and rounded once, so the value is accurate to one unit of resolution (2⁻³¹ in
+/// Q1.30). [`UnitQuat::renormalize_fast`] brings a deviation `δ` to `−3δ²/4`.
+#[inline]
+pub fn norm_squared_deviation<T: Ring>(q: UnitQuat<T>) -> T {
+    q.as_quat().norm_squared() - T::ONE
 }

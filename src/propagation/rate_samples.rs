@@ -319,7 +319,7 @@ impl<T: Real> RateIntegrator<T> {
         if !omega.scale(T::from_f64(4.0)).is_finite() {
             return Err(Error::InvalidArgument);
         }
-        if !within_step_limit(omega.scale(self.dt).norm_squared()) {
+        if !within_step_limit(omega.scale(self.dt)) {
             return Err(Error::StepTooLong);
         }
         let mut out = Attitudes::new();

@@ -4,42 +4,88 @@
 //! rotation vector `φ` is the seed's whirl vector `Θ = Ω τ` (6.6.4): a constant body rate `Ω`
 //! held for a time `τ` turns the body by `exp(Ω τ)`.
 //!
-//! Both maps switch to truncated Taylor series below a per-type threshold, so that no tiny angle
-//! is ever divided by and the identity is approached smoothly (there is no cutoff that returns
-//! the identity).
+//! Both maps switch to truncated Taylor series below a per-type threshold (associated consts:
+//! [`Ring::EXP_SERIES_MAX_SQ`], [`Real::LOG_SERIES_MAX_SQ`]), so that no tiny angle is ever
+//! divided by and the identity is approached smoothly (there is no cutoff that returns the
+//! identity). The exponential map is generic over [`Ring`] (it runs in fixed point too); the
+//! logarithm over [`Real`].
 
-use crate::{Error, Quat, Real, UnitQuat, Vec3};
+use crate::{Error, Quat, Real, Ring, UnitQuat, Vec3};
 
-/// Squared angle below which the series are used: the largest `θ²` for which the first dropped
-/// term is below half an ulp of the result.
-///
-/// For `c(θ) = cos(θ/2) = 1 − θ²/8 + θ⁴/384 − θ⁶/46080 + …` and
-/// `s(θ) = sin(θ/2)/θ = ½ − θ²/48 + θ⁴/3840 − θ⁶/645120 + …`, truncating after `θ⁴` leaves at
-/// most `θ⁶/46080` (relative, for `c`). Requiring `θ⁶/46080 ≤ ε/2` gives `θ² ≤ (23040 ε)^{1/3}`;
-/// the thresholds below are that bound rounded down: f32 (ε = 2⁻²³) `θ² ≤ 0.14` (θ ≤ 0.37 rad),
-/// f64 (ε = 2⁻⁵²) `θ² ≤ 1.7e-4` (θ ≤ 0.013 rad). Types at least as precise as f64 (fixed point
-/// with fewer than 33 fraction bits is less precise and takes the f32 value) use the f64 value.
+/// `(cos(θ/2), sin(θ/2)/θ)` for `θ² = theta_sq ≤` [`Ring::EXP_SERIES_MAX_SQ`], by the series
+/// `cos(θ/2) = 1 − θ²/8 + θ⁴/384 − …`, `sin(θ/2)/θ = ½ − θ²/48 + θ⁴/3840 − …` truncated after
+/// `θ⁴` (the threshold per type keeps the first dropped term below half a unit in the last
+/// place). Each series is one [`Ring::dot`] of `(θ², θ⁴)` with the coefficients, added to its
+/// constant term.
 #[inline]
-pub(crate) fn series_threshold_sq<T: Real>() -> T {
-    if T::EPSILON.to_f64() > 1e-10 {
-        T::from_f64(0.14)
-    } else {
-        T::from_f64(1.7e-4)
+pub(crate) fn half_angle_series<T: Ring>(theta_sq: T) -> (T, T) {
+    let t4 = theta_sq * theta_sq;
+    let c = T::ONE + T::dot([theta_sq, t4], [T::ratio::<-1, 8>(), T::ratio::<1, 384>()]);
+    let s = T::HALF
+        + T::dot(
+            [theta_sq, t4],
+            [T::ratio::<-1, 48>(), T::ratio::<1, 3840>()],
+        );
+    (c, s)
+}
+
+/// The floats' [`Ring::exp_beyond_series`]: `sin`/`cos` of the half angle, and the overflow path.
+#[inline]
+pub(crate) fn exp_beyond_series_real<T: Real>(phi: Vec3<T>, n2: T) -> Quat<T> {
+    if !n2.is_finite() {
+        // |φ|² overflowed (|φ| ≳ 1e19 in f32, 1e154 in f64): take the angle with hypot and
+        // scale by 1/|φ| instead (no tiny-angle issue at this size).
+        let theta = phi.norm();
+        let (s, c) = (theta * T::HALF).sin_cos();
+        return Quat::from_parts(c, phi.scale(T::ONE / theta).scale(s));
+    }
+    let theta = n2.sqrt();
+    let (s, c) = (theta * T::HALF).sin_cos();
+    Quat::from_parts(c, phi.scale(s / theta))
+}
+
+impl<T: Ring> UnitQuat<T> {
+    /// [`UnitQuat::exp`] without the finiteness check, for a hot loop whose input was validated
+    /// upstream. A non-finite `φ` gives a non-finite result.
+    ///
+    /// Below [`Ring::EXP_SERIES_MAX_SQ`] (f32: 0.37 rad, f64: 0.013 rad, Q1.30: 1/8 rad) the
+    /// series, no trigonometric call; beyond, [`Ring::exp_beyond_series`]. For fixed point this
+    /// is the exponential map itself: total on every representable `φ`, integer arithmetic only
+    /// (see [`crate::fixed`]).
+    #[inline]
+    pub fn exp_unchecked(phi: Vec3<T>) -> Self {
+        let n2 = phi.norm_squared();
+        if n2 <= T::EXP_SERIES_MAX_SQ {
+            let (c, s) = half_angle_series(n2);
+            Self::new_unchecked(Quat::from_parts(c, phi.scale(s)))
+        } else {
+            Self::new_unchecked(T::exp_beyond_series(phi, n2))
+        }
     }
 }
 
-/// `(cos(θ/2), sin(θ/2)/θ)` for `θ² = theta_sq`, by series for small angles.
-#[inline]
-pub(crate) fn half_angle_cos_sinc<T: Real>(theta_sq: T) -> (T, T) {
-    if theta_sq <= series_threshold_sq::<T>() {
-        let t2 = theta_sq;
-        let c = T::ONE - t2 / T::from_f64(8.0) + t2 * t2 / T::from_f64(384.0);
-        let s = T::HALF - t2 / T::from_f64(48.0) + t2 * t2 / T::from_f64(3840.0);
-        (c, s)
-    } else {
-        let theta = theta_sq.sqrt();
-        let (s, c) = (theta * T::HALF).sin_cos();
-        (c, s / theta)
+impl<T: Ring> UnitQuat<T> {
+    /// `self ⊗ exp(φ)`: the attitude after the body-frame rotation vector `φ`, unchecked (see
+    /// [`UnitQuat::exp_unchecked`]). Equal to `self * UnitQuat::exp_unchecked(phi)` for the
+    /// floats; fused in fixed point ([`Ring::mul_exp`]): one rounding per component, with the
+    /// small rotation increment carried at a finer resolution than the format.
+    #[inline]
+    pub fn mul_exp(self, phi: Vec3<T>) -> Self {
+        Self::new_unchecked(T::mul_exp(self.into_quat(), phi))
+    }
+
+    /// `self ⊗ exp(φ)` for a coning rule's rotation vector `φ = sum + lever × last`
+    /// ([`crate::propagation::ConingTerms`]). Equal to `self.mul_exp(terms.rotation_vector())`
+    /// for the floats; in fixed point the coning term is formed exactly and kept at the fused
+    /// exponential's finer resolution ([`Ring::mul_exp_coning`]).
+    #[inline]
+    pub fn mul_exp_coning(self, terms: crate::propagation::ConingTerms<T>) -> Self {
+        Self::new_unchecked(T::mul_exp_coning(
+            self.into_quat(),
+            terms.sum,
+            terms.lever,
+            terms.last,
+        ))
     }
 }
 
@@ -72,22 +118,6 @@ impl<T: Real> UnitQuat<T> {
         Ok(Self::exp_unchecked(phi))
     }
 
-    /// [`UnitQuat::exp`] without the finiteness check, for a hot loop whose input was validated
-    /// upstream. A non-finite `φ` gives a non-finite result.
-    #[inline]
-    pub fn exp_unchecked(phi: Vec3<T>) -> Self {
-        let n2 = phi.norm_squared();
-        if !n2.is_finite() {
-            // |φ|² overflowed (|φ| ≳ 1e19 in f32, 1e154 in f64): take the angle with hypot and
-            // scale by 1/|φ| instead (no tiny-angle issue at this size).
-            let theta = phi.norm();
-            let (s, c) = (theta * T::HALF).sin_cos();
-            return Self::new_unchecked(Quat::from_parts(c, phi.scale(T::ONE / theta).scale(s)));
-        }
-        let (c, s) = half_angle_cos_sinc(n2);
-        Self::new_unchecked(Quat::from_parts(c, phi.scale(s)))
-    }
-
     /// The logarithm map onto rotation vectors of angle in `[0, π]`: the inverse of
     /// [`UnitQuat::exp`] on that range.
     ///
@@ -103,11 +133,9 @@ impl<T: Real> UnitQuat<T> {
         };
         let s2 = v.norm_squared();
         // angle/|v| = 2·atan2(s, w)/s. Small-s series with w = √(1 − s²) (unit norm):
-        // 2·asin(s)/s = 2·(1 + s²/6 + 3s⁴/40 + …); the dropped 15 s⁶/336 is below ε/2 for
-        // s² ≤ 0.05 × series_threshold_sq (f32: s² ≤ 7e-3, 15s⁶/336 ≤ 1.5e-8; f64: s² ≤ 8.5e-6,
-        // ≤ 2.7e-17).
-        let factor = if s2 <= series_threshold_sq::<T>() * T::from_f64(0.05) {
-            T::TWO * (T::ONE + s2 / T::from_f64(6.0) + T::from_f64(0.075) * s2 * s2)
+        // 2·asin(s)/s = 2·(1 + s²/6 + 3s⁴/40 + …), accurate below Real::LOG_SERIES_MAX_SQ.
+        let factor = if s2 <= T::LOG_SERIES_MAX_SQ {
+            T::TWO * (T::ONE + s2 * T::ratio::<1, 6>() + T::ratio::<3, 40>() * s2 * s2)
         } else {
             let s = s2.sqrt();
             T::TWO * s.atan2(w) / s

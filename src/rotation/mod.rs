@@ -71,3 +71,5 @@ pub use quat::Quat;
 pub use rotvec::RotationVector;
 pub use su2::Su2;
 pub use unit_quat::UnitQuat;
+
+pub(crate) use exp::{exp_beyond_series_real, half_angle_series};

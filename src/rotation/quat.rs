@@ -2,7 +2,7 @@
 
 use core::ops::{Add, Mul, Neg, Sub};
 
-use crate::{Error, Real, UnitQuat, Vec3};
+use crate::{Error, Real, Ring, UnitQuat, Vec3};
 
 /// A Hamilton quaternion `w + x·i + y·j + z·k` with `i·j = k`, stored scalar-first.
 ///
@@ -20,7 +20,7 @@ pub struct Quat<T> {
     pub z: T,
 }
 
-impl<T: Real> Quat<T> {
+impl<T: Ring> Quat<T> {
     /// The multiplicative identity `1`.
     pub const IDENTITY: Self = Self::new(T::ONE, T::ZERO, T::ZERO, T::ZERO);
     /// The zero quaternion.
@@ -62,22 +62,16 @@ impl<T: Real> Quat<T> {
         Self::new(self.w, -self.x, -self.y, -self.z)
     }
 
-    /// Four-dimensional dot product.
+    /// Four-dimensional dot product (one rounding in fixed point, see [`Ring::dot`]).
     #[inline]
     pub fn dot(self, o: Self) -> T {
-        self.w * o.w + self.x * o.x + self.y * o.y + self.z * o.z
+        T::dot([self.w, self.x, self.y, self.z], [o.w, o.x, o.y, o.z])
     }
 
     /// Squared norm `w² + x² + y² + z²`.
     #[inline]
     pub fn norm_squared(self) -> T {
         self.dot(self)
-    }
-
-    /// Norm, computed with `hypot` (no overflow or underflow for extreme components).
-    #[inline]
-    pub fn norm(self) -> T {
-        self.w.hypot(self.x).hypot(self.y.hypot(self.z))
     }
 
     /// `self · s` for a real `s`.
@@ -90,6 +84,14 @@ impl<T: Real> Quat<T> {
     #[inline]
     pub fn is_finite(self) -> bool {
         self.w.is_finite() && self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+}
+
+impl<T: Real> Quat<T> {
+    /// Norm, computed with `hypot` (no overflow or underflow for extreme components).
+    #[inline]
+    pub fn norm(self) -> T {
+        self.w.hypot(self.x).hypot(self.y.hypot(self.z))
     }
 
     /// The multiplicative inverse `conj(q)/|q|²`, computed on `q` scaled to a largest component
@@ -134,20 +136,24 @@ impl<T: Real> Quat<T> {
 }
 
 /// The Hamilton product (`i·j = k`): `(w₁w₂ − v₁·v₂, w₁v₂ + w₂v₁ + v₁ × v₂)`.
-impl<T: Real> Mul for Quat<T> {
+///
+/// Each component is one [`Ring::dot`] of four products: for the floats the same roundings as
+/// the expression written out left to right, for fixed point one rounding per component.
+impl<T: Ring> Mul for Quat<T> {
     type Output = Self;
     #[inline]
     fn mul(self, o: Self) -> Self {
+        let a = [self.w, self.x, self.y, self.z];
         Self::new(
-            self.w * o.w - self.x * o.x - self.y * o.y - self.z * o.z,
-            self.w * o.x + self.x * o.w + self.y * o.z - self.z * o.y,
-            self.w * o.y - self.x * o.z + self.y * o.w + self.z * o.x,
-            self.w * o.z + self.x * o.y - self.y * o.x + self.z * o.w,
+            T::dot(a, [o.w, -o.x, -o.y, -o.z]),
+            T::dot(a, [o.x, o.w, o.z, -o.y]),
+            T::dot(a, [o.y, -o.z, o.w, o.x]),
+            T::dot(a, [o.z, o.y, -o.x, o.w]),
         )
     }
 }
 
-impl<T: Real> Mul<T> for Quat<T> {
+impl<T: Ring> Mul<T> for Quat<T> {
     type Output = Self;
     #[inline]
     fn mul(self, s: T) -> Self {
@@ -155,7 +161,7 @@ impl<T: Real> Mul<T> for Quat<T> {
     }
 }
 
-impl<T: Real> Add for Quat<T> {
+impl<T: Ring> Add for Quat<T> {
     type Output = Self;
     #[inline]
     fn add(self, o: Self) -> Self {
@@ -163,7 +169,7 @@ impl<T: Real> Add for Quat<T> {
     }
 }
 
-impl<T: Real> Sub for Quat<T> {
+impl<T: Ring> Sub for Quat<T> {
     type Output = Self;
     #[inline]
     fn sub(self, o: Self) -> Self {
@@ -171,7 +177,7 @@ impl<T: Real> Sub for Quat<T> {
     }
 }
 
-impl<T: Real> Neg for Quat<T> {
+impl<T: Ring> Neg for Quat<T> {
     type Output = Self;
     #[inline]
     fn neg(self) -> Self {

@@ -2,7 +2,7 @@
 
 use core::ops::{Mul, Neg};
 
-use crate::{Error, Mat3, Quat, Real, Vec3};
+use crate::{Error, Mat3, Quat, Real, Ring, Vec3};
 
 /// A unit Hamilton quaternion: an attitude, or a rotation.
 ///
@@ -25,17 +25,141 @@ use crate::{Error, Mat3, Quat, Real, Vec3};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct UnitQuat<T>(Quat<T>);
 
-impl<T: Real> Default for UnitQuat<T> {
+impl<T: Ring> Default for UnitQuat<T> {
     /// The identity rotation.
     fn default() -> Self {
         Self::IDENTITY
     }
 }
 
-impl<T: Real> UnitQuat<T> {
+impl<T: Ring> UnitQuat<T> {
     /// The identity rotation `(1, 0, 0, 0)`.
     pub const IDENTITY: Self = Self(Quat::IDENTITY);
 
+    /// Wraps `q` without checking. The caller promises `|q| = 1` up to rounding; breaking the
+    /// promise gives wrong rotations (scaled by `|q|²`), never undefined behaviour.
+    #[inline]
+    pub const fn new_unchecked(q: Quat<T>) -> Self {
+        Self(q)
+    }
+    /// The underlying quaternion.
+    #[inline]
+    pub const fn as_quat(&self) -> &Quat<T> {
+        &self.0
+    }
+
+    /// The underlying quaternion, by value.
+    #[inline]
+    pub const fn into_quat(self) -> Quat<T> {
+        self.0
+    }
+
+    /// Scalar part.
+    #[inline]
+    pub const fn w(&self) -> T {
+        self.0.w
+    }
+    /// `i` component.
+    #[inline]
+    pub const fn x(&self) -> T {
+        self.0.x
+    }
+    /// `j` component.
+    #[inline]
+    pub const fn y(&self) -> T {
+        self.0.y
+    }
+    /// `k` component.
+    #[inline]
+    pub const fn z(&self) -> T {
+        self.0.z
+    }
+
+    /// `[w, x, y, z]`.
+    #[inline]
+    pub const fn to_array(&self) -> [T; 4] {
+        self.0.to_array()
+    }
+
+    /// The inverse rotation, which for a unit quaternion is the conjugate.
+    #[inline]
+    pub fn inverse(self) -> Self {
+        Self(self.0.conjugate())
+    }
+
+    /// Four-dimensional dot product; `|dot| = cos(θ/2)` for the angle θ between two attitudes.
+    #[inline]
+    pub fn dot(self, o: Self) -> T {
+        self.0.dot(o.0)
+    }
+
+    /// Rotates a body-frame vector into the lab frame: `q ⊗ (0, v) ⊗ q*`.
+    ///
+    /// Evaluated as `v + 2(w·s + u × s)` with `u = (x, y, z)` and `s = u × v` (15
+    /// multiplications), algebraically equal to the sandwich product for unit `q`; in fixed point
+    /// `s` and each component of `w·s + u × s` are rounded once. Fixed point: for `|v| ≤ 1`
+    /// nothing saturates beyond one unit of resolution (`|w·s + u × s| ≤ |v|`).
+    #[inline]
+    pub fn rotate(self, v: Vec3<T>) -> Vec3<T> {
+        let Quat { w, x, y, z } = self.0;
+        let s = self.0.vector().cross(v);
+        let inner = Vec3::new(
+            T::dot([w, y, -z], [s.x, s.z, s.y]),
+            T::dot([w, z, -x], [s.y, s.x, s.z]),
+            T::dot([w, x, -y], [s.z, s.y, s.x]),
+        );
+        v + Vec3::new(inner.x.twice(), inner.y.twice(), inner.z.twice())
+    }
+
+    /// Rotates a lab-frame vector into the body frame: `q* ⊗ (0, v) ⊗ q`.
+    #[inline]
+    pub fn inverse_rotate(self, v: Vec3<T>) -> Vec3<T> {
+        self.inverse().rotate(v)
+    }
+
+    /// The rotation matrix `R(q)`: columns are the body axes in lab coordinates, so that
+    /// `R(q)·v = q ⊗ v ⊗ q*`. Equal to the Rodrigues form (6.6.15) for the same axis and angle.
+    ///
+    /// Each entry is `1 − 2(a² + b²)` or `2(ab ± cd)` with the inner sum one [`Ring::dot`] (the
+    /// same roundings as written out for the floats, one rounding in fixed point).
+    pub fn to_rotation_matrix(self) -> Mat3<T> {
+        let Quat { w, x, y, z } = self.0;
+        let d = |a: T, b: T, c: T, e: T| T::dot([a, c], [b, e]).twice();
+        let diag = |a: T, b: T| T::ONE - T::dot([a, b], [a, b]).twice();
+        Mat3::from_rows(
+            [diag(y, z), d(x, y, -w, z), d(x, z, w, y)],
+            [d(x, y, w, z), diag(x, z), d(y, z, -w, x)],
+            [d(x, z, -w, y), d(y, z, w, x), diag(x, y)],
+        )
+    }
+
+    /// Restores unit norm exactly: `q / |q|`.
+    ///
+    /// Call after many compositions or an integration step. Infallible: the invariant keeps `|q|`
+    /// near one, so `√(w² + x² + y² + z²)` cannot overflow or underflow and the division is safe
+    /// (no `hypot` needed, which keeps this cheap on an MCU). The scale is
+    /// [`Ring::inv_sqrt_near_one`]: `1/√|q|²` for the floats, Newton's iteration to convergence in
+    /// fixed point (no division; valid for `|q|² ∈ (¼, 2)`).
+    #[inline]
+    pub fn renormalize(self) -> Self {
+        Self(self.0.scale(T::inv_sqrt_near_one(self.0.norm_squared())))
+    }
+
+    /// Restores unit norm to first order without a square root or a division:
+    /// `q + q·(1 − |q|²)/2`.
+    ///
+    /// One Newton step for `1/|q|`: if `|q|² = 1 + δ`, the result has `|q|² = 1 − 3δ²/4 + O(δ³)`,
+    /// so it suits the small drift of a per-step update (δ of a few ulp), not arbitrary input.
+    /// Written as a correction added to `q` (rather than `q·(3 − |q|²)/2`), so that the small
+    /// factor `(1 − |q|²)/2` keeps its precision and no constant outside `[−2, 2)` is needed.
+    #[inline]
+    pub fn renormalize_fast(self) -> Self {
+        let e = (T::ONE - self.0.norm_squared()) * T::HALF;
+        Self(self.0 + self.0.scale(e))
+    }
+}
+
+impl<T: Real> UnitQuat<T> {
     /// Norms at or below this are rejected as zero by [`UnitQuat::try_new`]: machine epsilon.
     ///
     /// A quaternion that short cannot have come from an attitude computation (those stay within
@@ -104,13 +228,6 @@ impl<T: Real> UnitQuat<T> {
         Ok(Self(q.scale(T::ONE / n)))
     }
 
-    /// Wraps `q` without checking. The caller promises `|q| = 1` up to rounding; breaking the
-    /// promise gives wrong rotations (scaled by `|q|²`), never undefined behaviour.
-    #[inline]
-    pub const fn new_unchecked(q: Quat<T>) -> Self {
-        Self(q)
-    }
-
     /// The rotation by `angle` (radians, right-handed) about `axis`:
     /// `q = (cos(angle/2), sin(angle/2)·axis/|axis|)`, seed (6.6.4).
     ///
@@ -130,114 +247,10 @@ impl<T: Real> UnitQuat<T> {
         let (s, c) = (angle * T::HALF).sin_cos();
         Self(Quat::from_parts(c, axis.scale(s)))
     }
-
-    /// The underlying quaternion.
-    #[inline]
-    pub const fn as_quat(&self) -> &Quat<T> {
-        &self.0
-    }
-
-    /// The underlying quaternion, by value.
-    #[inline]
-    pub const fn into_quat(self) -> Quat<T> {
-        self.0
-    }
-
-    /// Scalar part.
-    #[inline]
-    pub const fn w(&self) -> T {
-        self.0.w
-    }
-    /// `i` component.
-    #[inline]
-    pub const fn x(&self) -> T {
-        self.0.x
-    }
-    /// `j` component.
-    #[inline]
-    pub const fn y(&self) -> T {
-        self.0.y
-    }
-    /// `k` component.
-    #[inline]
-    pub const fn z(&self) -> T {
-        self.0.z
-    }
-
-    /// `[w, x, y, z]`.
-    #[inline]
-    pub const fn to_array(&self) -> [T; 4] {
-        self.0.to_array()
-    }
-
-    /// The inverse rotation, which for a unit quaternion is the conjugate.
-    #[inline]
-    pub fn inverse(self) -> Self {
-        Self(self.0.conjugate())
-    }
-
-    /// Four-dimensional dot product; `|dot| = cos(θ/2)` for the angle θ between two attitudes.
-    #[inline]
-    pub fn dot(self, o: Self) -> T {
-        self.0.dot(o.0)
-    }
-
-    /// Rotates a body-frame vector into the lab frame: `q ⊗ (0, v) ⊗ q*`.
-    ///
-    /// Evaluated as `v + w·t + u × t` with `u = (x, y, z)` and `t = 2 u × v` (15 multiplications,
-    /// 15 additions), algebraically equal to the sandwich product for unit `q`.
-    #[inline]
-    pub fn rotate(self, v: Vec3<T>) -> Vec3<T> {
-        let u = self.0.vector();
-        let t = u.cross(v);
-        let t = t + t;
-        v + t.scale(self.0.w) + u.cross(t)
-    }
-
-    /// Rotates a lab-frame vector into the body frame: `q* ⊗ (0, v) ⊗ q`.
-    #[inline]
-    pub fn inverse_rotate(self, v: Vec3<T>) -> Vec3<T> {
-        self.inverse().rotate(v)
-    }
-
-    /// The rotation matrix `R(q)`: columns are the body axes in lab coordinates, so that
-    /// `R(q)·v = q ⊗ v ⊗ q*`. Equal to the Rodrigues form (6.6.15) for the same axis and angle.
-    pub fn to_rotation_matrix(self) -> Mat3<T> {
-        let Quat { w, x, y, z } = self.0;
-        let two = T::TWO;
-        let (xx, yy, zz) = (x * x, y * y, z * z);
-        let (xy, xz, yz) = (x * y, x * z, y * z);
-        let (wx, wy, wz) = (w * x, w * y, w * z);
-        Mat3::from_rows(
-            [T::ONE - two * (yy + zz), two * (xy - wz), two * (xz + wy)],
-            [two * (xy + wz), T::ONE - two * (xx + zz), two * (yz - wx)],
-            [two * (xz - wy), two * (yz + wx), T::ONE - two * (xx + yy)],
-        )
-    }
-
-    /// Restores unit norm exactly: `q / |q|`.
-    ///
-    /// Call after many compositions or an integration step. Infallible: the invariant keeps `|q|`
-    /// near one, so `√(w² + x² + y² + z²)` cannot overflow or underflow and the division is safe
-    /// (no `hypot` needed, which keeps this cheap on an MCU).
-    #[inline]
-    pub fn renormalize(self) -> Self {
-        Self(self.0.scale(T::ONE / self.0.norm_squared().sqrt()))
-    }
-
-    /// Restores unit norm to first order without a square root: `q · (3 − |q|²)/2`.
-    ///
-    /// One Newton step for `1/|q|`: if `|q|² = 1 + δ`, the result has `|q|² = 1 − 3δ²/4 + O(δ³)`,
-    /// so it suits the small drift of a per-step update (δ of a few ulp), not arbitrary input.
-    #[inline]
-    pub fn renormalize_fast(self) -> Self {
-        let three = T::from_f64(3.0);
-        Self(self.0.scale((three - self.0.norm_squared()) * T::HALF))
-    }
 }
 
 /// Composition: `(q₁ * q₂)` applies `q₂` first, then `q₁` (Hamilton product).
-impl<T: Real> Mul for UnitQuat<T> {
+impl<T: Ring> Mul for UnitQuat<T> {
     type Output = Self;
     #[inline]
     fn mul(self, o: Self) -> Self {
@@ -246,7 +259,7 @@ impl<T: Real> Mul for UnitQuat<T> {
 }
 
 /// `q * v` rotates `v` (body → lab), as [`UnitQuat::rotate`].
-impl<T: Real> Mul<Vec3<T>> for UnitQuat<T> {
+impl<T: Ring> Mul<Vec3<T>> for UnitQuat<T> {
     type Output = Vec3<T>;
     #[inline]
     fn mul(self, v: Vec3<T>) -> Vec3<T> {
@@ -255,7 +268,7 @@ impl<T: Real> Mul<Vec3<T>> for UnitQuat<T> {
 }
 
 /// `−q`: the same rotation of vectors, the opposite spinor (a 2π turn away in SU(2)).
-impl<T: Real> Neg for UnitQuat<T> {
+impl<T: Ring> Neg for UnitQuat<T> {
     type Output = Self;
     #[inline]
     fn neg(self) -> Self {
@@ -263,7 +276,7 @@ impl<T: Real> Neg for UnitQuat<T> {
     }
 }
 
-impl<T: Real> From<UnitQuat<T>> for Quat<T> {
+impl<T: Ring> From<UnitQuat<T>> for Quat<T> {
     #[inline]
     fn from(q: UnitQuat<T>) -> Self {
         q.0

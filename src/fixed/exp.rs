@@ -1,0 +1,154 @@
+//! The fixed-point kernels behind [`crate::Ring::exp_beyond_series`] and
+//! [`crate::Ring::inv_sqrt_near_one`].
+
+use super::Fixed;
+use super::wide::{mul_wide, round_shift, saturate};
+use crate::rotation::half_angle_series;
+use crate::{Quat, Ring, Vec3};
+
+/// Halvings needed at most: `|φ|² < 3·2² = 12` for components in `[−2, 2)`, and `12/4⁵ < 1/64`.
+const MAX_HALVINGS: u32 = 5;
+
+/// `exp(φ)` for `|φ|² > 1/64` (θ > 1/8 rad), by scaling and squaring.
+///
+/// With `θⱼ = θ/2ʲ` and the smallest `k` that brings `θₖ² ≤ 1/64` (exact: `θ²` is formed in 64
+/// bits from the raw components, then shifted), the series gives `cₖ = cos(θₖ/2)` and
+/// `sₖ = sin(θₖ/2)/θₖ`. Each doubling of the angle, from level `j` to `j − 1`, is
+/// `c ← c² − Pⱼ`, `s ← c·s` with `Pⱼ = sin²(θⱼ/2)` (`cos 2x = cos²x − sin²x`,
+/// `sin(2x)/(2θ) = cos x · sin(x)/θ`, and the sinc is taken against `θⱼ₋₁ = 2θⱼ`, so `s` keeps
+/// the scale of `φ`). `Pⱼ` is tracked as `P̃ⱼ = Pⱼ·4^(j−2)`, which stays near `θ²/16` at every
+/// level (`P̃ⱼ₋₁ = cⱼ² P̃ⱼ`): a small `Pⱼ` never loses its relative precision to the format's
+/// absolute resolution, so the error of `c` grows only by the doubling of `c² − P` (≤ 2ᵏ times
+/// the series' rounding, measured in `host-tests/tests/fixed_point.rs`). Nothing is divided.
+/// The result `(c₀, s₀·φ)` scales the original `φ`.
+pub(crate) fn exp_large<const F: u32>(phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
+    // θ² in units of 2^-(2F−2): each square < 2⁶², shifted by 2, three of them < 3·2⁶⁰.
+    let sq = |x: Fixed<F>| mul_wide(x.0, x.0) >> 2;
+    let t2 = sq(phi.x) + sq(phi.y) + sq(phi.z);
+    // 1/64 in the same units.
+    let limit = 1i64 << (2 * F - 2 - 6);
+    let mut k = 0u32;
+    while k < MAX_HALVINGS && t2 > (limit << (2 * k)) {
+        k += 1;
+    }
+    let tk2 = Fixed::<F>(saturate(round_shift(t2, 2 * k + F - 2)));
+    let (mut c, mut s) = half_angle_series(tk2);
+    // P̃ₖ = sₖ²·θ²/16 (θ²/16 < 3/4).
+    let theta_sq_16 = Fixed::<F>(saturate(round_shift(t2, F + 2)));
+    let mut pt = (s * s) * theta_sq_16;
+    for j in (1..=k).rev() {
+        let cc = c * c;
+        let p = if j >= 2 {
+            Fixed::<F>(saturate(round_shift(i64::from(pt.0), 2 * (j - 2))))
+        } else {
+            pt.twice().twice()
+        };
+        let c_next = cc - p;
+        pt = cc * pt;
+        s = c * s;
+        c = c_next;
+    }
+    Quat::from_parts(c, phi.scale(s))
+}
+
+/// Extra fraction bits of the fused exponential's rotation vector and increment.
+const FINE: u32 = 3;
+
+/// `q ⊗ exp(φ)`, fused on the series domain (`|φ|² ≤ 1/64`); beyond it, the product with
+/// [`exp_large`]. See [`mul_exp_fine`].
+pub(crate) fn mul_exp<const F: u32>(q: Quat<Fixed<F>>, phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
+    // Components below ¼ rad fit 32 bits with FINE more fraction bits.
+    let quarter = 1i32 << (F - 2);
+    let fits = |x: Fixed<F>| x.0.unsigned_abs() < quarter as u32;
+    if fits(phi.x) && fits(phi.y) && fits(phi.z) {
+        let f = [phi.x.0 << FINE, phi.y.0 << FINE, phi.z.0 << FINE];
+        if let Some(r) = mul_exp_fine(q, f) {
+            return r;
+        }
+    }
+    q * exp_large(phi)
+}
+
+/// `q ⊗ exp(sum + lever × last)`: the cross product is formed exactly (64 bits) and rounded once
+/// to the fine scale 2^−(F+3), where it is added to the sum (exact there); then as
+/// [`mul_exp_fine`]. Beyond the fused domain, the rounded rotation vector goes to [`mul_exp`].
+pub(crate) fn mul_exp_coning<const F: u32>(
+    q: Quat<Fixed<F>>,
+    sum: Vec3<Fixed<F>>,
+    lever: Vec3<Fixed<F>>,
+    last: Vec3<Fixed<F>>,
+) -> Quat<Fixed<F>> {
+    let (l, b) = (lever, last);
+    // Each difference of two products < 2⁶³ (symmetric range); units 2^−2F.
+    let cross = [
+        mul_wide(l.y.0, b.z.0) - mul_wide(l.z.0, b.y.0),
+        mul_wide(l.z.0, b.x.0) - mul_wide(l.x.0, b.z.0),
+        mul_wide(l.x.0, b.y.0) - mul_wide(l.y.0, b.x.0),
+    ];
+    let s = [sum.x.0, sum.y.0, sum.z.0];
+    let limit = 1i64 << (F + FINE - 2); // ¼ rad at the fine scale
+    let mut f = [0i32; 3];
+    let mut fused = true;
+    for ((slot, &si), &ci) in f.iter_mut().zip(&s).zip(&cross) {
+        let v = (i64::from(si) << FINE) + round_shift(ci, F - FINE);
+        fused &= v.abs() < limit;
+        *slot = saturate(v);
+    }
+    if fused && let Some(r) = mul_exp_fine(q, f) {
+        return r;
+    }
+    mul_exp(q, sum + lever.cross(last))
+}
+
+/// `q ⊗ exp(φ)` for `φ` given at the fine scale 2^−(F+3) (components below ¼ rad), or `None`
+/// beyond the series domain `|φ|² > 1/64`.
+///
+/// With `c = cos(θ/2)` and `s = sin(θ/2)/θ` from the series, `u = s·φ` (`|u| ≤ 1/16`) is rounded
+/// to the fine scale (2⁻³³ in Q1.30, 8 times finer than the format), and each component of
+/// `q ⊗ (c, u)`, `(q_w c − q·u, c q_v + q_w u + q_v × u)`, is summed exactly in 64 bits (units
+/// 2^−(2F+1): the `c` products shifted left by one, the `u` products right by two; no overflow
+/// for any components in range) and rounded once, ties to even. The rotation increment itself is
+/// never rounded to the format's step: a constant rate would otherwise integrate that rounding
+/// linearly.
+fn mul_exp_fine<const F: u32>(q: Quat<Fixed<F>>, f: [i32; 3]) -> Option<Quat<Fixed<F>>> {
+    // θ² in units 2^−(2F+2·FINE−2) (each square < 2⁶², shifted by 2); 1/64 is 2^(2F−2) there.
+    let t2_wide: i64 = f.iter().map(|&x| mul_wide(x, x) >> 2).sum();
+    if t2_wide > 1i64 << (2 * F + 2 * FINE - 2 - 6) {
+        return None;
+    }
+    let t2 = Fixed::<F>(saturate(round_shift(t2_wide, F + 2 * FINE - 2)));
+    let (c, s) = half_angle_series(t2);
+    let fine = |x: i32| saturate(round_shift(mul_wide(s.0, x), F));
+    let (ux, uy, uz) = (fine(f[0]), fine(f[1]), fine(f[2]));
+    let (qw, qx, qy, qz) = (q.w.0, q.x.0, q.y.0, q.z.0);
+    let cc = |a: i32| mul_wide(a, c.0) << 1;
+    let uu = |a: i32, b: i32| mul_wide(a, b) >> 2;
+    let out = |sum: i64| Fixed::<F>(saturate(round_shift(sum, F + 1)));
+    Some(Quat::new(
+        out(cc(qw) - uu(qx, ux) - uu(qy, uy) - uu(qz, uz)),
+        out(cc(qx) + uu(qw, ux) + uu(qy, uz) - uu(qz, uy)),
+        out(cc(qy) + uu(qw, uy) - uu(qx, uz) + uu(qz, ux)),
+        out(cc(qz) + uu(qw, uz) + uu(qx, uy) - uu(qy, ux)),
+    ))
+}
+
+/// Newton iterations allowed: from `r = 1`, `x = 0.26` (the slowest case of the domain) needs 7.
+const MAX_NEWTON: u32 = 8;
+
+/// `1/√x` for `x ∈ (¼, 2)` by Newton's iteration `r ← r + r(1 − x r²)/2` from `r = 1`, until
+/// the correction rounds to zero (at most 8 steps; for a drifting unit quaternion, `|x − 1|` of a
+/// few units of resolution, one or two). Outside the domain the result saturates or is
+/// inaccurate, never a panic.
+pub(crate) fn inv_sqrt_near_one<const F: u32>(x: Fixed<F>) -> Fixed<F> {
+    let one = Fixed::<F>::ONE;
+    let mut r = one;
+    for _ in 0..MAX_NEWTON {
+        let e = one - x * (r * r);
+        let d = (r * e) * Fixed::<F>::HALF;
+        if d == Fixed::<F>::ZERO {
+            break;
+        }
+        r += d;
+    }
+    r
+}

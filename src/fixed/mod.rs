@@ -1,0 +1,668 @@
+//! Q-format fixed point for FPU-less cores (Cortex-M0/M0+/M3): the attitude path in integer
+//! arithmetic only, bit-identical on every target.
+//!
+//! [`Fixed<F>`] is a 32-bit signed value with `F` fraction bits (`Q(31−F).F`). It implements
+//! [`Ring`], so the attitude hot path runs on it unchanged: the quaternion product, vector
+//! rotation, rotation matrix, the exponential map ([`UnitQuat::exp_unchecked`]), fast and exact
+//! renormalisation, the health value
+//! [`norm_squared_deviation`](crate::propagation::normalization::norm_squared_deviation), the
+//! coning rules (one-plus-previous, 2-, 3-, 4-sample), the two-speed
+//! [`ConingAccumulator`](crate::propagation::ConingAccumulator) and the
+//! [`IncrementIntegrator`](crate::propagation::IncrementIntegrator). It does not implement
+//! [`crate::Real`] (no division, square root or trigonometry): Euler angles, the log map and the
+//! dynamics stay float.
+//!
+//! # Formats
+//!
+//! | quantity | type | Q format | range | resolution | at the edge of the range |
+//! |---|---|---|---|---|---|
+//! | unit quaternion components | `UnitQuat<Q30>` | Q1.30 | `[−2, 2)`, used `[−1, 1]` | 2⁻³⁰ ≈ 9.3e-10 | cannot overflow: `|qᵢ| ≤ 1 + drift` |
+//! | rotation matrix entries, unit vectors | `Mat3<Q30>`, `Vec3<Q30>` | Q1.30 | `[−1, 1]` | 2⁻³⁰ | a diagonal entry of exactly −1 saturates to −1 + 2⁻³⁰ |
+//! | gyro increments `Δθ`, rotation vectors `φ` (rad) | `Vec3<Q30>` | Q1.30 | `|·| < 2` rad per component | 2⁻³⁰ rad | conversion: [`Error::OutOfRange`]; sums (coning rules, accumulator): saturate |
+//! | raw sensor increments | `[i16; 3]` × [`IncrementScale`] | integer × rad/LSB | any `i16` | the sensor's LSB | the scale is checked once: no `i16` can leave Q1.30 |
+//! | body rates (rad/s) | `Vec3<Q24>` | Q7.24 | `[−128, 128)` rad/s | 2⁻²⁴ ≈ 6.0e-8 rad/s | conversion: [`Error::OutOfRange`] |
+//! | time steps (s) | `Q30` | Q1.30 | `(0, 2)` s | 2⁻³⁰ s ≈ 0.93 ns | conversion: [`Error::OutOfRange`] |
+//! | rate × step → increment | [`increment_from_rate`] | Q7.24 × Q1.30 → Q1.30 | | one rounding | saturates at ±2 rad |
+//!
+//! Every value is in the symmetric range `[−(2³¹ − 1), 2³¹ − 1]·2⁻ᶠ`: the most negative `i32` is
+//! never produced ([`Fixed::from_bits`] clamps it), so negation and `abs` are exact.
+//!
+//! # Arithmetic
+//! - `+`, `−`: saturating (clamp to the range, never wrap, never panic).
+//! - `×`: the exact 64-bit product, rounded to nearest with **ties to even**, then saturated.
+//!   Unbiased rounding matters: a rounding that always goes one way (the `fixed` crate's
+//!   multiplication truncates towards −∞, measured) adds a bias of half a unit per operation,
+//!   which a propagated attitude integrates into a linear drift over 10⁶ updates.
+//! - [`Ring::dot`] (1 to 4 products, the quaternion product's and the cross product's building
+//!   block): exact products summed in 64 bits and rounded once (with 3 or 4 terms the sum is
+//!   halved before rounding, so that it cannot overflow; the tie rule then applies to within
+//!   2⁻²ᶠ of a tie).
+//! - [`Ring::ratio`]: coefficients such as 2/3 or 9/20 are rounded at compile time; a ratio
+//!   outside the range is a compile error.
+//! - [`Ring::twice`]: saturating shift.
+//! - The exponential map: for `θ² = |φ|² ≤ 1/64` (θ ≤ 1/8 rad, the per-update angle of any
+//!   gyro at ≥ 300 Hz up to 2000 °/s) the series `cos(θ/2) ≈ 1 − θ²/8 + θ⁴/384`,
+//!   `sin(θ/2)/θ ≈ ½ − θ²/48 + θ⁴/3840`, whose first dropped term is ≤ 8.3e-11 < 2⁻³¹; beyond,
+//!   scaling and squaring (halve the angle up to five times, double back with
+//!   `cos 2x = cos²x − sin²x`), correct for every representable `φ` (`|φ| < 2√3`), including
+//!   angles beyond π. No angle is rejected.
+//! - The attitude update `q ⊗ exp(φ)` ([`UnitQuat::mul_exp`], used by every increment
+//!   integrator): fused, so that the small rotation increment `sin(θ/2)/θ·φ` is carried with 3
+//!   more fraction bits (2⁻³³) and each output component is rounded once. Without it, a constant
+//!   rate would integrate the rounding of its (identical) increment quaternion linearly. A
+//!   coning rule's update ([`UnitQuat::mul_exp_coning`]) also forms its cross product exactly
+//!   and adds it to the increments at 2⁻³³, so the small coning term is not rounded to 2⁻³⁰.
+//! - Renormalisation: [`UnitQuat::renormalize_fast`] is `q + q·(1 − |q|²)/2` (one Newton step of
+//!   the inverse square root, no division); [`UnitQuat::renormalize`] iterates that step on the
+//!   scale until it stops changing (valid for `|q|² ∈ (¼, 2)`).
+//!
+//! # Accuracy
+//! Measured against the f64 reference (`host-tests/tests/fixed_point.rs`,
+//! `fixed_firmware.rs`; `BENCHMARKS.md` has the tables), in units `u = 2⁻³⁰`: product ≤ 0.5u
+//! per component, rotation ≤ 3.4u, matrix ≤ 3.7u, exponential ≤ 0.64u on the series domain and
+//! ≤ 29u up to `|φ| = 3.4` rad. Over 10⁶ constant-rate updates the attitude error is 9.5e-6 rad
+//! (f32 on the same inputs: 3.9e-3 rad). Under classical coning the 2-sample path stays within
+//! 6e-9 rad of the closed form near the identity (f32: 6e-9 to 8e-8) and within 1.3e-6 rad from
+//! other base attitudes (f32: 5e-6 to 3e-5). One limit: the attitude itself has the absolute
+//! step 2⁻³⁰, and a periodic motion repeats its roundings every period; drifts below about
+//! 1e-7 rad/s are then measured with an offset of about 1.3e-8 rad/s (the one-plus-previous and
+//! 2-sample drift constants at α = 0.05 come out 16% high, f32 within 1%; the
+//! exponential-per-increment drift is reproduced to 0.4%). `host-tests` shows the cause by
+//! rounding the f64 path's attitude to 2⁻³⁰ per update, which reproduces the offset.
+//!
+//! # Cost
+//! The Cortex-M0 has no 32×32 → 64-bit multiply; an `i64` product there is a call of
+//! `__aeabi_lmul`. gyrostat forms the exact product from four 16×16-bit `muls` instead (see
+//! `wide.rs`); the other targets use their widening multiply (`smull`/`smlal` on the M3, M4F
+//! and M33, `mul`/`mulh` on RV32IMAC). Products are exact on every target, so the bits are the
+//! same everywhere (checked in CI: `examples/fw_fixed.rs` on the five QEMU boards, Cortex-M0,
+//! M3, M4F, M33 and RV32IMAC, against the host). Plain `i32`/`i64` was chosen over the `fixed` crate (1.31) by counting
+//! instructions: its `I2F30::saturating_mul` compiles on thumbv6m to 71 instructions plus four
+//! `__aeabi_lmul` calls, and a quaternion product written with it to 1162 instructions plus 64
+//! calls (static counts, `opt-level = 3`), more than the soft-float f32 product; it also
+//! truncates products (towards −∞) and, with debug assertions, panics on overflow.
+//!
+//! Measured cost per call (QEMU guest instructions, `bash benches/icount.sh`):
+//!
+//! | operation | M0 soft f32 | M0 Q1.30 | M3 soft f32 | M3 Q1.30 | M4F f32 (FPU) | M4F Q1.30 |
+//! |---|---:|---:|---:|---:|---:|---:|
+//! | quaternion product | 3276 | 597 | 1886 | 175 | 46 | 168 |
+//! | 2-sample coning update (rule, exp, product, renormalisation) | 9080 | 1944 | 5155 | 703 | 104 | 680 |
+//!
+//! # When to choose fixed point
+//! On a core without an FPU (Cortex-M0/M0+, M3), for the strapdown attitude update from gyro
+//! increments: it is several times cheaper than soft-float f32 there, its step near 1 is 2⁶ to
+//! 2⁷ times finer than f32's (2⁻³⁰ against 2⁻²⁴ just below 1 and 2⁻²³ above), and it gives the
+//! same bits on the flight computer and on a ground tool replaying the log (`propagate
+//! --fixed`). Keep floats for anything with divisions or trigonometry (Euler angles, dynamics),
+//! on cores with an FPU (the M4F's hardware f32 is cheaper still), and for rotation vectors or
+//! rates beyond the ranges above.
+//!
+//! ```
+//! use gyrostat::fixed::{IncrementScale, Q30};
+//! use gyrostat::propagation::coning::coning2_update;
+//! use gyrostat::UnitQuat;
+//!
+//! // A gyro delivering increments of 2^-20 rad per LSB.
+//! let scale = IncrementScale::try_new(1.0 / 1048576.0)?;
+//! let mut q = UnitQuat::<Q30>::IDENTITY;
+//! for _ in 0..1000 {
+//!     let t1 = scale.increment([1024, 0, 0]); // 2^-10 rad about body x
+//!     let t2 = scale.increment([1024, 0, 0]);
+//!     q = coning2_update(q, t1, t2);
+//! }
+//! // 2000 · 2^-10 rad ≈ 1.953 rad about x: cos(θ/2) to within the 1000 updates' roundings
+//! // (each exponential is rounded to 2^-31; with a constant input that rounding repeats).
+//! let qf = q.to_f64();
+//! assert!((qf.w() - (1000.0f64 / 1024.0).cos()).abs() < 1e-6);
+//! # Ok::<(), gyrostat::Error>(())
+//! ```
+
+mod exp;
+pub(crate) mod wide;
+
+use core::ops::{Add, AddAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+
+use crate::{Error, Quat, Ring, UnitQuat, Vec3};
+use wide::{mul_wide, ratio_bits, round_shift, sat_add, sat_sub, saturate};
+
+/// A signed fixed-point number with `FRAC` fraction bits in an `i32`: the format `Q(31−FRAC).FRAC`,
+/// value `raw · 2^−FRAC`. See the [module docs](self) for the arithmetic and the formats.
+///
+/// `FRAC` must be between 6 and 30 for the [`Ring`] operations (a larger value has no room for
+/// `1`, a smaller one none for the exponential map's threshold 1/64); using them outside that
+/// range is a compile-time error.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(transparent)]
+pub struct Fixed<const FRAC: u32>(i32);
+
+/// Q1.30: unit quaternions, unit vectors, rotation matrices, increments and rotation vectors
+/// (rad), time steps (s). Range `[−2, 2)`, resolution 2⁻³⁰.
+pub type Q30 = Fixed<30>;
+
+/// Q7.24: body rates (rad/s). Range `[−128, 128)`, resolution 2⁻²⁴.
+pub type Q24 = Fixed<24>;
+
+impl<const F: u32> Fixed<F> {
+    /// The number of fraction bits.
+    pub const FRAC_BITS: u32 = F;
+    /// The largest value, `(2³¹ − 1)·2^−F`.
+    pub const MAX: Self = Self(i32::MAX);
+    /// The smallest value, `−(2³¹ − 1)·2^−F` (the range is symmetric).
+    pub const MIN: Self = Self(-i32::MAX);
+    /// The resolution `2^−F` (one unit of the raw integer).
+    pub const DELTA: Self = Self(1);
+
+    /// The value whose raw integer is `raw` (`raw · 2^−F`); `i32::MIN` is clamped to
+    /// [`Fixed::MIN`].
+    #[inline]
+    pub const fn from_bits(raw: i32) -> Self {
+        Self(if raw == i32::MIN { -i32::MAX } else { raw })
+    }
+
+    /// The raw integer: the value times `2^F`.
+    #[inline]
+    pub const fn to_bits(self) -> i32 {
+        self.0
+    }
+
+    /// Converts an f64, rounding to the nearest value of the format (ties to even).
+    ///
+    /// Pure integer code on the IEEE bits: exact, the same on every target, and with no
+    /// floating-point instruction (cheap on an FPU-less core).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for NaN or ±∞; [`Error::OutOfRange`] when the rounded value is outside
+    /// `[−(2³¹ − 1), 2³¹ − 1]·2^−F`.
+    pub fn try_from_f64(x: f64) -> Result<Self, Error> {
+        let b = x.to_bits();
+        let exp = ((b >> 52) & 0x7FF) as i32;
+        if exp == 0x7FF {
+            return Err(Error::NonFinite);
+        }
+        if exp == 0 {
+            // Zero or subnormal (|x| < 2⁻¹⁰²²): rounds to zero in every format.
+            return Ok(Self(0));
+        }
+        let m = ((b & ((1u64 << 52) - 1)) | (1u64 << 52)) as i64;
+        // x = m·2^(exp − 1075), raw = m·2^(exp − 1075 + F) = m / 2^shift.
+        let shift = 1075 - exp - F as i32;
+        if shift <= 0 {
+            return Err(Error::OutOfRange);
+        }
+        // m < 2⁵³: a shift of 55 or more leaves less than ¼, which rounds to 0.
+        let mag = if shift >= 55 {
+            0
+        } else {
+            round_shift(m, shift as u32)
+        };
+        if mag > i64::from(i32::MAX) {
+            return Err(Error::OutOfRange);
+        }
+        let mag = mag as i32;
+        Ok(Self(if b >> 63 != 0 { -mag } else { mag }))
+    }
+
+    /// Converts an f32 (widened to f64 exactly, then as [`Fixed::try_from_f64`]).
+    ///
+    /// # Errors
+    /// As [`Fixed::try_from_f64`].
+    #[inline]
+    pub fn try_from_f32(x: f32) -> Result<Self, Error> {
+        Self::try_from_f64(f64::from(x))
+    }
+
+    /// The exact value as an f64 (every `Q(31−F).F` value is an f64).
+    #[inline]
+    pub fn to_f64(self) -> f64 {
+        f64::from(self.0) * pow2_neg(F)
+    }
+
+    /// The value rounded to the nearest f32 (ties to even; exact when the raw integer has at
+    /// most 24 significant bits).
+    #[inline]
+    pub fn to_f32(self) -> f32 {
+        // One rounding (i32 → f32), then an exact scaling by a power of two.
+        (self.0 as f32) * (pow2_neg(F) as f32)
+    }
+
+    /// The product in another format: `self · other` rounded (ties to even) to `H` fraction bits,
+    /// saturated. For example a rate in Q7.24 times a step in Q1.30 gives an increment in Q1.30
+    /// ([`increment_from_rate`]). `F + G ≥ H` is checked at compile time.
+    #[inline]
+    pub fn mul_to<const G: u32, const H: u32>(self, other: Fixed<G>) -> Fixed<H> {
+        let shift = const {
+            assert!(F + G >= H && F + G - H <= 62, "mul_to: F + G must be ≥ H");
+            F + G - H
+        };
+        Fixed(saturate(round_shift(mul_wide(self.0, other.0), shift)))
+    }
+}
+
+/// `2^−f` as an f64 (exact), without a float power function.
+#[inline]
+fn pow2_neg(f: u32) -> f64 {
+    f64::from_bits(((1023 - u64::from(f)) & 0x7FF) << 52)
+}
+
+impl<const F: u32> Add for Fixed<F> {
+    type Output = Self;
+    #[inline]
+    fn add(self, o: Self) -> Self {
+        Self(sat_add(self.0, o.0))
+    }
+}
+
+impl<const F: u32> Sub for Fixed<F> {
+    type Output = Self;
+    #[inline]
+    fn sub(self, o: Self) -> Self {
+        Self(sat_sub(self.0, o.0))
+    }
+}
+
+/// Exact: the range is symmetric.
+impl<const F: u32> Neg for Fixed<F> {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Self(self.0.wrapping_neg())
+    }
+}
+
+/// Rounded to nearest (ties to even), saturated.
+impl<const F: u32> Mul for Fixed<F> {
+    type Output = Self;
+    #[inline]
+    fn mul(self, o: Self) -> Self {
+        Self(saturate(round_shift(mul_wide(self.0, o.0), F)))
+    }
+}
+
+impl<const F: u32> AddAssign for Fixed<F> {
+    #[inline]
+    fn add_assign(&mut self, o: Self) {
+        *self = *self + o;
+    }
+}
+
+impl<const F: u32> SubAssign for Fixed<F> {
+    #[inline]
+    fn sub_assign(&mut self, o: Self) {
+        *self = *self - o;
+    }
+}
+
+impl<const F: u32> MulAssign for Fixed<F> {
+    #[inline]
+    fn mul_assign(&mut self, o: Self) {
+        *self = *self * o;
+    }
+}
+
+/// The sum of products of [`Ring::dot`], rounded to the format's resolution but not yet
+/// saturated (an `i64` raw value).
+#[inline]
+fn dot_wide<const F: u32, const N: usize>(a: [Fixed<F>; N], b: [Fixed<F>; N]) -> i64 {
+    const { assert!(N >= 1 && N <= 4, "Fixed::dot takes 1 to 4 terms") };
+    let mut p = [0i64; 4];
+    for (slot, (x, y)) in p.iter_mut().zip(a.into_iter().zip(b)) {
+        *slot = mul_wide(x.0, y.0);
+    }
+    // Each |product| < 2⁶² (symmetric range), so a pair sums without overflow; with 3 or 4
+    // terms the pair sums are halved first.
+    if N <= 2 {
+        round_shift(p[0] + p[1], F)
+    } else {
+        round_shift(((p[0] + p[1]) >> 1) + ((p[2] + p[3]) >> 1), F - 1)
+    }
+}
+
+impl<const F: u32> Ring for Fixed<F> {
+    const ZERO: Self = Self(0);
+    const ONE: Self = {
+        assert!(F >= 6 && F <= 30, "Fixed<F> implements Ring for 6 ≤ F ≤ 30");
+        Self(1 << F)
+    };
+    const HALF: Self = {
+        assert!(F >= 6 && F <= 30, "Fixed<F> implements Ring for 6 ≤ F ≤ 30");
+        Self(1 << (F - 1))
+    };
+    /// 1/64: θ ≤ 1/8 rad (see the module docs).
+    const EXP_SERIES_MAX_SQ: Self = {
+        assert!(F >= 6 && F <= 30, "Fixed<F> implements Ring for 6 ≤ F ≤ 30");
+        Self(1 << (F - 6))
+    };
+
+    #[inline]
+    fn is_finite(self) -> bool {
+        true
+    }
+    #[inline]
+    fn abs(self) -> Self {
+        Self(self.0.wrapping_abs())
+    }
+    #[inline]
+    fn twice(self) -> Self {
+        Self(sat_add(self.0, self.0))
+    }
+    #[inline]
+    fn ratio<const N: i32, const D: i32>() -> Self {
+        Self(const { ratio_bits(N, D, F) })
+    }
+    #[inline]
+    fn dot<const N: usize>(a: [Self; N], b: [Self; N]) -> Self {
+        Self(saturate(dot_wide(a, b)))
+    }
+    #[inline]
+    fn dot_fits<const N: usize>(a: [Self; N], b: [Self; N]) -> bool {
+        let s = dot_wide(a, b);
+        s >= -i64::from(i32::MAX) && s <= i64::from(i32::MAX)
+    }
+    #[inline]
+    fn exp_beyond_series(phi: Vec3<Self>, _theta_sq: Self) -> Quat<Self> {
+        exp::exp_large(phi)
+    }
+    #[inline]
+    fn mul_exp(q: Quat<Self>, phi: Vec3<Self>) -> Quat<Self> {
+        exp::mul_exp(q, phi)
+    }
+    #[inline]
+    fn mul_exp_coning(
+        q: Quat<Self>,
+        sum: Vec3<Self>,
+        lever: Vec3<Self>,
+        last: Vec3<Self>,
+    ) -> Quat<Self> {
+        exp::mul_exp_coning(q, sum, lever, last)
+    }
+    #[inline]
+    fn inv_sqrt_near_one(x: Self) -> Self {
+        exp::inv_sqrt_near_one(x)
+    }
+}
+
+impl<const F: u32> Vec3<Fixed<F>> {
+    /// Converts each component of an f64 vector (rounded to nearest, ties to even).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] as [`Fixed::try_from_f64`].
+    pub fn try_from_f64(v: Vec3<f64>) -> Result<Self, Error> {
+        Ok(Self::new(
+            Fixed::try_from_f64(v.x)?,
+            Fixed::try_from_f64(v.y)?,
+            Fixed::try_from_f64(v.z)?,
+        ))
+    }
+
+    /// Converts each component of an f32 vector (rounded to nearest, ties to even).
+    ///
+    /// # Errors
+    /// As [`Vec3::try_from_f64`].
+    pub fn try_from_f32(v: Vec3<f32>) -> Result<Self, Error> {
+        Self::try_from_f64(Vec3::from_array(v.to_array().map(f64::from)))
+    }
+
+    /// The exact value as an f64 vector.
+    pub fn to_f64(self) -> Vec3<f64> {
+        Vec3::new(self.x.to_f64(), self.y.to_f64(), self.z.to_f64())
+    }
+
+    /// Rounded to the nearest f32 vector.
+    pub fn to_f32(self) -> Vec3<f32> {
+        Vec3::new(self.x.to_f32(), self.y.to_f32(), self.z.to_f32())
+    }
+}
+
+impl<const F: u32> UnitQuat<Fixed<F>> {
+    /// Converts a float attitude, rounding each component to nearest (ties to even).
+    ///
+    /// The result is unit to the format's resolution (`||q|² − 1| ≤ 4·2^−F` from the four
+    /// roundings); it is not renormalised, so that converting is the only rounding.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite component (a broken `new_unchecked` promise);
+    /// [`Error::OutOfRange`] cannot occur for `F ≤ 30` and a unit input.
+    pub fn try_from_f64(q: UnitQuat<f64>) -> Result<Self, Error> {
+        let [w, x, y, z] = q.to_array();
+        Ok(Self::new_unchecked(Quat::new(
+            Fixed::try_from_f64(w)?,
+            Fixed::try_from_f64(x)?,
+            Fixed::try_from_f64(y)?,
+            Fixed::try_from_f64(z)?,
+        )))
+    }
+
+    /// Converts an f32 attitude (components widened exactly, then as
+    /// [`UnitQuat::try_from_f64`]).
+    ///
+    /// # Errors
+    /// As [`UnitQuat::try_from_f64`].
+    pub fn try_from_f32(q: UnitQuat<f32>) -> Result<Self, Error> {
+        let widened = Quat::from_array(q.to_array().map(f64::from));
+        Self::try_from_f64(UnitQuat::new_unchecked(widened))
+    }
+
+    /// The exact components as an f64 attitude (not renormalised: unit to the fixed-point
+    /// resolution; call [`UnitQuat::renormalize`] for f64-unit norm).
+    pub fn to_f64(self) -> UnitQuat<f64> {
+        let [w, x, y, z] = self.to_array();
+        UnitQuat::new_unchecked(Quat::new(w.to_f64(), x.to_f64(), y.to_f64(), z.to_f64()))
+    }
+
+    /// The components rounded to the nearest f32 (not renormalised).
+    pub fn to_f32(self) -> UnitQuat<f32> {
+        let [w, x, y, z] = self.to_array();
+        UnitQuat::new_unchecked(Quat::new(w.to_f32(), x.to_f32(), y.to_f32(), z.to_f32()))
+    }
+
+    /// The raw integers `[w, x, y, z]` (each the component times `2^F`): what firmware logs or
+    /// sends to compare bit for bit.
+    pub fn to_bits(self) -> [i32; 4] {
+        self.to_array().map(Fixed::to_bits)
+    }
+}
+
+/// The increment of a body rate held over a time step: `ω·Δt` from Q7.24 rad/s and a Q1.30
+/// step, rounded once to Q1.30 rad (ties to even), saturated at ±2 rad per component.
+#[inline]
+pub fn increment_from_rate(omega: Vec3<Q24>, dt: Q30) -> Vec3<Q30> {
+    Vec3::new(omega.x.mul_to(dt), omega.y.mul_to(dt), omega.z.mul_to(dt))
+}
+
+/// The scale of a gyro's raw increment registers: rad per LSB, for `i16` readings turned into
+/// Q1.30 increments without any floating point at run time.
+///
+/// Stored as a 31-bit mantissa and a shift, fixed when the scale is built (the only place a float
+/// is read): an increment is `round(raw · m / 2^shift)` in units of 2⁻³⁰ rad, one exact
+/// product and one rounding (ties to even). The scale's own rounding is relative 2⁻³¹ at most.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct IncrementScale {
+    mantissa: i32,
+    shift: u32,
+}
+
+impl IncrementScale {
+    /// The scale `rad_per_lsb` (rad per LSB of an increment register).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for NaN or ±∞; [`Error::InvalidArgument`] for a scale `≤ 0`;
+    /// [`Error::OutOfRange`] for a scale `≥ 2⁻¹⁴` rad/LSB (then a full-scale reading,
+    /// 32768 LSB, would reach 2 rad and leave Q1.30) or `< 2⁻³⁰` (below the resolution of
+    /// Q1.30: every reading would round to a multiple of it).
+    pub fn try_new(rad_per_lsb: f64) -> Result<Self, Error> {
+        let b = rad_per_lsb.to_bits();
+        let exp = ((b >> 52) & 0x7FF) as i32;
+        if exp == 0x7FF {
+            return Err(Error::NonFinite);
+        }
+        if b >> 63 != 0 || rad_per_lsb == 0.0 {
+            return Err(Error::InvalidArgument);
+        }
+        // x = M·2^(exp − 1075), M ∈ [2⁵², 2⁵³) (a subnormal x is far below the lower bound);
+        // x·2³⁰ = round(M/2²²)·2^(exp − 1023) = m / 2^(1023 − exp).
+        let big_m = ((b & ((1u64 << 52) - 1)) | (1u64 << 52)) as i64;
+        let mut m = round_shift(big_m, 22);
+        let mut shift = 1023 - exp;
+        if m == 1 << 31 {
+            m = 1 << 30;
+            shift -= 1;
+        }
+        // x < 2⁻¹⁴ ⇔ shift ≥ 15; x ≥ 2⁻³⁰ ⇔ shift ≤ 30.
+        if exp == 0 || !(15..=30).contains(&shift) {
+            return Err(Error::OutOfRange);
+        }
+        Ok(Self {
+            mantissa: m as i32,
+            shift: shift as u32,
+        })
+    }
+
+    /// The scale of a rate register (rad/s per LSB) integrated over a step `dt` (s):
+    /// `rad_per_s_per_lsb · dt` rad per LSB, the rectangle rule for a rate sampled once per step.
+    ///
+    /// # Errors
+    /// As [`IncrementScale::try_new`] for the product.
+    pub fn try_from_rate(rad_per_s_per_lsb: f64, dt: f64) -> Result<Self, Error> {
+        Self::try_new(rad_per_s_per_lsb * dt)
+    }
+
+    /// The scale in rad/LSB, exactly as stored.
+    pub fn rad_per_lsb(&self) -> f64 {
+        f64::from(self.mantissa) * pow2_neg(self.shift + 30)
+    }
+
+    /// One reading in Q1.30 rad. Infallible: the scale was checked so that no `i16` leaves the
+    /// range.
+    #[inline]
+    pub fn to_q30(&self, raw: i16) -> Q30 {
+        Fixed(saturate(round_shift(
+            mul_wide(i32::from(raw), self.mantissa),
+            self.shift,
+        )))
+    }
+
+    /// The increment vector of a raw `[x, y, z]` register triple, in Q1.30 rad.
+    #[inline]
+    pub fn increment(&self, raw: [i16; 3]) -> Vec3<Q30> {
+        Vec3::new(
+            self.to_q30(raw[0]),
+            self.to_q30(raw[1]),
+            self.to_q30(raw[2]),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+
+    #[test]
+    fn conversions_round_to_nearest_even_and_check_the_range() {
+        let d = Q30::DELTA.to_f64();
+        assert_eq!(d, 2f64.powi(-30));
+        assert_eq!(Q30::try_from_f64(1.0).unwrap().to_bits(), 1 << 30);
+        assert_eq!(Q30::try_from_f64(-0.0).unwrap().to_bits(), 0);
+        assert_eq!(Q30::try_from_f64(2.5 * d).unwrap().to_bits(), 2);
+        assert_eq!(Q30::try_from_f64(3.5 * d).unwrap().to_bits(), 4);
+        assert_eq!(Q30::try_from_f64(-2.5 * d).unwrap().to_bits(), -2);
+        assert_eq!(Q30::try_from_f64(0.49 * d).unwrap().to_bits(), 0);
+        assert_eq!(Q30::try_from_f64(1e-300).unwrap().to_bits(), 0);
+        assert_eq!(Q30::try_from_f64(2.0 - d).unwrap(), Q30::MAX);
+        assert_eq!(Q30::try_from_f64(-(2.0 - d)).unwrap(), Q30::MIN);
+        assert_eq!(Q30::try_from_f64(2.0), Err(Error::OutOfRange));
+        assert_eq!(Q30::try_from_f64(-2.0), Err(Error::OutOfRange));
+        assert_eq!(Q30::try_from_f64(2.0 - 0.4 * d), Err(Error::OutOfRange));
+        assert_eq!(Q30::try_from_f64(1e300), Err(Error::OutOfRange));
+        assert_eq!(Q30::try_from_f64(f64::NAN), Err(Error::NonFinite));
+        assert_eq!(Q30::try_from_f64(f64::NEG_INFINITY), Err(Error::NonFinite));
+        assert_eq!(Q24::try_from_f64(100.0).unwrap().to_f64(), 100.0);
+        // Round trip of every representable value class.
+        for raw in [1, -1, 12345, -i32::MAX, i32::MAX, 1 << 29] {
+            let x = Q30::from_bits(raw);
+            assert_eq!(Q30::try_from_f64(x.to_f64()).unwrap(), x);
+        }
+        assert_eq!(Q30::from_bits(i32::MIN), Q30::MIN);
+        assert_eq!(Q30::from_bits(1 << 30).to_f32(), 1.0f32);
+    }
+
+    #[test]
+    fn arithmetic_saturates_and_rounds() {
+        let q = |x: f64| Q30::try_from_f64(x).unwrap();
+        assert_eq!(Q30::MAX + Q30::DELTA, Q30::MAX);
+        assert_eq!(Q30::MIN - Q30::DELTA, Q30::MIN);
+        assert_eq!(-Q30::MIN, Q30::MAX);
+        assert_eq!(Q30::MIN.abs(), Q30::MAX);
+        assert_eq!(q(1.5) * q(1.5), Q30::MAX); // 2.25 saturates
+        assert_eq!(q(-1.5) * q(1.5), Q30::MIN);
+        assert_eq!(q(1.5).twice(), Q30::MAX);
+        // 3 units × ½ = 1.5 units → 2 (tie to even), 5 × ½ = 2.5 → 2, −3 × ½ → −2.
+        let h = Q30::HALF;
+        assert_eq!((Q30::from_bits(3) * h).to_bits(), 2);
+        assert_eq!((Q30::from_bits(5) * h).to_bits(), 2);
+        assert_eq!((Q30::from_bits(-3) * h).to_bits(), -2);
+        // dot rounds once: four products of 1 unit × ½ (each a tie) sum to 2 units exactly.
+        let d = Q30::dot([Q30::DELTA; 4], [h; 4]);
+        assert_eq!(d.to_bits(), 2);
+        // No overflow at the extremes: MAX·MAX·4 saturates.
+        assert_eq!(Q30::dot([Q30::MAX; 4], [Q30::MAX; 4]), Q30::MAX);
+        assert_eq!(Q30::dot([Q30::MAX; 4], [Q30::MIN; 4]), Q30::MIN);
+        assert_eq!(Q30::dot([Q30::MAX; 2], [Q30::MIN; 2]), Q30::MIN);
+        assert_eq!(Q30::ratio::<2, 3>().to_bits(), 715_827_883);
+        assert_eq!(Q30::ratio::<-27, 20>().to_bits(), -1_449_551_462); // −1.35·2³⁰ = −1449551462.4
+    }
+
+    #[test]
+    fn increment_scale_is_checked_once() {
+        let s = IncrementScale::try_new(2f64.powi(-20)).unwrap();
+        assert_eq!(s.rad_per_lsb(), 2f64.powi(-20));
+        assert_eq!(s.to_q30(1).to_bits(), 1 << 10);
+        assert_eq!(s.to_q30(i16::MIN).to_bits(), -(1 << 25));
+        let g = IncrementScale::try_new(1.0653e-6).unwrap();
+        let want = 1.0653e-6 * 32767.0 * 2f64.powi(30);
+        assert!((f64::from(g.to_q30(32767).to_bits()) - want).abs() <= 0.5 + want * 2f64.powi(-31));
+        assert!((g.rad_per_lsb() / 1.0653e-6 - 1.0).abs() < 2f64.powi(-30));
+        assert_eq!(
+            IncrementScale::try_new(2f64.powi(-14)),
+            Err(Error::OutOfRange)
+        );
+        assert!(IncrementScale::try_new(2f64.powi(-14) * 0.999).is_ok());
+        assert!(IncrementScale::try_new(2f64.powi(-30)).is_ok());
+        assert_eq!(
+            IncrementScale::try_new(2f64.powi(-31)),
+            Err(Error::OutOfRange)
+        );
+        assert_eq!(IncrementScale::try_new(0.0), Err(Error::InvalidArgument));
+        assert_eq!(IncrementScale::try_new(-1e-6), Err(Error::InvalidArgument));
+        assert_eq!(IncrementScale::try_new(f64::NAN), Err(Error::NonFinite));
+        // A scale that rounds (to 31 bits) up to 2⁻¹⁴ is rejected; the largest valid one keeps
+        // every i16 inside Q1.30.
+        assert_eq!(
+            IncrementScale::try_new(2f64.powi(-14) * (1.0 - 2f64.powi(-40))),
+            Err(Error::OutOfRange)
+        );
+        let top = IncrementScale::try_new(2f64.powi(-14) * (1.0 - 2f64.powi(-20))).unwrap();
+        assert!(top.to_q30(i16::MIN) > Q30::MIN && top.to_q30(i16::MAX) < Q30::MAX);
+        // A rate register: 0.061 °/s per LSB at 1 kHz.
+        let r = IncrementScale::try_from_rate(0.061f64.to_radians(), 1e-3).unwrap();
+        assert!((r.rad_per_lsb() / (0.061f64.to_radians() * 1e-3) - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn rate_times_step() {
+        let w = Vec3::<Q24>::try_from_f64(Vec3::new(100.0, -0.5, 3.0)).unwrap();
+        let dt = Q30::try_from_f64(1e-3).unwrap();
+        let d = increment_from_rate(w, dt).to_f64();
+        let dt_q = dt.to_f64();
+        assert!((d.x - 100.0 * dt_q).abs() <= 2f64.powi(-31));
+        assert!((d.y + 0.5 * dt_q).abs() <= 2f64.powi(-31));
+        let big = increment_from_rate(
+            Vec3::<Q24>::try_from_f64(Vec3::new(127.0, 0.0, 0.0)).unwrap(),
+            Q30::try_from_f64(1.5).unwrap(),
+        );
+        assert_eq!(big.x, Q30::MAX);
+    }
+}
