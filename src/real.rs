@@ -177,7 +177,7 @@ pub trait Ring:
     }
     /// `1/√x` for `x` near one (the squared norm of a drifting unit quaternion): the scale of
     /// [`crate::UnitQuat::renormalize`]. The floats compute `1/√x` for any positive `x`; fixed
-    /// point iterates Newton steps and is accurate for `x ∈ [¼, 2)`.
+    /// point iterates Newton steps and is accurate for `x ∈ (½, 2)`.
     fn inv_sqrt_near_one(x: Self) -> Self;
 }
 

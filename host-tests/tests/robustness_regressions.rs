@@ -379,3 +379,30 @@ host_tests::per_type! {
         );
     }
 }
+
+/// Fixed point: increments whose sums saturate Q1.30 were accepted by the checked pushes, and
+/// the attitude moved by the saturated (wrong) rotation. Two increments of 1.5 rad about x sum to
+/// 3 rad, within the step limit but beyond Q1.30's 2: the accumulator now refuses the second;
+/// the increment integrator refuses components of a quarter of the range (0.25 rad) or more.
+#[test]
+fn fixed_point_saturating_sums_are_out_of_range() {
+    use gyrostat::fixed::Q30;
+    let x = |v: f64| {
+        Vec3::new(
+            Q30::try_from_f64(v).unwrap(),
+            Q30::from_bits(0),
+            Q30::from_bits(0),
+        )
+    };
+    let mut acc = ConingAccumulator::<Q30>::new();
+    assert_eq!(acc.push(x(1.5)), Ok(()));
+    assert_eq!(acc.push(x(1.5)), Err(Error::OutOfRange));
+    assert_eq!(acc.rotation_vector(), x(1.5));
+    let mut it = IncrementIntegrator::new(
+        UnitQuat::<Q30>::IDENTITY,
+        ConingRule::TwoSample,
+        Normalization::Fast,
+    );
+    assert_eq!(it.push(x(0.3)), Err(Error::OutOfRange));
+    assert_eq!(it.push(x(0.2)), Ok(None));
+}

@@ -54,7 +54,8 @@
 //!   and adds it to the increments at 2⁻³³, so the small coning term is not rounded to 2⁻³⁰.
 //! - Renormalisation: [`UnitQuat::renormalize_fast`] is `q + q·(1 − |q|²)/2` (one Newton step of
 //!   the inverse square root, no division); [`UnitQuat::renormalize`] iterates that step on the
-//!   scale until it stops changing (valid for `|q|² ∈ (¼, 2)`).
+//!   scale until it stops changing (valid for `|q|² ∈ (½, 2)`: below, the squared scale
+//!   `1/|q|²` leaves Q1.30).
 //!
 //! # Accuracy
 //! Measured against the f64 reference (`host-tests/tests/fixed_point.rs`,

@@ -13,7 +13,7 @@ pub enum Normalization {
     /// `q / |q|` ([`UnitQuat::renormalize`]): exact to rounding; the floats pay a square root
     /// and a division (a plain square root of `|q|²`: the norm of a propagated attitude is near 1,
     /// so no overflow-safe `hypot` is needed), fixed point Newton's iteration to convergence (for
-    /// `|q|² ∈ (¼, 2)`).
+    /// `|q|² ∈ (½, 2)`).
     Exact,
     /// `q + q·(1 − |q|²)/2` ([`UnitQuat::renormalize_fast`]): one Newton step for `1/|q|`, no
     /// square root or division. If `|q|² = 1 + δ` the result has `|q|² = 1 − 3δ²/4 + O(δ³)`, so

@@ -139,7 +139,7 @@ impl<T: Ring> UnitQuat<T> {
     /// near one, so `√(w² + x² + y² + z²)` cannot overflow or underflow and the division is safe
     /// (no `hypot` needed, which keeps this cheap on an MCU). The scale is
     /// [`Ring::inv_sqrt_near_one`]: `1/√|q|²` for the floats, Newton's iteration to convergence in
-    /// fixed point (no division; valid for `|q|² ∈ (¼, 2)`).
+    /// fixed point (no division; valid for `|q|² ∈ (½, 2)`).
     #[inline]
     pub fn renormalize(self) -> Self {
         Self(self.0.scale(T::inv_sqrt_near_one(self.0.norm_squared())))
