@@ -12,7 +12,7 @@
 //! ```
 //!
 //! A call passes when it returns a typed [`gyrostat::Error`], or an `Ok` value that is finite and
-//! within its invariant ([`unit`] for a `UnitQuat`, [`rotation`] for a `Dcm`, …). It fails when
+//! within its invariant ([`unit()`] for a `UnitQuat`, [`rotation`] for a `Dcm`, …). It fails when
 //! it panics ([`Trial::Panic`], with the input) or returns an `Ok` value that breaks its
 //! invariant ([`Trial::Bad`], with the input and the reason). [`run_campaign`] runs a list of
 //! families for f32 and f64, prints one table row per family and type, asserts that no call
@@ -78,7 +78,7 @@ pub type Check = Result<(), Fail>;
 thread_local! {
     /// Set while a probe runs, so that the panic hook stays quiet for panics the probe reports.
     static PROBING: Cell<bool> = const { Cell::new(false) };
-    /// The largest `||q| − 1|` (in ε of the type) that [`unit`] accepted in the current family.
+    /// The largest `||q| − 1|` (in ε of the type) that [`unit()`] accepted in the current family.
     static WORST_UNIT: Cell<f64> = const { Cell::new(0.0) };
 }
 
@@ -996,7 +996,7 @@ fn group(n: u64) -> String {
     let s = n.to_string();
     let mut out = String::new();
     for (i, ch) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i) % 3 == 0 {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
             out.push('\u{202f}');
         }
         out.push(ch);

@@ -404,7 +404,9 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                     let s = if g.rng.chance(0.5) {
                         1.0 + g.rng.range(-1e-3, 1e-3)
                     } else {
-                        g.rng.range(0.7072, 1.4142)
+                        // |q|² = s² in (½, 2), a hair inside both ends.
+                        let r = std::f64::consts::SQRT_2;
+                        g.rng.range(1.0001 / r, 0.9999 * r)
                     };
                     q.to_f64()
                         .to_array()

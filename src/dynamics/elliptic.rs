@@ -124,14 +124,14 @@ pub(crate) fn pow2_scale<T: Real>(x: T) -> T {
     // Greedy on the binary digits of the exponent, largest first.
     for &f in factors.iter().take(n).rev() {
         if y >= f {
-            y = y / f;
-            s = s * f;
+            y /= f;
+            s *= f;
         }
     }
     for &f in factors.iter().take(n).rev() {
         if y * f < T::TWO {
-            y = y * f;
-            s = s / f;
+            y *= f;
+            s /= f;
         }
     }
     s

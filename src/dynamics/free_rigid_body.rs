@@ -622,7 +622,9 @@ impl<T: Real> FreeRigidBody<T> {
             return Err(Error::NonFinite);
         }
         let phase = (t * self.rate_scale).abs() * self.max_rate;
-        if !(phase <= exact_step_angle_limit::<T>()) {
+        // A NaN or infinite phase (an overflowed product) is not within the limit either.
+        let within = phase <= exact_step_angle_limit::<T>();
+        if !within {
             return Err(Error::StepTooLong);
         }
         Ok(self.state_at(t))

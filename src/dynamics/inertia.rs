@@ -311,7 +311,8 @@ fn check_moments<T: Real>(moments: Vec3<T>) -> Result<(), Error> {
     let tol = T::from_f64(EIGEN_TOLERANCE_EPS) * T::EPSILON * (a + b + c).abs();
     let min = a.min(b).min(c);
     // Written so that a NaN fails.
-    if !(min > tol) || a > b + c + tol || b > a + c + tol || c > a + b + tol {
+    let positive = min > tol;
+    if !positive || a > b + c + tol || b > a + c + tol || c > a + b + tol {
         return Err(Error::NonPhysicalInertia);
     }
     Ok(())

@@ -40,7 +40,8 @@ pub fn step_constant_rate<T: Real>(
     let phi = omega_body.try_finite()?.scale(dt);
     // ω finite and Δt finite can still overflow to ∞ in the product: then the square does too.
     let limit = exact_step_angle_limit::<T>();
-    if !(phi.norm_squared() <= limit * limit) {
+    let within = phi.norm_squared() <= limit * limit;
+    if !within {
         return Err(Error::StepTooLong);
     }
     Ok(q * UnitQuat::exp_unchecked(phi))
