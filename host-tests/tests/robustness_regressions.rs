@@ -301,9 +301,23 @@ host_tests::per_type! {
         let huge = vec3::<T>([T::per_type(1e30, 1e200), 0.5, 0.0]);
         for rule in ConingRule::ALL {
             let mut integ = IncrementIntegrator::new(UnitQuat::IDENTITY, rule, Normalization::Fast);
-            assert_eq!(integ.push(huge), Err(Error::StepTooLong), "{rule:?}");
+            // The exact exponential takes any increment whose square is finite (this one's is
+            // not); the coning rules stop at their step limit.
+            let want = if rule == ConingRule::Exp {
+                Error::InvalidArgument
+            } else {
+                Error::StepTooLong
+            };
+            assert_eq!(integ.push(huge), Err(want), "{rule:?}");
             assert_eq!(integ.pending(), 0);
         }
+        // A long rotation vector is applied as given by the exact exponential: 10 rad about z
+        // is 10 − 2π ≈ 3.717 rad about z.
+        let mut integ =
+            IncrementIntegrator::new(UnitQuat::IDENTITY, ConingRule::Exp, Normalization::Exact);
+        let q = integ.push(vec3::<T>([0.0, 0.0, 10.0])).unwrap().unwrap();
+        let want = UnitQuat::try_from_axis_angle(vec3::<T>([0.0, 0.0, 1.0]), T::from_f64(10.0));
+        assert!(q.angle_to(want.unwrap()).to_f64() < T::CONTRACT * 10.0, "{q:?}");
         let mut acc = ConingAccumulator::<T>::new();
         let big = vec3::<T>([T::per_type(1e20, 1e200), 1.0, 0.0]);
         assert_eq!(acc.push(big), Err(Error::StepTooLong));

@@ -271,21 +271,31 @@ impl<T: Ring> IncrementIntegrator<T> {
     /// Returns the new attitude when it completes an update group, `None` otherwise.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite component; [`Error::StepTooLong`] for an
-    /// increment larger than [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) (the coning rules are
-    /// truncated series in the increments, see there); in fixed point, [`Error::OutOfRange`] for
-    /// an increment component of a quarter of the format's range or more (0.25 rad in Q1.30:
-    /// below it a group of four increments, its rule's lever and cross product cannot saturate).
-    /// Either way the increment is discarded and the state is unchanged.
+    /// [`Error::NonFinite`] for a NaN or infinite component. With a coning rule,
+    /// [`Error::StepTooLong`] for an increment larger than
+    /// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) (the coning rules are truncated series in the
+    /// increments, see there) and, in fixed point, [`Error::OutOfRange`] for an increment
+    /// component of a quarter of the format's range or more (0.25 rad in Q1.30: below it a group
+    /// of four increments, its rule's lever and cross product cannot saturate). With
+    /// [`ConingRule::Exp`] (the exact exponential of each increment, no series) any increment
+    /// whose squared norm is finite is taken, so that a rotation vector of any length is applied
+    /// as given; [`Error::InvalidArgument`] when the square overflows. Either way the increment
+    /// is discarded and the state is unchanged.
     pub fn push(&mut self, dtheta: Vec3<T>) -> Result<Option<UnitQuat<T>>, Error> {
         let dtheta = dtheta.try_finite()?;
-        if !within_step_limit(dtheta) {
-            return Err(Error::StepTooLong);
-        }
-        // 8·|Δθᵢ| within the range (always for the floats).
-        let fits = |c: T| T::dot_fits([c.twice(); 4], [T::ONE; 4]);
-        if !(fits(dtheta.x) && fits(dtheta.y) && fits(dtheta.z)) {
-            return Err(Error::OutOfRange);
+        if self.rule == ConingRule::Exp {
+            if !dtheta.norm_squared().is_finite() {
+                return Err(Error::InvalidArgument);
+            }
+        } else {
+            if !within_step_limit(dtheta) {
+                return Err(Error::StepTooLong);
+            }
+            // 8·|Δθᵢ| within the range (always for the floats).
+            let fits = |c: T| T::dot_fits([c.twice(); 4], [T::ONE; 4]);
+            if !(fits(dtheta.x) && fits(dtheta.y) && fits(dtheta.z)) {
+                return Err(Error::OutOfRange);
+            }
         }
         let n = self.rule.samples_per_update();
         if self.group.push(dtheta).is_err() {

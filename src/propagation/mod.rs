@@ -46,7 +46,7 @@ use crate::{Real, Ring, Vec3};
 /// turn is also aliased for everything downstream: the attitudes at its ends are joined by the
 /// shorter rotation the other way ([`kinematics::body_rate_between`]).
 ///
-/// The checked entry points test it ([`coning::IncrementIntegrator::push`],
+/// The checked entry points test it ([`coning::IncrementIntegrator::push`] with a coning rule,
 /// [`coning::ConingAccumulator::push`], [`rate_samples::RateIntegrator::push`],
 /// [`crate::dynamics::Gyrostat::step`]); the unchecked step functions state it as their domain.
 pub const MAX_STEP_ANGLE: f64 = core::f64::consts::PI;
