@@ -6,8 +6,12 @@
 //! ```
 //! Run with `--help` for the full description of the input and output formats.
 
+#[macro_use]
+#[path = "cli/stream.rs"]
+mod stream;
+
 use std::fmt::Debug;
-use std::io::{self, BufRead, BufWriter, Write};
+use std::io::{self, Write};
 use std::process::ExitCode;
 use std::str::FromStr;
 
@@ -17,6 +21,8 @@ use gyrostat::propagation::{
 };
 use gyrostat::{Quat, Real, UnitQuat, Vec3};
 
+use stream::{Csv, Lines};
+
 const HELP: &str = "\
 propagate: integrate gyro increments or rate samples into attitude quaternions
 
@@ -25,10 +31,10 @@ USAGE:
               [--every N]
 
 INPUT (stdin): one sample per line, three comma-separated numbers `dx,dy,dz` (body frame).
-    --input increments   line k (0-based) is the integral of omega over [k*dt, (k+1)*dt], rad
-    --input rates        line k is omega(k*dt), rad/s
-    Blanks around numbers are allowed; a bad row stops the run with
-    `error: line N: reason` on stderr (N is 1-based) and exit status 1.
+    --input increments   sample k (0-based) is the integral of omega over [k*dt, (k+1)*dt], rad
+    --input rates        sample k is omega(k*dt), rad/s
+    Blanks around numbers are allowed. Blank lines (empty or only blanks) are skipped, the last
+    one too; they count for line numbers but are not samples.
 
 ALGO for --input increments:
     exp       one exponential per increment, no coning correction
@@ -59,7 +65,9 @@ OPTIONS:
     --help         print this text
 
 OUTPUT (stdout): `k,qw,qx,qy,qz` after sample k (0-based) whenever k is a multiple of N, and
-    always after the last sample consumed. Numbers are printed in the shortest form that
+    always after the last sample consumed (the last valid one when the run stops at an error).
+    Rows are written as they are computed (flushed at least every 0.1 s and whenever the input
+    stalls). Numbers are printed in the shortest form that
     round-trips to the same f64 (or f32 with --f32). The attitude is renormalised exactly after
     every update (with --fixed: the fast renormalisation, see above).
     increments: the line for sample k is the attitude at time (k+1)*dt, after increments 0..=k.
@@ -69,6 +77,17 @@ OUTPUT (stdout): `k,qw,qx,qy,qz` after sample k (0-based) whenever k is a multip
         coning1 with the increment before it; 2: coning2; 3: coning3), so every increment
         consumed is integrated; inside-group lines are not fed back into later updates.
     rates: the line for sample k is the attitude at time k*dt (k = 0 prints q0).
+
+ERRORS (stderr, nothing else on stdout after them):
+    error: line N: reason      (N counts every line from 1, blank ones too) exit status 1
+        A line that is not three finite numbers, not UTF-8 text, or longer than 1 MiB, a sample
+        that turns the body so far that the angle itself is not known to 1e-3 rad (beyond
+        4.5e12 rad in f64, 8.4e3 rad with --f32: its attitude would be noise), and a sample whose
+        attitude would not be a finite unit quaternion stop the run there. The rows before it are kept, and the attitude
+        after the last valid sample is printed as promised above (after a malformed line the
+        samples before it are integrated to their end, as if the input ended there).
+    error: reason              bad command-line arguments: exit status 2, no output
+    When stdout is closed early (a pipe into `head`), the run stops quietly with status 0.
 ";
 
 #[derive(Clone, Copy)]
@@ -97,10 +116,10 @@ fn parse_args() -> Result<Option<Args>, String> {
     let mut input: Option<String> = None;
     let mut algo: Option<String> = None;
     let mut dt: Option<f64> = None;
-    let mut q0 = [1.0, 0.0, 0.0, 0.0];
+    let mut q0 = [1.0f64, 0.0, 0.0, 0.0];
     let mut arith = Arith::F64;
     let mut every = 1u64;
-    let mut it = std::env::args().skip(1);
+    let mut it = stream::args()?.into_iter();
     while let Some(a) = it.next() {
         let mut value = |name: &str| it.next().ok_or_else(|| format!("{name} needs a value"));
         match a.as_str() {
@@ -132,6 +151,9 @@ fn parse_args() -> Result<Option<Args>, String> {
                         .trim()
                         .parse()
                         .map_err(|_| format!("--q0: invalid number '{}'", p.trim()))?;
+                    if !slot.is_finite() {
+                        return Err(format!("--q0: not a finite number '{}'", p.trim()));
+                    }
                 }
             }
             "--f32" | "--fixed" => {
@@ -214,19 +236,28 @@ fn parse_row<T: Real + FromStr>(line: &str) -> Result<Vec3<T>, String> {
     Ok(Vec3::new(v[0], v[1], v[2]))
 }
 
-struct Printer<W: Write> {
-    out: W,
+/// The rows on stdout.
+struct Printer {
+    out: Csv,
     every: u64,
     last_printed: Option<u64>,
 }
 
-impl<W: Write> Printer<W> {
+impl Printer {
     fn print<T: Debug>(&mut self, k: u64, [w, x, y, z]: [T; 4]) -> io::Result<()> {
         self.last_printed = Some(k);
-        writeln!(self.out, "{k},{w:?},{x:?},{y:?},{z:?}")
+        writeln!(self.out, "{k},{w:?},{x:?},{y:?},{z:?}")?;
+        self.out.row_done()
     }
     fn due(&self, k: u64) -> bool {
         k.is_multiple_of(self.every)
+    }
+    /// Prints `q` as the attitude after sample `k` unless that row is out already.
+    fn print_last<T: Debug>(&mut self, k: u64, q: [T; 4]) -> io::Result<()> {
+        if self.last_printed == Some(k) {
+            return Ok(());
+        }
+        self.print(k, q)
     }
 }
 
@@ -242,6 +273,196 @@ impl From<io::Error> for Failure {
     }
 }
 
+/// The next sample of the input with its line number, skipping blank lines; `Ok(None)` at the
+/// end. Pending output is flushed before a read that may wait.
+fn next_sample<T: Real + FromStr, R: io::Read>(
+    lines: &mut Lines<R>,
+    out: &mut Csv,
+) -> Result<Option<(u64, Vec3<T>)>, Failure> {
+    loop {
+        if lines.will_read() {
+            out.flush()?;
+        }
+        let Some((n, line)) = lines.next_line()? else {
+            return Ok(None);
+        };
+        match line {
+            Ok(text) if text.trim().is_empty() => continue,
+            Ok(text) => {
+                return parse_row(text)
+                    .map(|v| Some((n, v)))
+                    .map_err(|e| Failure::Row(n, e));
+            }
+            Err(reason) => return Err(Failure::Row(n, reason)),
+        }
+    }
+}
+
+/// `q` when it is a finite unit quaternion; otherwise the error of the sample on line `n`.
+fn checked<T: Real + Debug>(q: UnitQuat<T>, n: u64, what: &str) -> Result<UnitQuat<T>, Failure> {
+    let c = q.to_array();
+    let n2 = c.iter().fold(T::ZERO, |acc, &x| acc + x * x);
+    // The attitude is renormalised exactly after every update: anything visibly off unit norm
+    // (a collapsed or overflowed norm) is a failed update.
+    if c.iter().all(|x| x.is_finite()) && (n2 - T::ONE).abs() <= T::from_f64(1e-3) {
+        return Ok(q);
+    }
+    Err(Failure::Row(
+        n,
+        format!(
+            "the attitude {what} is not a finite unit quaternion ({:?}): the {} too large for \
+             this step",
+            c,
+            if what.contains("time") {
+                "rates or --dt are"
+            } else {
+                "increments are"
+            }
+        ),
+    ))
+}
+
+/// The largest rounding of one sample's turn angle the tool accepts (rad). An angle `θ` is held
+/// to `θ·ε` of the run's type, and the attitude of that sample can be no better: beyond this
+/// (`θ > 1e-3/ε`: 4.5e12 rad in f64, 8.4e3 rad in f32) its rows would be noise however exactly
+/// the rule computes. (Smaller angles can still be too large for a rule's accuracy; that is the
+/// library's step limit.)
+const TURN_RESOLUTION: f64 = 1e-3;
+
+/// Checks that `v · scale` (an increment, or a rate times the step) turns the body by an angle
+/// whose rounding in `T` stays within [`TURN_RESOLUTION`].
+fn resolvable<T: Real>(v: Vec3<T>, scale: f64, what: &str, n: u64) -> Result<(), Failure> {
+    let [x, y, z] = v.to_array().map(|c| c.to_f64() * scale);
+    let turn = x.hypot(y).hypot(z);
+    let limit = TURN_RESOLUTION / T::EPSILON.to_f64();
+    if turn <= limit {
+        return Ok(());
+    }
+    Err(Failure::Row(
+        n,
+        format!(
+            "the {what} turns the body {turn:.3e} rad in one sample: beyond {limit:.2e} rad \
+             the angle itself is not known to {TURN_RESOLUTION:e} rad in {}",
+            if T::EPSILON.to_f64() < 1e-10 {
+                "f64"
+            } else {
+                "f32"
+            }
+        ),
+    ))
+}
+
+/// Integrates increments; the outcome of the input (`Err(Failure::Row)` at a bad line) after the
+/// rows it allows are printed.
+fn increments<T: Real + FromStr + Debug, R: io::Read>(
+    lines: &mut Lines<R>,
+    p: &mut Printer,
+    q0: UnitQuat<T>,
+    rule: ConingRule,
+) -> Result<(), Failure> {
+    let mut integ = IncrementIntegrator::new(q0, rule, Normalization::Exact);
+    let mut k: u64 = 0; // samples consumed
+    let mut last = q0; // the attitude after sample k - 1
+    let mut n = 0; // the line of the latest sample
+    let stop = loop {
+        let v = match next_sample::<T, R>(lines, &mut p.out) {
+            Ok(Some((line, v))) => {
+                n = line;
+                v
+            }
+            Ok(None) => break None,
+            // A rejected line leaves the integrator as it was: end the record there.
+            Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
+            Err(e) => return Err(e),
+        };
+        if let Err(e) = resolvable(v, 1.0, "increment", n) {
+            break Some(e);
+        }
+        let q = integ
+            .push(v)
+            .map_err(|e| Failure::Row(n, e.to_string()))
+            .and_then(|_| checked(integ.provisional_attitude(), n, "after this sample"));
+        let q = match q {
+            Ok(q) => q,
+            Err(e) => {
+                // The integrator is spoilt: the attitude after the previous sample is the last.
+                if k > 0 {
+                    p.print_last(k - 1, last.to_array())?;
+                }
+                return Err(e);
+            }
+        };
+        if p.due(k) {
+            p.print(k, q.to_array())?;
+        }
+        last = q;
+        k += 1;
+    };
+    if k > 0 {
+        p.print_last(
+            k - 1,
+            checked(integ.flush(), n, "after the last sample")?.to_array(),
+        )?;
+    }
+    stop.map_or(Ok(()), Err)
+}
+
+/// Integrates rate samples; like [`increments`].
+fn rates<T: Real + FromStr + Debug, R: io::Read>(
+    lines: &mut Lines<R>,
+    p: &mut Printer,
+    q0: UnitQuat<T>,
+    method: RateMethod,
+    dt: T,
+) -> Result<(), Failure> {
+    let args_dt = dt.to_f64();
+    let mut integ = RateIntegrator::new(q0, method, Normalization::Exact, dt)
+        .map_err(|e| Failure::Usage(format!("--dt: {e}")))?;
+    let mut reached: u64 = 0; // the next sample index whose attitude is due
+    let mut last = q0;
+    let mut n = 0; // the line of the latest sample
+    let mut emit = |p: &mut Printer, q: UnitQuat<T>, n: u64| -> Result<(), Failure> {
+        let q = checked(q, n, &format!("at the time of sample {reached}"))?;
+        if p.due(reached) {
+            p.print(reached, q.to_array())?;
+        }
+        last = q;
+        reached += 1;
+        Ok(())
+    };
+    let stop = loop {
+        let v = match next_sample::<T, R>(lines, &mut p.out) {
+            Ok(Some((line, v))) => {
+                n = line;
+                v
+            }
+            Ok(None) => break None,
+            // A rejected line leaves the integrator as it was: end the record there.
+            Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
+            Err(e) => return Err(e),
+        };
+        if let Err(e) = resolvable(v, args_dt, "rate times --dt", n) {
+            break Some(e);
+        }
+        let pushed = integ
+            .push(v)
+            .map_err(|e| Failure::Row(n, e.to_string()))
+            .and_then(|qs| qs.into_iter().try_for_each(|q| emit(p, q, n)));
+        if let Err(e) = pushed {
+            if reached > 0 {
+                p.print_last(reached - 1, last.to_array())?;
+            }
+            return Err(e);
+        }
+    };
+    let finished = integ.finish().into_iter().try_for_each(|q| emit(p, q, n));
+    if reached > 0 {
+        p.print_last(reached - 1, last.to_array())?;
+    }
+    finished?;
+    stop.map_or(Ok(()), Err)
+}
+
 fn run<T: Real + FromStr + Debug>(args: &Args) -> Result<(), Failure> {
     let t = |x: f64| T::from_f64(x);
     let q0 = UnitQuat::try_from_near_unit(
@@ -249,72 +470,28 @@ fn run<T: Real + FromStr + Debug>(args: &Args) -> Result<(), Failure> {
         t(1e-3),
     )
     .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
-    let norm = Normalization::Exact;
-    let stdin = io::stdin().lock();
+    let dt = t(args.dt);
+    if !(dt.is_finite() && dt > T::ZERO) {
+        return Err(Failure::Usage(format!(
+            "--dt: {:?} is not a positive finite f32",
+            args.dt
+        )));
+    }
     let mut p = Printer {
-        out: BufWriter::new(io::stdout().lock()),
+        out: Csv::stdout(),
         every: args.every,
         last_printed: None,
     };
-    let mut k: u64 = 0; // samples consumed
-    let result = (|| -> Result<(), Failure> {
-        match args.algo {
-            Algo::Increments(rule) => {
-                let mut integ = IncrementIntegrator::new(q0, rule, norm);
-                for line in stdin.lines() {
-                    let line = line?;
-                    let v = parse_row::<T>(&line).map_err(|e| Failure::Row(k + 1, e))?;
-                    integ
-                        .push(v)
-                        .map_err(|e| Failure::Row(k + 1, e.to_string()))?;
-                    if p.due(k) {
-                        p.print(k, integ.provisional_attitude().to_array())?;
-                    }
-                    k += 1;
-                }
-                if k > 0 && p.last_printed != Some(k - 1) {
-                    p.print(k - 1, integ.flush().to_array())?;
-                }
-            }
-            Algo::Rates(method) => {
-                let mut integ = RateIntegrator::new(q0, method, norm, t(args.dt))
-                    .map_err(|e| Failure::Usage(format!("--dt: {e}")))?;
-                let mut reached: u64 = 0; // next sample index whose attitude is due
-                let mut last = q0;
-                for line in stdin.lines() {
-                    let line = line?;
-                    let v = parse_row::<T>(&line).map_err(|e| Failure::Row(k + 1, e))?;
-                    for q in integ
-                        .push(v)
-                        .map_err(|e| Failure::Row(k + 1, e.to_string()))?
-                    {
-                        if p.due(reached) {
-                            p.print(reached, q.to_array())?;
-                        }
-                        last = q;
-                        reached += 1;
-                    }
-                    k += 1;
-                }
-                for q in integ.finish() {
-                    if p.due(reached) {
-                        p.print(reached, q.to_array())?;
-                    }
-                    last = q;
-                    reached += 1;
-                }
-                if k > 0 && p.last_printed != Some(k - 1) {
-                    p.print(k - 1, last.to_array())?;
-                }
-            }
-        }
-        Ok(())
-    })();
-    p.out.flush()?;
-    result
+    let mut lines = Lines::new(io::stdin().lock());
+    let result = match args.algo {
+        Algo::Increments(rule) => increments(&mut lines, &mut p, q0, rule),
+        Algo::Rates(method) => rates(&mut lines, &mut p, q0, method, dt),
+    };
+    finish(result, &mut p)
 }
 
-/// `--fixed`: the increment path in Q1.30, the firmware's integer code.
+/// `--fixed`: the increment path in Q1.30, the firmware's integer code; lines, errors and the
+/// last attitude as [`increments`] (a Q1.30 attitude is always finite: no check of it).
 fn run_fixed(args: &Args) -> Result<(), Failure> {
     let Algo::Increments(rule) = args.algo else {
         return Err(Failure::Usage(
@@ -326,46 +503,74 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
         .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
     let q0 = UnitQuat::<Q30>::try_from_f64(q0).map_err(|e| Failure::Usage(format!("--q0: {e}")))?;
     let mut integ = IncrementIntegrator::new(q0, rule, Normalization::Fast);
-    let stdin = io::stdin().lock();
     let mut p = Printer {
-        out: BufWriter::new(io::stdout().lock()),
+        out: Csv::stdout(),
         every: args.every,
         last_printed: None,
     };
+    let mut lines = Lines::new(io::stdin().lock());
     let exact = |q: UnitQuat<Q30>| q.to_f64().to_array();
-    let mut k: u64 = 0;
+    let mut k: u64 = 0; // samples consumed
+    let mut last = q0; // the attitude after sample k - 1
     let result = (|| -> Result<(), Failure> {
-        for line in stdin.lines() {
-            let line = line?;
-            let v = parse_row::<f64>(&line).map_err(|e| Failure::Row(k + 1, e))?;
+        let stop = loop {
+            let (n, v) = match next_sample::<f64, _>(&mut lines, &mut p.out) {
+                Ok(Some(s)) => s,
+                Ok(None) => break None,
+                Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
+                Err(e) => return Err(e),
+            };
             let v = Vec3::<Q30>::try_from_f64(v)
-                .map_err(|e| Failure::Row(k + 1, format!("{e} (Q1.30 holds |value| < 2 rad)")))?;
-            integ
-                .push(v)
-                .map_err(|e| Failure::Row(k + 1, e.to_string()))?;
+                .map_err(|e| Failure::Row(n, format!("{e} (Q1.30 holds |value| < 2 rad)")));
+            let v = match v {
+                Ok(v) => v,
+                Err(e) => break Some(e),
+            };
+            if let Err(e) = integ.push(v) {
+                if k > 0 {
+                    p.print_last(k - 1, exact(last))?;
+                }
+                return Err(Failure::Row(n, e.to_string()));
+            }
+            last = integ.provisional_attitude();
             if p.due(k) {
-                p.print(k, exact(integ.provisional_attitude()))?;
+                p.print(k, exact(last))?;
             }
             k += 1;
+        };
+        if k > 0 {
+            p.print_last(k - 1, exact(integ.flush()))?;
         }
-        if k > 0 && p.last_printed != Some(k - 1) {
-            p.print(k - 1, exact(integ.flush()))?;
-        }
-        Ok(())
+        stop.map_or(Ok(()), Err)
     })();
-    p.out.flush()?;
-    result
+    finish(result, &mut p)
+}
+
+/// Flushes the rows; a closed stdout is a quiet end, as if the input ended there.
+fn finish(result: Result<(), Failure>, p: &mut Printer) -> Result<(), Failure> {
+    let flushed = p.out.flush();
+    match (result, flushed) {
+        (Err(Failure::Io(e)), _) | (Ok(()), Err(e)) if stream::is_closed_pipe(&e) => Ok(()),
+        (Err(e), _) => Err(e),
+        (Ok(()), Err(e)) => Err(Failure::Io(e)),
+        (Ok(()), Ok(())) => Ok(()),
+    }
 }
 
 fn main() -> ExitCode {
     let args = match parse_args() {
         Ok(Some(a)) => a,
         Ok(None) => {
-            print!("{HELP}");
-            return ExitCode::SUCCESS;
+            return match stream::print_text(HELP) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    say!("error: writing stdout: {e}");
+                    ExitCode::FAILURE
+                }
+            };
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            say!("error: {e}");
             return ExitCode::from(2);
         }
     };
@@ -377,15 +582,15 @@ fn main() -> ExitCode {
     match r {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Usage(e)) => {
-            eprintln!("error: {e}");
+            say!("error: {e}");
             ExitCode::from(2)
         }
         Err(Failure::Row(n, e)) => {
-            eprintln!("error: line {n}: {e}");
+            say!("error: line {n}: {e}");
             ExitCode::from(1)
         }
         Err(Failure::Io(e)) => {
-            eprintln!("error: {e}");
+            say!("error: {e}");
             ExitCode::from(1)
         }
     }

@@ -2,7 +2,6 @@
 //! firmware output CI hands to the tests, and the host tools, built on demand.
 
 use std::path::PathBuf;
-use std::process::Command;
 
 /// The bare-metal targets `.ci/run` runs the firmware examples on (Cortex-M0, M3, M4F, M33,
 /// RV32IMAC); their output files are named after them.
@@ -32,24 +31,9 @@ pub fn firmware_output(prefix: &str) -> Vec<(&'static str, String)> {
         .collect()
 }
 
-/// Builds the host example `name` of the gyrostat package with the profile of the calling test
-/// (release when the test is optimised) and returns the path of its binary.
+/// The host example `name`, built with the profile and target directory of the calling test:
+/// [`crate::cli::example`] (one builder for every test, so that all of them run the binaries
+/// of the workspace test build rather than a second build with other features).
 pub fn build_example(name: &str) -> PathBuf {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
-    let release = !cfg!(debug_assertions);
-    let mut cmd = Command::new(env!("CARGO"));
-    cmd.current_dir(&root)
-        .args(["build", "-q", "-p", "gyrostat", "--example", name]);
-    if release {
-        cmd.arg("--release");
-    }
-    let status = cmd.status().expect("cargo runs");
-    assert!(status.success(), "building the {name} example failed");
-    let target = std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root.join("target"));
-    target
-        .join(if release { "release" } else { "debug" })
-        .join("examples")
-        .join(name)
+    crate::cli::example(name)
 }

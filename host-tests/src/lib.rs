@@ -14,6 +14,7 @@
 //!   tiny-step RK4 free rigid body.
 //! - [`tolerance`]: the one tolerance trait, [`tolerance::Tolerance`].
 //! - [`cast`]: gyrostat values of any scalar type to and from f64 arrays.
+//! - [`cli`]: the command-line tools (examples) built and run as processes.
 //! - [`examples`]: the firmware targets and the host tools of the repository's examples.
 //! - [`per_type!`]: runs test items for f32 and for f64.
 //! - [`campaign`]: the adversarial input campaign (generators, checks, runner, `ROBUSTNESS.md`
@@ -21,6 +22,7 @@
 
 pub mod campaign;
 pub mod cast;
+pub mod cli;
 pub mod examples;
 pub mod ref_dynamics;
 pub mod ref_exact;
