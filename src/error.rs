@@ -28,9 +28,16 @@ pub enum Error {
     NonPhysicalInertia,
     /// An iterative solve did not reach its stated accuracy within its step budget.
     NotConverged,
-    /// An argument is outside the documented domain (for example a negative step or count).
+    /// A step is longer than its method's validity limit: the rotation it would take in one step
+    /// (`|ω|·Δt`, a gyro increment, an accumulated update interval) is beyond the bound the method
+    /// documents ([`crate::propagation::MAX_STEP_ANGLE`] for the approximate methods), where its
+    /// result would carry no correct digit. Take shorter steps.
+    StepTooLong,
+    /// An argument is outside the documented domain (for example a negative step or count, or a
+    /// magnitude whose square, product or reciprocal would overflow the type).
     InvalidArgument,
-    /// A value does not fit the fixed-point format it is converted to (see [`crate::fixed`]).
+    /// A value does not fit the fixed-point format it is converted to, or a sum of a checked
+    /// fixed-point update would saturate it (see [`crate::fixed`]).
     OutOfRange,
 }
 
@@ -44,6 +51,7 @@ impl fmt::Display for Error {
             Error::Singular => "configuration is singular for this conversion",
             Error::NonPhysicalInertia => "inertia tensor is not physical",
             Error::NotConverged => "iterative solve did not converge",
+            Error::StepTooLong => "step too long: beyond the method's validity limit",
             Error::InvalidArgument => "argument outside the documented domain",
             Error::OutOfRange => "value outside the range of the fixed-point format",
         };

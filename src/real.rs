@@ -135,6 +135,15 @@ pub trait Ring:
         let first = products.next().unwrap_or(Self::ZERO);
         products.fold(first, |s, p| s + p)
     }
+    /// `true` when [`Ring::dot`] of `a` and `b` is within the type's range: always for the
+    /// floats (an overflow there is an infinity, which the finiteness checks catch); for fixed
+    /// point, whether the exact sum needs no saturation. The checked entry points use it to
+    /// return [`crate::Error::OutOfRange`] where a fixed-point sum would otherwise saturate.
+    #[inline]
+    fn dot_fits<const N: usize>(a: [Self; N], b: [Self; N]) -> bool {
+        let _ = (a, b);
+        true
+    }
     /// The exponential map `exp(φ) = (cos(θ/2), sin(θ/2)·φ/θ)`, `θ = |φ|`, for
     /// `theta_sq = |φ|² >` [`Ring::EXP_SERIES_MAX_SQ`] (or not finite): the part of
     /// [`crate::UnitQuat::exp_unchecked`] past its series. The floats take `sin`/`cos` of the
@@ -169,7 +178,7 @@ pub trait Ring:
     }
     /// `1/√x` for `x` near one (the squared norm of a drifting unit quaternion): the scale of
     /// [`crate::UnitQuat::renormalize`]. The floats compute `1/√x` for any positive `x`; fixed
-    /// point iterates Newton steps and is accurate for `x ∈ [¼, 2)`.
+    /// point iterates Newton steps and is accurate for `x ∈ (½, 2)`.
     fn inv_sqrt_near_one(x: Self) -> Self;
 }
 

@@ -17,7 +17,10 @@
 //! - [`cli`]: the command-line tools (examples) built and run as processes.
 //! - [`examples`]: the firmware targets and the host tools of the repository's examples.
 //! - [`per_type!`]: runs test items for f32 and for f64.
+//! - [`campaign`]: the adversarial input campaign (generators, checks, runner, `ROBUSTNESS.md`
+//!   tables); [`family!`] declares one API family.
 
+pub mod campaign;
 pub mod cast;
 pub mod cli;
 pub mod examples;

@@ -134,16 +134,24 @@ host_tests::per_type! {
         assert!(largest > 10.0 * tol, "{largest}");
     }
 
-    /// A rate the quadratic guess cannot reach by Newton's method (the cubic term dominating)
-    /// gives a typed error, never a NaN momentum; non-finite rates are rejected.
+    /// A rate the quadratic guess hardly reaches by Newton's method (the cubic term dominating)
+    /// gives a typed error or a verified root, never a NaN momentum; non-finite rates are
+    /// rejected. (Whether the iteration lands on the root `J ≈ (0.308, 3.813, 0.167)` depends on
+    /// the rounding of its path: f64 does not, f32 does since the Hessian's inverse is formed on
+    /// the scaled matrix.)
     #[test]
     fn momentum_from_omega_errors_are_typed() {
         let i = Inertia::try_from_principal(vec3::<T>([6.0, 4.0, 3.0])).unwrap();
         let h = BodyHamiltonian::try_new(i, Vec3::ZERO, Quartic::Cubic(T::from_f64(0.05))).unwrap();
-        assert_eq!(
-            h.momentum_from_omega(vec3([0.5, 1.0, 0.3])),
-            Err(Error::NotConverged)
-        );
+        let omega = vec3([0.5, 1.0, 0.3]);
+        match h.momentum_from_omega(omega) {
+            Err(Error::NotConverged) => {}
+            Ok(j) => {
+                let r = (h.omega(j) - omega).norm().to_f64();
+                assert!(r <= 1e-6 * 2.0, "{j:?}: residual {r}");
+            }
+            other => panic!("{other:?}"),
+        }
         assert_eq!(
             h.momentum_from_omega(vec3([f64::NAN, 1.0, 0.3])),
             Err(Error::NonFinite)

@@ -10,8 +10,16 @@
 //! `γ` is `Ĵ = (−cos γ sin β, sin γ sin β, cos β)` (the `⟨z|` row of `R(αβγ)`, (6.7.40)).
 //! Rigid-rotor constants are `A = 1/(2I₁)`, `B = 1/(2I₂)`, `C = 1/(2I₃)` (6.9.2). Angles are in
 //! radians.
+//!
+//! # Domain
+//! Every function takes finite arguments whose results are representable: a momentum,
+//! energy or spin whose energies, radii and rates overflow the type (for example
+//! `rotational_energy` of `|J| = 1e200` in f64) gives [`Error::InvalidArgument`], never an
+//! infinite `Ok`. Ratios of moments are formed before products, so bodies anywhere in the
+//! type's range are handled.
 
 use crate::dynamics::Inertia;
+use crate::dynamics::elliptic::pow2_scale;
 use crate::dynamics::free_rigid_body::EQUAL_MOMENTS_TOLERANCE;
 use crate::{Axis, Error, Real, Vec3};
 
@@ -20,6 +28,16 @@ fn check_finite<T: Real>(xs: &[T]) -> Result<(), Error> {
         Ok(())
     } else {
         Err(Error::NonFinite)
+    }
+}
+
+/// Results computed from finite input: [`Error::InvalidArgument`] if one overflowed (an input
+/// outside the documented domain of magnitudes, see the module docs).
+fn representable<T: Real>(xs: &[T]) -> Result<(), Error> {
+    if xs.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument)
     }
 }
 
@@ -41,7 +59,8 @@ fn energy_per_j2<T: Real>(i: Vec3<T>, beta: T, gamma: T) -> T {
 /// energy of momentum magnitude `j` pointing along `Ĵ(β, γ)` in the body frame.
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite argument.
+/// [`Error::NonFinite`] for a non-finite argument; [`Error::InvalidArgument`] when the energy
+/// overflows the type.
 pub fn rotational_energy<T: Real>(
     inertia: &Inertia<T>,
     j: T,
@@ -49,7 +68,9 @@ pub fn rotational_energy<T: Real>(
     gamma: T,
 ) -> Result<T, Error> {
     check_finite(&[j, beta, gamma])?;
-    Ok(j * j * energy_per_j2(inertia.principal_moments(), beta, gamma))
+    let e = j * j * energy_per_j2(inertia.principal_moments(), beta, gamma);
+    representable(&[e])?;
+    Ok(e)
 }
 
 /// The constant-energy surface (CES) radius
@@ -57,7 +78,8 @@ pub fn rotational_energy<T: Real>(
 /// momentum magnitude that has energy `energy` along `Ĵ(β, γ)`.
 ///
 /// # Errors
-/// As [`rotational_energy`], plus [`Error::InvalidArgument`] for `energy < 0`.
+/// As [`rotational_energy`], plus [`Error::InvalidArgument`] for `energy < 0` or a radius that
+/// overflows the type.
 pub fn constant_energy_radius<T: Real>(
     inertia: &Inertia<T>,
     energy: T,
@@ -69,7 +91,9 @@ pub fn constant_energy_radius<T: Real>(
         return Err(Error::InvalidArgument);
     }
     // The denominator is ≥ 1/(2 I_max) > 0.
-    Ok((energy / energy_per_j2(inertia.principal_moments(), beta, gamma)).sqrt())
+    let r = (energy / energy_per_j2(inertia.principal_moments(), beta, gamma)).sqrt();
+    representable(&[r])?;
+    Ok(r)
 }
 
 /// The separatrix azimuth `γ_B` (6.8.10): the separatrix of the rigid rotor (the constant-`J`
@@ -95,6 +119,10 @@ pub fn separatrix_angle<T: Real>(inertia: &Inertia<T>) -> Result<T, Error> {
     if !between {
         return Err(Error::InvalidArgument);
     }
+    // On the moments scaled by an exact power of two to order one (no overflow or underflow
+    // of the products; the angle is scale-free).
+    let s = pow2_scale(i1.max(i2).max(i3));
+    let (i1, i2, i3) = (i1 / s, i2 / s, i3 / s);
     let num = (i1 * (i2 - i3).abs()).sqrt();
     let den = (i3 * (i1 - i2).abs()).sqrt();
     Ok(num.atan2(den))
@@ -133,7 +161,8 @@ pub struct SmallMotion<T> {
 /// the exact `|λ|` of [`super::free_rigid_body`].
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite `j`.
+/// [`Error::NonFinite`] for a non-finite `j`; [`Error::InvalidArgument`] when the rate
+/// overflows the type.
 pub fn small_motion<T: Real>(
     inertia: &Inertia<T>,
     j: T,
@@ -146,8 +175,10 @@ pub fn small_motion<T: Real>(
         moments[axis.next()],
         moments[axis.next().next()],
     );
-    let prod = (ib - ia) * (ic - ia);
-    let rate = j.abs() / ia * (prod.abs() / (ib * ic)).sqrt();
+    // The ratios (I_b − I_a)/I_b and (I_c − I_a)/I_c first: scale-free, no overflow.
+    let prod = ((ib - ia) / ib) * ((ic - ia) / ic);
+    let rate = j.abs() / ia * prod.abs().sqrt();
+    representable(&[rate])?;
     let kind = if prod > T::ZERO {
         SmallMotionKind::Oscillation
     } else if prod < T::ZERO {
@@ -182,7 +213,7 @@ pub struct SymmetricTopRates<T> {
 ///
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite argument; [`Error::InvalidArgument`] unless `I₁ = I₂`
-/// (within [`EQUAL_MOMENTS_TOLERANCE`] ulp, relative).
+/// (within [`EQUAL_MOMENTS_TOLERANCE`] ulp, relative), or when a rate overflows the type.
 pub fn symmetric_top_rates<T: Real>(
     inertia: &Inertia<T>,
     j: T,
@@ -199,13 +230,17 @@ pub fn symmetric_top_rates<T: Real>(
     let alpha_dot = j / i_transverse;
     let gamma_dot = (T::ONE / i_axial - T::ONE / i_transverse) * j * cb;
     let omega3 = j * cb / i_axial;
-    Ok(SymmetricTopRates {
+    let r = SymmetricTopRates {
         lab_precession: alpha_dot,
         body_precession: gamma_dot,
         axial_rate: omega3,
         omega_body: Vec3::new(-alpha_dot * sb, T::ZERO, alpha_dot * cb + gamma_dot),
         omega_lab: Vec3::new(gamma_dot * sb, T::ZERO, alpha_dot + gamma_dot * cb),
-    })
+    };
+    representable(&[r.lab_precession, r.body_precession, r.axial_rate])?;
+    representable(&r.omega_body.to_array())?;
+    representable(&r.omega_lab.to_array())?;
+    Ok(r)
 }
 
 /// Multipole coefficients of the body-fixed gyro-rotor Hamiltonian
@@ -253,7 +288,9 @@ impl<T: Real> GyroMultipoles<T> {
 /// (`P* ⊗ S ⊗ P`) first.
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite spin.
+/// [`Error::NonFinite`] for a non-finite spin; [`Error::InvalidArgument`] when a coefficient
+/// overflows the type (a spin far beyond the body's momenta, or moments near the range's
+/// lower end).
 pub fn gyro_multipoles<T: Real>(
     inertia: &Inertia<T>,
     spin: Vec3<T>,
@@ -271,7 +308,7 @@ pub fn gyro_multipoles<T: Real>(
     let b = T::HALF / moments.y;
     let c = T::HALF / moments.z;
     let six = T::from_f64(6.0);
-    Ok(GyroMultipoles {
+    let m = GyroMultipoles {
         constant: a * spin.x * spin.x + b * spin.y * spin.y + c * spin.z * spin.z,
         monopole: a + b + c,
         dipole: Vec3::new(
@@ -281,7 +318,10 @@ pub fn gyro_multipoles<T: Real>(
         ),
         q_zz: (T::TWO * c - a - b) / six,
         q_x2_y2: (a - b) * T::HALF,
-    })
+    };
+    representable(&[m.constant, m.monopole, m.q_zz, m.q_x2_y2])?;
+    representable(&m.dipole.to_array())?;
+    Ok(m)
 }
 
 /// The semi-axes `aᵢ = √(2E·Iᵢ)` of the momentum ellipsoid `H(J) = J₁²/(2I₁) + J₂²/(2I₂) +
@@ -295,7 +335,8 @@ pub fn gyro_multipoles<T: Real>(
 /// `seed_relations::ellipsoid_radii_6_7_27` checks the formula against `H` directly.
 ///
 /// # Errors
-/// [`Error::NonFinite`]; [`Error::InvalidArgument`] for `energy < 0`.
+/// [`Error::NonFinite`]; [`Error::InvalidArgument`] for `energy < 0` or a radius that
+/// overflows the type.
 pub fn momentum_ellipsoid_radii<T: Real>(
     inertia: &Inertia<T>,
     energy: T,
@@ -329,9 +370,7 @@ fn ellipsoid_radii<T: Real>(
     }
     let m = inertia.principal_moments();
     let two_e = T::TWO * energy;
-    Ok(Vec3::new(
-        radius(two_e, m.x),
-        radius(two_e, m.y),
-        radius(two_e, m.z),
-    ))
+    let r = Vec3::new(radius(two_e, m.x), radius(two_e, m.y), radius(two_e, m.z));
+    representable(&r.to_array())?;
+    Ok(r)
 }

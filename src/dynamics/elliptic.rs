@@ -55,6 +55,17 @@
 //! # Errors
 //! Non-finite arguments give [`Error::NonFinite`]; a parameter outside the documented domain
 //! gives [`Error::InvalidArgument`]. No function panics or returns NaN for any input.
+//!
+//! # Domain of the arguments
+//! The periodic reductions (`u − 2kK`, `φ − kπ`) are exact only while the argument's own
+//! rounding is small against the period: an argument of magnitude `x` is known to `ε·x`, so
+//! beyond `1/ε` (8.4e6 in f32, 4.5e15 in f64) not even its quarter period is determined, and
+//! the product `k·2K` can overflow. [`sn_cn_dn`] (for `m < 1`), [`amplitude`], [`incomplete_f`]
+//! and [`incomplete_pi`] reject `|u|`, `|φ|` beyond `1/ε` with [`Error::InvalidArgument`].
+//! Carlson's integrals are homogeneous (`R_F(λx, λy, λz) = λ^{−1/2} R_F(x, y, z)`), so
+//! [`carlson_rf`] and [`carlson_rj`] evaluate on arguments scaled by a power of two to a
+//! largest value of order one (exact) and scale back: any finite arguments in their domain,
+//! `R_J` giving [`Error::InvalidArgument`] only when its value overflows the type.
 
 use crate::{Error, Real};
 
@@ -78,6 +89,52 @@ const CARLSON_MAX_STEPS: usize = 64;
 /// The truncation error of the series after stopping is of order `tol⁶` (Carlson 1995), so `(½ ε^{1/6})⁶ = ε/64`, below the type's rounding: 1.2e-3 for f64, 3.5e-2 for f32.
 fn carlson_tolerance<T: Real>() -> T {
     (T::EPSILON.ln() * T::from_f64(1.0 / 6.0)).exp() * T::HALF
+}
+
+/// Checks that an argument to be reduced by a period is finite and at most `1/ε` in magnitude
+/// (see the module docs).
+fn check_argument<T: Real>(x: T) -> Result<(), Error> {
+    if !x.is_finite() {
+        return Err(Error::NonFinite);
+    }
+    if x.abs() > T::ONE / T::EPSILON {
+        return Err(Error::InvalidArgument);
+    }
+    Ok(())
+}
+
+/// A power of two `s` with `x/s` in `[1, 2)`, for a finite `x > 0` whose scale is representable
+/// (every normal value and most subnormals), built from exact multiplications by the squares
+/// `2, 4, 16, 256, …` of two: dividing by it changes no digit of `x` (or of anything scaled
+/// with it).
+pub(crate) fn pow2_scale<T: Real>(x: T) -> T {
+    // 2^(2^k) for k = 0, 1, …, as long as finite: 7 factors in f32, 10 in f64.
+    let mut factors = [T::ONE; 11];
+    let mut n = 0;
+    let mut f = T::TWO;
+    for slot in factors.iter_mut() {
+        if !f.is_finite() {
+            break;
+        }
+        *slot = f;
+        n += 1;
+        f = f * f;
+    }
+    let (mut y, mut s) = (x, T::ONE);
+    // Greedy on the binary digits of the exponent, largest first.
+    for &f in factors.iter().take(n).rev() {
+        if y >= f {
+            y /= f;
+            s *= f;
+        }
+    }
+    for &f in factors.iter().take(n).rev() {
+        if y * f < T::TWO {
+            y *= f;
+            s /= f;
+        }
+    }
+    s
 }
 
 /// Checks `m` is finite and in `[0, 1)`.
@@ -220,7 +277,7 @@ pub(crate) fn sech_tanh<T: Real>(u: T) -> (T, T) {
 ///
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite `u` or `m`; [`Error::InvalidArgument`] for `m < 0` or
-/// `m > 1`.
+/// `m > 1`, or `|u| > 1/ε` with `m < 1` (see the module docs).
 ///
 /// ```
 /// use gyrostat::dynamics::elliptic::{complete_k, sn_cn_dn};
@@ -240,6 +297,7 @@ pub fn sn_cn_dn<T: Real>(u: T, m: T) -> Result<(T, T, T), Error> {
         let (sech, tanh) = sech_tanh(u);
         return Ok((tanh, sech, sech));
     }
+    check_argument(u)?;
     Ok(sn_cn_dn_unchecked(u, m, T::ONE - m))
 }
 
@@ -256,12 +314,11 @@ pub(crate) fn sn_cn_dn_unchecked<T: Real>(u: T, m: T, m1: T) -> (T, T, T) {
 /// `[−π, π]`): `am(u + 2K) = am(u) + π`. `m ∈ [0, 1)`; `sn = sin am`, `cn = cos am`.
 ///
 /// # Errors
-/// As [`complete_k`], plus [`Error::NonFinite`] for a non-finite `u`.
+/// As [`complete_k`], plus [`Error::NonFinite`] for a non-finite `u` and
+/// [`Error::InvalidArgument`] for `|u| > 1/ε` (see the module docs).
 pub fn amplitude<T: Real>(u: T, m: T) -> Result<T, Error> {
     check_parameter(m)?;
-    if !u.is_finite() {
-        return Err(Error::NonFinite);
-    }
+    check_argument(u)?;
     let (phi, _, _, _) = amplitude_unchecked(u, m, T::ONE - m);
     Ok(phi)
 }
@@ -302,7 +359,14 @@ pub fn carlson_rf<T: Real>(x: T, y: T, z: T) -> Result<T, Error> {
     if zeros > 1 {
         return Err(Error::InvalidArgument);
     }
-    Ok(rf_unchecked(x, y, z))
+    // Homogeneity: R_F(x, y, z) = R_F(x/s, y/s, z/s)/√s, s an exact power of two.
+    let s = pow2_scale(x.max(y).max(z));
+    let r = rf_unchecked(x / s, y / s, z / s) / s.sqrt();
+    if r.is_finite() {
+        Ok(r)
+    } else {
+        Err(Error::InvalidArgument)
+    }
 }
 
 /// `R_F` without checks (arguments ≥ 0, at most one zero).
@@ -374,7 +438,8 @@ fn rc_unchecked<T: Real>(mut x: T, mut y: T) -> T {
 ///
 /// # Errors
 /// [`Error::NonFinite`] for non-finite input; [`Error::InvalidArgument`] unless `x, y, z ≥ 0`
-/// with at most one zero and `p > 0`.
+/// with at most one zero and `p > 0`, or when the value overflows the type (`p` and two of
+/// `x, y, z` tiny against the type's range).
 pub fn carlson_rj<T: Real>(x: T, y: T, z: T, p: T) -> Result<T, Error> {
     if !(x.is_finite() && y.is_finite() && z.is_finite() && p.is_finite()) {
         return Err(Error::NonFinite);
@@ -386,7 +451,14 @@ pub fn carlson_rj<T: Real>(x: T, y: T, z: T, p: T) -> Result<T, Error> {
     if zeros > 1 {
         return Err(Error::InvalidArgument);
     }
-    Ok(rj_unchecked(x, y, z, p))
+    // Homogeneity: R_J(x, y, z, p) = R_J(x/s, y/s, z/s, p/s)/s^{3/2}, s an exact power of two.
+    let s = pow2_scale(x.max(y).max(z).max(p));
+    let r = rj_unchecked(x / s, y / s, z / s, p / s) / s / s.sqrt();
+    if r.is_finite() {
+        Ok(r)
+    } else {
+        Err(Error::InvalidArgument)
+    }
 }
 
 /// `R_J` without checks (`x, y, z ≥ 0`, at most one zero, `p > 0`).
@@ -449,12 +521,11 @@ pub(crate) fn rj_unchecked<T: Real>(mut x: T, mut y: T, mut z: T, mut p: T) -> T
 /// `F(φ + kπ|m) = F(φ|m) + 2kK(m)`. It inverts the amplitude: `F(am(u|m)|m) = u`.
 ///
 /// # Errors
-/// [`Error::NonFinite`] for non-finite input; [`Error::InvalidArgument`] for `m ∉ [0, 1)`.
+/// [`Error::NonFinite`] for non-finite input; [`Error::InvalidArgument`] for `m ∉ [0, 1)` or
+/// `|φ| > 1/ε` (see the module docs).
 pub fn incomplete_f<T: Real>(phi: T, m: T) -> Result<T, Error> {
     check_parameter(m)?;
-    if !phi.is_finite() {
-        return Err(Error::NonFinite);
-    }
+    check_argument(phi)?;
     let m1 = T::ONE - m;
     let (k, phi_r) = reduce_angle(phi);
     let kc = complete_k_unchecked(m, m1);
@@ -485,18 +556,25 @@ pub(crate) fn f_reduced<T: Real>(phi: T, m1: T) -> T {
 /// `Π(n; φ + kπ|m) = Π(n; φ|m) + 2k Π(n|m)`.
 ///
 /// # Errors
-/// [`Error::NonFinite`] for non-finite input; [`Error::InvalidArgument`] for `m ∉ [0, 1)` or
-/// `n ≥ 1`.
+/// [`Error::NonFinite`] for non-finite input; [`Error::InvalidArgument`] for `m ∉ [0, 1)`,
+/// `n ≥ 1`, `|φ| > 1/ε` (see the module docs), or a value that overflows the type (`n` just
+/// below 1 and `|φ|` large).
 pub fn incomplete_pi<T: Real>(n: T, phi: T, m: T) -> Result<T, Error> {
     check_parameter(m)?;
-    if !phi.is_finite() || !n.is_finite() {
+    if !n.is_finite() {
         return Err(Error::NonFinite);
     }
+    check_argument(phi)?;
     if n >= T::ONE {
         return Err(Error::InvalidArgument);
     }
     let (k, phi_r) = reduce_angle(phi);
-    Ok(pi_parts(n, T::ONE - n, k, phi_r, T::ONE - m))
+    let r = pi_parts(n, T::ONE - n, k, phi_r, T::ONE - m);
+    if r.is_finite() {
+        Ok(r)
+    } else {
+        Err(Error::InvalidArgument)
+    }
 }
 
 /// `Π(n; kπ + φ_r|m)` for `|φ_r| ≤ π/2`, `n < 1` (with `n₁ = 1 − n`), `m₁ = 1 − m ∈ (0, 1]`;

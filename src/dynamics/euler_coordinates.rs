@@ -17,6 +17,10 @@
 //! factor is the rate matrix: the functions that need it return [`Error::Singular`] within
 //! [`crate::rotation::euler_rate_min_det`] of gimbal lock, like [`Euler::try_rates_from_body`].
 //!
+//! Domain: finite angles, rates and momenta whose results are representable; a result that
+//! overflows the type (rates or momenta near its largest values, moments near its range's
+//! ends) gives [`Error::InvalidArgument`], never an infinite `Ok`.
+//!
 //! [`SymmetricTop`] evaluates the seed's closed forms for `ZYZ` `(α, β, γ)` and
 //! `I₁ = I₂ = I_II`: (6.7.32a–b), (6.7.33)–(6.7.37), (6.7.44).
 
@@ -26,6 +30,24 @@ use crate::{Error, Mat3, Real, Vec3};
 
 fn finite3<T: Real>(x: [T; 3]) -> Result<Vec3<T>, Error> {
     Vec3::from_array(x).try_finite()
+}
+
+/// A result computed from finite input: [`Error::InvalidArgument`] if it overflowed (an input
+/// outside the documented domain of magnitudes, see the module docs).
+fn representable<T: Real>(xs: &[T]) -> Result<(), Error> {
+    if xs.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument)
+    }
+}
+
+fn representable3<T: Real>(x: [T; 3]) -> Result<[T; 3], Error> {
+    representable(&x).map(|()| x)
+}
+
+fn representable1<T: Real>(x: T) -> Result<T, Error> {
+    representable(&[x]).map(|()| x)
 }
 
 fn finite_angles<T: Real>(e: &Euler<T>) -> Result<(), Error> {
@@ -42,21 +64,28 @@ fn finite_angles<T: Real>(e: &Euler<T>) -> Result<(), Error> {
 /// body about the same axis.
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite angle.
+/// [`Error::NonFinite`] for a non-finite angle; [`Error::InvalidArgument`] when the metric
+/// overflows the type (module docs).
 pub fn try_euler_metric<T: Real>(
     inertia: &Inertia<T>,
     angles: &Euler<T>,
 ) -> Result<Mat3<T>, Error> {
     finite_angles(angles)?;
     let e = angles.rates_to_body_matrix();
-    Ok(e.transpose() * inertia.tensor() * e)
+    let g = e.transpose() * inertia.tensor() * e;
+    if g.is_finite() {
+        Ok(g)
+    } else {
+        Err(Error::InvalidArgument)
+    }
 }
 
 /// The Euler momenta `p = ∂L/∂θ̇ = g·θ̇ = E_bodyᵀ·I·ω` of a rigid rotor turning at Euler rates
 /// `rates` (6.7.6), (6.7.9); for the symmetric top in `ZYZ` this is (6.7.34).
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite angle or rate.
+/// [`Error::NonFinite`] for a non-finite angle or rate; [`Error::InvalidArgument`] when a
+/// momentum overflows the type (module docs).
 pub fn try_euler_momenta<T: Real>(
     inertia: &Inertia<T>,
     angles: &Euler<T>,
@@ -64,7 +93,7 @@ pub fn try_euler_momenta<T: Real>(
 ) -> Result<[T; 3], Error> {
     finite_angles(angles)?;
     let omega = angles.rates_to_body_matrix() * finite3(rates)?;
-    Ok((angles.body_to_euler_momenta_matrix() * inertia.mul_vec(omega)).to_array())
+    representable3((angles.body_to_euler_momenta_matrix() * inertia.mul_vec(omega)).to_array())
 }
 
 /// The kinetic energy from Euler rates, `T = ½ (p₁θ̇₁ + p₂θ̇₂ + p₃θ̇₃) = ½ J·ω` (6.7.16), with
@@ -78,7 +107,7 @@ pub fn try_kinetic_energy<T: Real>(
     rates: [T; 3],
 ) -> Result<T, Error> {
     let p = try_euler_momenta(inertia, angles, rates)?;
-    Ok(T::HALF * (p[0] * rates[0] + p[1] * rates[1] + p[2] * rates[2]))
+    representable1(T::HALF * (p[0] * rates[0] + p[1] * rates[1] + p[2] * rates[2]))
 }
 
 /// Hamilton's velocity equations in Euler coordinates, `θ̇ = ∂H/∂p = g⁻¹·p` ((6.7.17c), the
@@ -86,14 +115,17 @@ pub fn try_kinetic_energy<T: Real>(
 ///
 /// # Errors
 /// [`Error::Singular`] within [`euler_rate_min_det`] of gimbal lock; [`Error::NonFinite`] for a
-/// non-finite angle or momentum.
+/// non-finite angle or momentum; [`Error::InvalidArgument`] when a result overflows the type
+/// (module docs).
 pub fn try_euler_rates_from_momenta<T: Real>(
     inertia: &Inertia<T>,
     angles: &Euler<T>,
     momenta: [T; 3],
 ) -> Result<[T; 3], Error> {
     let j = angles.try_body_momentum_from_euler_momenta(momenta)?;
-    angles.try_rates_from_body(inertia.solve(j))
+    let w = inertia.solve(j);
+    representable(&w.to_array())?;
+    angles.try_rates_from_body(w)
 }
 
 /// The rigid-rotor Hamiltonian in Euler momenta, `H = ½ p·g⁻¹·p = ½ J·I⁻¹·J` with
@@ -107,7 +139,7 @@ pub fn try_euler_hamiltonian<T: Real>(
     momenta: [T; 3],
 ) -> Result<T, Error> {
     let j = angles.try_body_momentum_from_euler_momenta(momenta)?;
-    Ok(inertia.energy_from_momentum(j))
+    representable1(inertia.energy_from_momentum(j))
 }
 
 /// A free symmetric top, `I₁ = I₂ = I_II` (transverse) and `I₃` (axial), in the seed's `ZYZ`
@@ -158,13 +190,16 @@ impl<T: Real> SymmetricTop<T> {
     /// the spherical top's `½ I (α̇² + β̇² + 2α̇γ̇ cos β + γ̇²)` (6.7.32b).
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite `β` or rate.
+    /// [`Error::NonFinite`] for a non-finite `β` or rate; [`Error::InvalidArgument`] when the
+    /// result overflows the type (module docs; likewise for the other methods).
     pub fn try_lagrangian(&self, beta: T, rates: [T; 3]) -> Result<T, Error> {
         let [ad, bd, gd] = finite3(rates)?.to_array();
         let (sb, cb) = finite_sin_cos(beta)?;
         let axial_rate = ad * cb + gd;
-        Ok(T::HALF * self.transverse * (ad * ad * sb * sb + bd * bd)
-            + T::HALF * self.axial * axial_rate * axial_rate)
+        representable1(
+            T::HALF * self.transverse * (ad * ad * sb * sb + bd * bd)
+                + T::HALF * self.axial * axial_rate * axial_rate,
+        )
     }
 
     /// The metric `g_μν` of (6.7.33):
@@ -176,11 +211,18 @@ impl<T: Real> SymmetricTop<T> {
         let (sb, cb) = finite_sin_cos(beta)?;
         let (it, i3) = (self.transverse, self.axial);
         let z = T::ZERO;
-        Ok(Mat3::from_rows(
+        // Finite moments and |sin|, |cos| ≤ 1: every entry is at most 2·max(I_II, I₃), and
+        // I₃ ≤ 2 I_II keeps that finite unless I_II is within a factor 4 of the maximum.
+        let g = Mat3::from_rows(
             [it * sb * sb + i3 * cb * cb, z, i3 * cb],
             [z, it, z],
             [i3 * cb, z, i3],
-        ))
+        );
+        if g.is_finite() {
+            Ok(g)
+        } else {
+            Err(Error::InvalidArgument)
+        }
     }
 
     /// The Euler momenta `J_μ = g_μν ν̇` (6.7.34), (6.7.44):
@@ -193,7 +235,7 @@ impl<T: Real> SymmetricTop<T> {
         let [ad, bd, gd] = finite3(rates)?.to_array();
         let (sb, cb) = finite_sin_cos(beta)?;
         let j_gamma = self.axial * (ad * cb + gd);
-        Ok([
+        representable3([
             self.transverse * ad * sb * sb + j_gamma * cb,
             self.transverse * bd,
             j_gamma,
@@ -212,7 +254,7 @@ impl<T: Real> SymmetricTop<T> {
         let [ja, jb, jg] = finite3(momenta)?.to_array();
         let (sb, cb) = self.off_pole(beta)?;
         let alpha_dot = (ja - jg * cb) / (self.transverse * sb * sb);
-        Ok([
+        representable3([
             alpha_dot,
             jb / self.transverse,
             jg / self.axial - cb * alpha_dot,
@@ -229,9 +271,11 @@ impl<T: Real> SymmetricTop<T> {
         let (sb, cb) = self.off_pole(beta)?;
         let a = ja - jg * cb;
         let two = T::TWO;
-        Ok(a * a / (two * self.transverse * sb * sb)
-            + jb * jb / (two * self.transverse)
-            + jg * jg / (two * self.axial))
+        representable1(
+            a * a / (two * self.transverse * sb * sb)
+                + jb * jb / (two * self.transverse)
+                + jg * jg / (two * self.axial),
+        )
     }
 
     /// The torque on the `β` coordinate in Hamiltonian form (6.7.36):
@@ -242,7 +286,7 @@ impl<T: Real> SymmetricTop<T> {
     pub fn try_beta_torque(&self, beta: T, momenta: [T; 3]) -> Result<T, Error> {
         let [ja, _, jg] = finite3(momenta)?.to_array();
         let (sb, cb) = self.off_pole(beta)?;
-        Ok((ja - jg * cb) * (ja * cb - jg) / (self.transverse * sb * sb * sb))
+        representable1((ja - jg * cb) * (ja * cb - jg) / (self.transverse * sb * sb * sb))
     }
 
     /// The same torque in Lagrangian form, `J̇_β = ∂L/∂β`
@@ -253,7 +297,9 @@ impl<T: Real> SymmetricTop<T> {
     pub fn try_beta_torque_from_rates(&self, beta: T, rates: [T; 3]) -> Result<T, Error> {
         let [ad, _, gd] = finite3(rates)?.to_array();
         let (sb, cb) = finite_sin_cos(beta)?;
-        Ok((self.transverse - self.axial) * ad * ad * sb * cb - self.axial * ad * gd * sb)
+        representable1(
+            (self.transverse - self.axial) * ad * ad * sb * cb - self.axial * ad * gd * sb,
+        )
     }
 
     fn off_pole(&self, beta: T) -> Result<(T, T), Error> {

@@ -79,9 +79,10 @@
 
 use super::elliptic::{
     amplitude_parts, complete_k_unchecked, f_reduced, pi_complete_unchecked, pi_with_complete,
-    sech_tanh,
+    pow2_scale, sech_tanh,
 };
 use crate::dynamics::{Inertia, State};
+use crate::propagation::exact_step_angle_limit;
 use crate::{Axis, Error, Real, UnitQuat, Vec3};
 
 /// Two principal moments within this relative distance (`|Iₐ − I_b| ≤ tol·max`) are treated as
@@ -90,9 +91,12 @@ use crate::{Axis, Error, Real, UnitQuat, Vec3};
 /// exact solution of the rounded problem.
 pub const EQUAL_MOMENTS_TOLERANCE: f64 = 16.0;
 
-/// Motion with `|J² − 2E·I_mid| ≤ SEPARATRIX_TOLERANCE · ε · J²` (ε the type's epsilon) is
-/// treated as lying on the separatrix (`m = 1`): the value is the rounding budget of computing
-/// `J² − 2E·I_mid` from the components (two products and a difference, ≤ 4 ulp each, doubled).
+/// Motion with `|J² − 2E·I_mid| ≤ SEPARATRIX_TOLERANCE · ε · (J_hi²(I_hi − I_mid)/I_hi +
+/// J_lo²(I_mid − I_lo)/I_lo)` (ε the type's epsilon) is treated as lying on the separatrix
+/// (`m = 1`): `J² − 2E·I_mid` is computed as the difference of those two non-negative terms, and
+/// the value is the rounding budget of each (two products and a quotient, ≤ 4 ulp, doubled).
+/// The budget is relative to the terms, not to `J²`: for nearly equal moments both terms are
+/// tiny next to `J²`, and a tolerance on `J²` would call every such motion a separatrix.
 pub const SEPARATRIX_TOLERANCE: f64 = 8.0;
 
 /// The qualitative kind of torque-free motion, decided once by [`FreeRigidBody::try_new`]. Axes
@@ -196,12 +200,25 @@ pub struct FreeRigidBody<T> {
     moments: Vec3<T>,
     /// `P`, principal → body; `None` for a diagonal tensor (`P = 1`).
     principal: Option<UnitQuat<T>>,
-    /// Initial momentum, principal frame.
+    /// Initial momentum divided by `j_scale`, principal frame.
     j0: Vec3<T>,
+    /// `|j0|` (in `[1, 2)`).
+    j0_norm: T,
     /// Initial attitude of the principal frame, `q₀ ⊗ P`.
     q0: UnitQuat<T>,
     j_norm: T,
     energy: T,
+    /// The power of two `s_J` near `|J₀|` by which the momentum is divided.
+    j_scale: T,
+    /// `s_J/s_I` (rad/s), `s_I` the power of two near `I_max` by which the moments are divided:
+    /// the motion is solved for those scaled moments and momenta (of order one, so that no
+    /// product of moments or momenta can overflow or underflow; the scaling by powers of two is
+    /// exact and changes no digit), whose rates are in units of this scale; time enters as
+    /// `t·rate_scale`.
+    rate_scale: T,
+    /// `max(|λ|, ψ̇, …)` of the normalised motion: the fastest phase, for the precision limit of
+    /// [`FreeRigidBody::try_state_at`].
+    max_rate: T,
     regime: Regime,
     motion: Motion<T>,
 }
@@ -214,8 +231,14 @@ impl<T: Real> FreeRigidBody<T> {
     /// Sets up the motion of a body with inertia `inertia` from its initial state (attitude
     /// body → lab, body momentum).
     ///
+    /// The motion is solved for the moments divided by the largest one and the momentum divided
+    /// by its norm, so that the closed forms' products of moments and momenta stay of order one
+    /// for bodies and momenta anywhere in the type's range. Domain: a state whose body rate
+    /// `I⁻¹J` and energy `½ J·I⁻¹J` are representable.
+    ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite state; [`Error::ZeroNorm`] for `J = 0`.
+    /// [`Error::NonFinite`] for a non-finite state; [`Error::ZeroNorm`] for `J = 0`;
+    /// [`Error::InvalidArgument`] for a state outside the domain (rates or energy overflow).
     pub fn try_new(inertia: &Inertia<T>, initial: &State<T>) -> Result<Self, Error> {
         let (q0, j0) = (initial.attitude, initial.momentum);
         if !j0.is_finite() || !q0.as_quat().is_finite() {
@@ -242,16 +265,26 @@ impl<T: Real> FreeRigidBody<T> {
         principal: Option<UnitQuat<T>>,
     ) -> Result<Self, Error> {
         let j_norm = j0_body.norm();
-        if !j_norm.is_finite() {
-            return Err(Error::NonFinite);
-        }
         if j_norm <= T::ZERO {
             return Err(Error::ZeroNorm);
         }
         let omega = Vec3::new(j0_body.x / i.x, j0_body.y / i.y, j0_body.z / i.z);
         let energy = T::HALF * j0_body.dot(omega);
-        if !energy.is_finite() || !omega.is_finite() {
-            return Err(Error::NonFinite);
+        if !(j_norm.is_finite() && energy.is_finite() && omega.is_finite()) {
+            return Err(Error::InvalidArgument);
+        }
+        let i_scale = pow2_scale(i.x.max(i.y).max(i.z));
+        let j_scale = pow2_scale(j_norm);
+        let rate_scale = j_scale / i_scale;
+        let (true_moments, true_j_norm, true_energy) = (i, j_norm, energy);
+        // The scaled problem (exact: powers of two): largest moment and |J| in [1, 2), rates in
+        // units of `rate_scale`.
+        let i = i / i_scale;
+        let j0_body = j0_body / j_scale;
+        let j_norm = j0_body.norm();
+        let omega = Vec3::new(j0_body.x / i.x, j0_body.y / i.y, j0_body.z / i.z);
+        if !(omega.is_finite() && rate_scale.is_finite() && rate_scale > T::ZERO) {
+            return Err(Error::InvalidArgument);
         }
 
         // Sort the axes by moment: lo, mid, hi (a 3-element network; no slice sort, whose
@@ -271,15 +304,20 @@ impl<T: Real> FreeRigidBody<T> {
         let lo_eq_mid = i_mid - i_lo <= eq_tol * i_mid;
         let mid_eq_hi = i_hi - i_mid <= eq_tol * i_hi;
 
+        let rate = omega.norm();
         let mut this = Self {
-            moments: i,
+            moments: true_moments,
             principal,
             j0: j0_body,
+            j0_norm: j_norm,
             q0,
-            j_norm,
-            energy,
+            j_norm: true_j_norm,
+            energy: true_energy,
+            j_scale,
+            rate_scale,
+            max_rate: rate,
             regime: Regime::Sphere,
-            motion: Motion::Steady { rate: omega.norm() },
+            motion: Motion::Steady { rate },
         };
         if lo_eq_mid && mid_eq_hi {
             return Ok(this);
@@ -301,20 +339,26 @@ impl<T: Real> FreeRigidBody<T> {
             let e_s = Vec3::unit(ax);
             let j_s = j0_body[ax];
             this.regime = Regime::SymmetricTop { axis: ax };
+            let (lab_rate, body_rate) = (j_norm / i_p, j_s * (T::ONE / i_s - T::ONE / i_p));
+            this.max_rate = lab_rate.max(body_rate.abs());
             this.motion = Motion::Symmetric {
                 e_s,
-                lab_rate: j_norm / i_p,
-                body_rate: j_s * (T::ONE / i_s - T::ONE / i_p),
+                lab_rate,
+                body_rate,
             };
             return Ok(this);
         }
 
-        // Asymmetric top. d = J² − 2E·I_mid from the components.
+        // Asymmetric top. d = J² − 2E·I_mid from the components, as the difference of two
+        // non-negative terms; the moment differences are exact (Sterbenz) for moments within a
+        // factor 2 of each other, so d is known to the rounding of those terms.
         let j_lo = j0_body[lo];
         let j_hi = j0_body[hi];
-        let d = j_hi * j_hi * ((i_hi - i_mid) / i_hi) - j_lo * j_lo * ((i_mid - i_lo) / i_lo);
+        let term_hi = j_hi * j_hi * ((i_hi - i_mid) / i_hi);
+        let term_lo = j_lo * j_lo * ((i_mid - i_lo) / i_lo);
+        let d = term_hi - term_lo;
         let j2 = j_norm * j_norm;
-        let sep_tol = T::from_f64(SEPARATRIX_TOLERANCE) * T::EPSILON * j2;
+        let sep_tol = T::from_f64(SEPARATRIX_TOLERANCE) * T::EPSILON * (term_hi + term_lo);
         let separatrix = d.abs() <= sep_tol;
         let (a1, a3) = if d >= T::ZERO { (lo, hi) } else { (hi, lo) };
         if separatrix && (j0_body[a1] == T::ZERO || j0_body[a3] == T::ZERO) {
@@ -352,9 +396,18 @@ impl<T: Real> FreeRigidBody<T> {
             let m1 = (d * i3 / ((i3 - i2) * amp3_sq)).max(T::ZERO).min(T::ONE);
             (m, m1)
         };
-        // Initial phase: cn u₀ = |J₁|/A₁, sn u₀ = s₁ J₂/A₂ ⇒ φ₀ ∈ [−π/2, π/2].
-        let sn_scaled = s1 * jj2 * amp1; // ∝ sin φ₀
-        let cn_scaled = jj1.abs() * amp2; // ∝ cos φ₀ ≥ 0
+        if !(amp1 > T::ZERO && amp2 > T::ZERO) {
+            // The components off the circulation axis underflowed in their squares: J is on
+            // the a₃ axis to the type's resolution.
+            this.regime = Regime::Stationary { axis: a3 };
+            this.motion = Motion::Steady { rate };
+            this.max_rate = rate;
+            return Ok(this);
+        }
+        // Initial phase: cn u₀ = |J₁|/A₁, sn u₀ = s₁ J₂/A₂ ⇒ φ₀ ∈ [−π/2, π/2] (the ratios, not
+        // the products J₂A₁ and J₁A₂, which underflow together for J near the a₃ axis).
+        let sn_scaled = s1 * (jj2 / amp2); // sin φ₀
+        let cn_scaled = jj1.abs() / amp1; // cos φ₀ ≥ 0
         let phi0 = sn_scaled.atan2(cn_scaled);
         let (u0, kc) = if separatrix {
             // u₀ = atanh(sin φ₀) = sign·ln((1 + |sin φ₀|)/cos φ₀)
@@ -412,6 +465,7 @@ impl<T: Real> FreeRigidBody<T> {
         } else {
             Regime::Circulating { axis: a3 }
         };
+        this.max_rate = lambda.abs().max(j_norm / i2);
         this.motion = Motion::Asymmetric(Asymmetric {
             idx: [a1, a2, a3],
             amp: [s1 * amp1, h * s1 * amp2, s3 * amp3],
@@ -456,7 +510,7 @@ impl<T: Real> FreeRigidBody<T> {
 
     /// The lab-frame angular momentum `q₀ J₀ q₀*`, conserved.
     pub fn lab_momentum(&self) -> Vec3<T> {
-        self.q0.rotate(self.j0)
+        self.q0.rotate(self.j0).scale(self.j_scale)
     }
 
     /// The elliptic parameter `m ∈ [0, 1]` of an asymmetric top (1 on the separatrix); `None`
@@ -479,16 +533,22 @@ impl<T: Real> FreeRigidBody<T> {
     /// between the body's successive turn-overs. `None` where there is no flip: sphere, symmetric
     /// top, stationary rotation about a principal axis, and the separatrix (the time is
     /// infinite there).
+    ///
+    /// Also `None` when the interval overflows the type (a body turning so slowly that the
+    /// time is not representable).
     pub fn flip_interval(&self) -> Option<T> {
         match &self.motion {
-            Motion::Asymmetric(a) if !a.separatrix => Some(T::TWO * a.kc / a.lambda.abs()),
+            Motion::Asymmetric(a) if !a.separatrix => {
+                let t = T::TWO * a.kc / a.lambda.abs() / self.rate_scale;
+                if t.is_finite() { Some(t) } else { None }
+            }
             _ => None,
         }
     }
 
-    /// Body angular momentum at time `t`.
+    /// Body angular momentum at time `t` (domain as [`FreeRigidBody::state_at`]).
     pub fn body_momentum_at(&self, t: T) -> Vec3<T> {
-        self.principal_to_body(self.principal_momentum_at(t))
+        self.principal_to_body(self.principal_momentum_at(t * self.rate_scale))
     }
 
     /// A principal-frame vector in the body frame.
@@ -500,9 +560,9 @@ impl<T: Real> FreeRigidBody<T> {
         }
     }
 
-    /// Principal-frame angular momentum at time `t`.
+    /// Principal-frame angular momentum at the normalised time `t` (`t·rate_scale`).
     fn principal_momentum_at(&self, t: T) -> Vec3<T> {
-        match &self.motion {
+        let j = match &self.motion {
             Motion::Steady { .. } => self.j0,
             Motion::Symmetric { e_s, body_rate, .. } => {
                 UnitQuat::from_unit_axis_angle(*e_s, -*body_rate * t).rotate(self.j0)
@@ -511,7 +571,8 @@ impl<T: Real> FreeRigidBody<T> {
                 let (sn, cn, dn) = self.jacobi(a, t);
                 self.assemble(a, sn, cn, dn)
             }
-        }
+        };
+        j.scale(self.j_scale)
     }
 
     fn jacobi(&self, a: &Asymmetric<T>, t: T) -> (T, T, T) {
@@ -535,9 +596,10 @@ impl<T: Real> FreeRigidBody<T> {
         j
     }
 
-    /// Body angular velocity `ω = I⁻¹ J` at time `t` (rad/s, body frame).
+    /// Body angular velocity `ω = I⁻¹ J` at time `t` (rad/s, body frame; domain as
+    /// [`FreeRigidBody::state_at`]).
     pub fn body_rates_at(&self, t: T) -> Vec3<T> {
-        let j = self.principal_momentum_at(t);
+        let j = self.principal_momentum_at(t * self.rate_scale);
         self.principal_to_body(Vec3::new(
             j.x / self.moments.x,
             j.y / self.moments.y,
@@ -547,34 +609,50 @@ impl<T: Real> FreeRigidBody<T> {
 
     /// [`FreeRigidBody::state_at`] with a check of `t`.
     ///
+    /// Validity limit: the phases of the motion (the Jacobi argument `λt` and the angle about
+    /// the lab momentum) may reach at most [`exact_step_angle_limit`] (`1/ε`): beyond it their
+    /// rounding alone exceeds half a radian and the state has no correct digit, as for the exact
+    /// exponential step.
+    ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite `t`.
+    /// [`Error::NonFinite`] for a non-finite `t`; [`Error::StepTooLong`] beyond the validity
+    /// limit.
     pub fn try_state_at(&self, t: T) -> Result<State<T>, Error> {
         if !t.is_finite() {
             return Err(Error::NonFinite);
+        }
+        let phase = (t * self.rate_scale).abs() * self.max_rate;
+        // A NaN or infinite phase (an overflowed product) is not within the limit either.
+        let within = phase <= exact_step_angle_limit::<T>();
+        if !within {
+            return Err(Error::StepTooLong);
         }
         Ok(self.state_at(t))
     }
 
     /// The state at time `t`: attitude (body → lab) and body angular momentum `J`.
     ///
-    /// Closed form for every finite `t` (negative too); cost independent of `t`. Accuracy of
-    /// the attitude degrades like `ε·|ψ(t)|` (the angle about `J` is evaluated, not
-    /// accumulated). `t` must be finite (a NaN or infinite `t` gives NaN components, never a
-    /// panic); use [`FreeRigidBody::try_state_at`] to have it checked.
+    /// Closed form for every `t` within the validity limit of [`FreeRigidBody::try_state_at`]
+    /// (negative too); cost independent of `t`. Accuracy of the attitude degrades like
+    /// `ε·|ψ(t)|` (the angle about `J` is evaluated, not accumulated). Domain: a finite `t`
+    /// within that limit; outside it the result is unspecified (NaN components for a NaN or
+    /// infinite `t` or a phase that overflows), never a panic. Use
+    /// [`FreeRigidBody::try_state_at`] to have `t` checked.
     pub fn state_at(&self, t: T) -> State<T> {
-        let (q, j) = self.principal_state_at(t);
+        let (q, j) = self.principal_state_at(t * self.rate_scale);
+        let j = j.scale(self.j_scale);
         match self.principal {
             None => State::new(q, j),
             Some(p) => State::new(q * p.inverse(), p.rotate(j)),
         }
     }
 
-    /// The attitude and momentum of the principal frame at time `t`.
+    /// The attitude and the scaled momentum (`J/j_scale`) of the principal frame at the
+    /// scaled time `t` (`t·rate_scale`).
     fn principal_state_at(&self, t: T) -> (UnitQuat<T>, Vec3<T>) {
         match &self.motion {
             Motion::Steady { rate } => {
-                let axis = self.j0.scale(T::ONE / self.j_norm);
+                let axis = self.j0.scale(T::ONE / self.j0_norm);
                 let q = self.q0 * UnitQuat::from_unit_axis_angle(axis, *rate * t);
                 (q, self.j0)
             }
@@ -583,7 +661,7 @@ impl<T: Real> FreeRigidBody<T> {
                 lab_rate,
                 body_rate,
             } => {
-                let axis = self.j0.scale(T::ONE / self.j_norm);
+                let axis = self.j0.scale(T::ONE / self.j0_norm);
                 let q = self.q0
                     * UnitQuat::from_unit_axis_angle(axis, *lab_rate * t)
                     * UnitQuat::from_unit_axis_angle(*e_s, *body_rate * t);
@@ -603,7 +681,7 @@ impl<T: Real> FreeRigidBody<T> {
                         a.psi_rate * t + a.c_over_lambda * (pi - a.pi0),
                     )
                 };
-                let (theta, chi) = gauge_angles(j.scale(T::ONE / self.j_norm), a.e_b, a.e_c2);
+                let (theta, chi) = gauge_angles(j.scale(T::ONE / self.j0_norm), a.e_b, a.e_c2);
                 let q = a.g0
                     * UnitQuat::from_unit_axis_angle(a.e_b, psi)
                     * UnitQuat::from_unit_axis_angle(a.e_c2, -theta)

@@ -16,7 +16,10 @@
 //! [`Gyrostat::step`] advances a torque-free body (wheels coasting); [`Gyrostat::step_with`]
 //! takes an input, either a [`Control`] held over the step (the firmware form, see
 //! [`Gyrostat::control`]) or a law `f(t, state)` evaluated at the integrator's stages (the host
-//! form). Both check the step once and return a typed error for a non-finite result.
+//! form). Both check the step once and return a typed error for a non-finite result or a step
+//! beyond the methods' validity limit: the body may turn by at most
+//! [`MAX_STEP_ANGLE`](crate::propagation::MAX_STEP_ANGLE) (half a turn) per step, `|ω|·dt ≤ π` at
+//! the start and at the end of the step ([`Error::StepTooLong`]).
 //!
 //! ```
 //! use gyrostat::dynamics::{Gyrostat, Inertia, Integrator, State, lab_momentum};
@@ -38,6 +41,7 @@ use crate::dynamics::inertia::Inertia;
 use crate::dynamics::monitors::{Invariants, lab_momentum, momentum_norm};
 use crate::dynamics::splitting::Stages;
 use crate::dynamics::state::{CompensatedState, Control, ControlLaw, State, WheelCommand};
+use crate::propagation::within_step_limit;
 use crate::{Error, Real, UnitQuat, Vec3};
 
 /// The integration method of a step.
@@ -183,6 +187,10 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     }
 
     /// The body rate `ω = ∇H(J) = I⁻¹(J − h) + ∇quartic(J)`.
+    ///
+    /// Domain (of this, [`Gyrostat::energy`] and [`Gyrostat::invariants`]): a finite state whose
+    /// rate and energy are representable (see [`BodyHamiltonian::energy_with_rotor`] with the
+    /// rotor momentum `h` of the wheel speeds); outside it the result is infinite or NaN.
     #[inline]
     pub fn omega(&self, state: &State<T, N>) -> Vec3<T> {
         self.model
@@ -269,9 +277,19 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     /// `state` is a [`State`] (the plain step) or a [`CompensatedState`] (the compensated step,
     /// see [`crate::dynamics::compensated`]); the result is of the same type.
     ///
+    /// Validity limit: the body turns by at most
+    /// [`MAX_STEP_ANGLE`](crate::propagation::MAX_STEP_ANGLE) in the step, `|ω|·dt ≤ π` with the
+    /// body rate `ω` of the state before and of the state after the step. Every method here is a
+    /// series in that angle (RK4's polynomial, the splittings' composition error); beyond half a
+    /// turn per step none of them approximates the motion. (`|J|` and the energy of a state are
+    /// otherwise unrestricted: a fast body needs short steps, not a different method.)
+    ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite `dt` or a non-finite result (a step far too long
-    /// for the dynamics); [`Error::InvalidArgument`] for `dt ≤ 0`.
+    /// [`Error::NonFinite`] for a non-finite `dt` or state, or a non-finite result;
+    /// [`Error::InvalidArgument`] for `dt ≤ 0`; [`Error::StepTooLong`] beyond the validity limit,
+    /// or when the result's attitude has left the unit sphere by more than any step within the
+    /// limit could (`|q|²` outside `[½, 2]` before renormalisation: a collapsed or exploded
+    /// norm, never renormalised into a valid-looking attitude).
     pub fn step<S: StepState<T, N>>(
         &self,
         integrator: Integrator,
@@ -279,12 +297,13 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         dt: T,
     ) -> Result<S, Error> {
         check_step(T::ZERO, dt)?;
+        self.check_start(state.plain(), dt)?;
         let mut torque_free = Control::ZERO;
         let next = match Stages::of(integrator, dt) {
             Some(stages) => state.free(self, stages.as_slice()),
             None => state.rk4(self, T::ZERO, dt, &mut torque_free),
         };
-        next.finish()
+        self.finish(next, dt)
     }
 
     /// One step from time `t` with an input: a [`Control`] held over the step (see
@@ -295,8 +314,8 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     /// [`CompensatedState`] (the law then sees its rounded [`CompensatedState::state`]).
     ///
     /// # Errors
-    /// As [`Gyrostat::step`], plus [`Error::NonFinite`] for a non-finite `t` and for an input
-    /// that makes the result non-finite (a non-finite torque).
+    /// As [`Gyrostat::step`] (with the same validity limit), plus [`Error::NonFinite`] for a
+    /// non-finite `t` and for an input that makes the result non-finite (a non-finite torque).
     ///
     /// ```
     /// use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State};
@@ -321,11 +340,51 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         mut input: L,
     ) -> Result<S, Error> {
         check_step(t, dt)?;
+        self.check_start(state.plain(), dt)?;
         let next = match Stages::of(integrator, dt) {
             Some(stages) => state.kicked(self, t, stages.as_slice(), &mut input),
             None => state.rk4(self, t, dt, &mut input),
         };
-        next.finish()
+        self.finish(next, dt)
+    }
+
+    /// The checks of a step's initial state: `|ω|·dt` within the validity limit. A non-finite
+    /// state fails that test too (its rate is NaN or infinite); it is told apart on the error
+    /// path only, so the accepted path costs one rate evaluation.
+    #[inline]
+    fn check_start(&self, state: &State<T, N>, dt: T) -> Result<(), Error> {
+        if within_step_limit(self.omega(state).scale(dt)) {
+            Ok(())
+        } else if state.is_finite() {
+            Err(Error::StepTooLong)
+        } else {
+            Err(Error::NonFinite)
+        }
+    }
+
+    /// Renormalises the attitude of a step's result after checking it: its norm not collapsed
+    /// or exploded (`|q|² ∈ [½, 2]`; the splittings keep `|q| = 1` to rounding and an RK4 step
+    /// within the limit keeps `|q|²` above 0.85, so anything outside is a step far beyond its
+    /// validity, for example a torque law that blew up within the step), and `|ω|·dt` within the
+    /// validity limit at the end of the step. Passing both implies a finite state (a NaN or
+    /// infinite component fails one of them); which error a failure is, is decided on the
+    /// error path. The norm is near 1, far from overflow, so [`UnitQuat::renormalize`]'s plain
+    /// square root is safe.
+    #[inline]
+    fn finish<S: StepState<T, N>>(&self, next: S, dt: T) -> Result<S, Error> {
+        let n2 = next.plain().attitude.as_quat().norm_squared();
+        if n2 >= T::HALF && n2 <= T::TWO {
+            if let Some(next) = next.renormalized() {
+                if within_step_limit(self.omega(next.plain()).scale(dt)) {
+                    return Ok(next);
+                }
+            }
+        }
+        if next.plain().is_finite() {
+            Err(Error::StepTooLong)
+        } else {
+            Err(Error::NonFinite)
+        }
     }
 }
 
@@ -338,11 +397,11 @@ impl<T: Real, const N: usize> StepState<T, N> for State<T, N> {}
 impl<T: Real, const N: usize> StepState<T, N> for CompensatedState<T, N> {}
 
 mod sealed {
-    use super::{CompensatedState, ControlLaw, Error, Gyrostat, Real, State};
+    use super::{CompensatedState, ControlLaw, Gyrostat, Real, State};
     use crate::dynamics::{compensated, rk4, splitting};
 
     /// The steps of a state type (crate-internal: the methods of [`super::StepState`]).
-    pub trait Advance<T: Real, const N: usize>: Sized {
+    pub trait Advance<T: Real, const N: usize>: Copy {
         /// The torque-free splitting of Strang stages `stages`. Not renormalised.
         fn free(&self, body: &Gyrostat<T, N>, stages: &[T]) -> Self;
         /// The kicked splitting of Strang stages `stages` from time `t`. Not renormalised.
@@ -361,8 +420,11 @@ mod sealed {
             h: T,
             input: &mut L,
         ) -> Self;
-        /// Renormalises the attitude and rejects a non-finite result.
-        fn finish(self) -> Result<Self, Error>;
+        /// The state rounded to its working type (the state itself for a plain [`State`]).
+        fn plain(&self) -> &State<T, N>;
+        /// The attitude renormalised, for a norm already checked to be near 1; `None` when a
+        /// carried low-order part is not finite.
+        fn renormalized(self) -> Option<Self>;
     }
 
     impl<T: Real, const N: usize> Advance<T, N> for State<T, N> {
@@ -391,8 +453,13 @@ mod sealed {
             rk4::step(body, self, t, h, input)
         }
         #[inline]
-        fn finish(self) -> Result<Self, Error> {
-            super::finish(self)
+        fn plain(&self) -> &State<T, N> {
+            self
+        }
+        #[inline]
+        fn renormalized(mut self) -> Option<Self> {
+            self.attitude = self.attitude.renormalize();
+            Some(self)
         }
     }
 
@@ -422,8 +489,12 @@ mod sealed {
             compensated::rk4_step(body, self, t, h, input)
         }
         #[inline]
-        fn finish(self) -> Result<Self, Error> {
-            compensated::finish(self)
+        fn plain(&self) -> &State<T, N> {
+            &self.state
+        }
+        #[inline]
+        fn renormalized(self) -> Option<Self> {
+            compensated::finish(self).ok()
         }
     }
 }
@@ -438,19 +509,6 @@ fn check_step<T: Real>(t: T, dt: T) -> Result<(), Error> {
         return Err(Error::InvalidArgument);
     }
     Ok(())
-}
-
-/// Renormalises the attitude of a step's result and rejects a non-finite one. The norm is within
-/// a truncation error of 1, far from overflow, so [`UnitQuat::renormalize`]'s plain square root
-/// is safe.
-#[inline]
-fn finish<T: Real, const N: usize>(mut state: State<T, N>) -> Result<State<T, N>, Error> {
-    state.attitude = state.attitude.renormalize();
-    if state.is_finite() {
-        Ok(state)
-    } else {
-        Err(Error::NonFinite)
-    }
 }
 
 /// The Euler equation with a full inertia tensor, rotor momentum and torque, solved for the body

@@ -81,7 +81,9 @@ impl<T: Real> BodyHamiltonian<T> {
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite `spin` or quartic coefficient;
     /// [`Error::InvalidArgument`] for a quartic term with a non-diagonal inertia tensor (the
-    /// quartic polynomials are defined on principal axes).
+    /// quartic polynomials are defined on principal axes), or a coefficient so large that the
+    /// Hessian's factor `12t` overflows (`|t|` above `MAX/12`: the gradient and Hessian of even
+    /// a unit momentum would not be representable).
     pub fn try_new(inertia: Inertia<T>, spin: Vec3<T>, quartic: Quartic<T>) -> Result<Self, Error> {
         let spin = spin.try_finite()?;
         match quartic {
@@ -90,7 +92,7 @@ impl<T: Real> BodyHamiltonian<T> {
                 if !t.is_finite() {
                     return Err(Error::NonFinite);
                 }
-                if !inertia.is_diagonal() {
+                if !inertia.is_diagonal() || !(T::from_f64(12.0) * t).is_finite() {
                     return Err(Error::InvalidArgument);
                 }
             }
@@ -139,6 +141,14 @@ impl<T: Real> BodyHamiltonian<T> {
 
     /// `H(J)` with total rotor momentum `s` (the model's spin plus any wheel momentum):
     /// `½ (J − s)·I⁻¹·(J − s) + quartic(J)`.
+    ///
+    /// Domain (of this and the other maps of `J`: [`BodyHamiltonian::omega_with_rotor`],
+    /// [`BodyHamiltonian::hessian`] and the model-spin forms): a finite momentum whose energy and
+    /// rate are representable, `|J − s|²/I_min` and `|J − s|/I_min` below `MAX/8`, and with a
+    /// quartic term (coefficient `t`) `|J|⁴`, `|t|·|J|⁴` and `12|t|·|J|³` too. Outside it the
+    /// arithmetic overflows and the
+    /// result is infinite or NaN; the checked steps reject such states
+    /// ([`crate::dynamics::Gyrostat::step`]).
     pub fn energy_with_rotor(&self, j: Vec3<T>, s: Vec3<T>) -> T {
         let r = j - s;
         T::HALF * r.dot(self.inertia.solve(r)) + quartic_energy(self.quartic, j)
@@ -181,10 +191,10 @@ impl<T: Real> BodyHamiltonian<T> {
     /// [`MOMENTUM_SOLVE_MAX_STEPS`] steps.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for non-finite input or a non-finite Hessian; [`Error::Singular`]
-    /// where the Hessian is singular (the rate does not determine the momentum there);
-    /// [`Error::NotConverged`] when the iterates diverge or the last one misses
-    /// [`MOMENTUM_SOLVE_RESIDUAL`].
+    /// [`Error::NonFinite`] for non-finite input or a non-finite Hessian; [`Error::InvalidArgument`]
+    /// when `I·ω + s` overflows the type; [`Error::Singular`] where the Hessian is singular (the
+    /// rate does not determine the momentum there); [`Error::NotConverged`] when the iterates
+    /// diverge (including to infinity) or the last one misses [`MOMENTUM_SOLVE_RESIDUAL`].
     pub fn momentum_from_omega_with_rotor(
         &self,
         omega: Vec3<T>,
@@ -192,6 +202,9 @@ impl<T: Real> BodyHamiltonian<T> {
     ) -> Result<Vec3<T>, Error> {
         let omega = omega.try_finite()?;
         let mut j = self.inertia.mul_vec(omega) + s.try_finite()?;
+        if !j.is_finite() {
+            return Err(Error::InvalidArgument);
+        }
         if self.quartic == Quartic::None {
             return Ok(j);
         }
@@ -200,6 +213,10 @@ impl<T: Real> BodyHamiltonian<T> {
             let residual = self.omega_with_rotor(j, s) - omega;
             let step = self.hessian(j).try_inverse()? * residual;
             j -= step;
+            // Written so that an iterate or step that overflowed (∞ or NaN) fails the test.
+            if !j.is_finite() || !step.is_finite() {
+                return Err(Error::NotConverged);
+            }
             if step.norm() <= step_tol * (T::ONE + j.norm()) {
                 return Ok(j);
             }

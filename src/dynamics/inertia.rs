@@ -79,7 +79,10 @@ impl<T: Real> Inertia<T> {
     /// # Ok::<(), Error>(())
     /// ```
     pub fn try_from_principal(moments: Vec3<T>) -> Result<Self, Error> {
-        Self::try_from_tensor(Mat3::from_diagonal(moments))
+        if !moments.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        Self::from_checked_diagonal(moments)
     }
 
     /// The inertia from its six independent components: the diagonal `(I₁₁, I₂₂, I₃₃)` and the
@@ -99,18 +102,37 @@ impl<T: Real> Inertia<T> {
 
     /// Validates a full body-frame tensor (seed (6.5.5b)) and computes its principal frame.
     ///
+    /// The checks and the eigen-decomposition run on the tensor divided by its largest entry, so
+    /// that entries anywhere in the type's range are handled without overflow or underflow.
+    /// Domain: a tensor whose inverse is representable too (principal moments above about
+    /// `3/MAX`, so that `I⁻¹` and the body rates `I⁻¹J` of ordinary momenta are finite).
+    ///
     /// # Errors
     /// - [`Error::NonFinite`]: an entry is NaN or infinite;
     /// - [`Error::NonPhysicalInertia`]: not symmetric within [`SYMMETRY_TOLERANCE_EPS`], not
     ///   positive definite, or principal moments violating `I_a ≤ I_b + I_c` (both within
-    ///   [`EIGEN_TOLERANCE_EPS`]).
+    ///   [`EIGEN_TOLERANCE_EPS`]);
+    /// - [`Error::InvalidArgument`]: a physical tensor whose inverse overflows the type
+    ///   (moments below the domain).
     pub fn try_from_tensor(tensor: Mat3<T>) -> Result<Self, Error> {
         if !tensor.is_finite() {
             return Err(Error::NonFinite);
         }
         let m = tensor.m;
+        let diagonal = m[0][1] == T::ZERO
+            && m[1][0] == T::ZERO
+            && m[0][2] == T::ZERO
+            && m[2][0] == T::ZERO
+            && m[1][2] == T::ZERO
+            && m[2][1] == T::ZERO;
+        if diagonal {
+            return Self::from_checked_diagonal(tensor.diagonal());
+        }
         let scale = tensor.max_abs();
-        let sym_tol = T::from_f64(SYMMETRY_TOLERANCE_EPS) * T::EPSILON * scale;
+        // Divided (not multiplied by a reciprocal, which overflows for a subnormal scale): the
+        // largest entry is now ±1.
+        let m = m.map(|row| row.map(|x| x / scale));
+        let sym_tol = T::from_f64(SYMMETRY_TOLERANCE_EPS) * T::EPSILON;
         if (m[0][1] - m[1][0]).abs() > sym_tol
             || (m[0][2] - m[2][0]).abs() > sym_tol
             || (m[1][2] - m[2][1]).abs() > sym_tol
@@ -120,33 +142,65 @@ impl<T: Real> Inertia<T> {
         let o01 = (m[0][1] + m[1][0]) * T::HALF;
         let o02 = (m[0][2] + m[2][0]) * T::HALF;
         let o12 = (m[1][2] + m[2][1]) * T::HALF;
-        let sym = Mat3::from_rows(
+        let unit_sym = Mat3::from_rows(
             [m[0][0], o01, o02],
             [o01, m[1][1], o12],
             [o02, o12, m[2][2]],
         );
-        let (moments, axes) = symmetric_eigen(&sym);
-        let trace = moments.x + moments.y + moments.z;
-        let tol = T::from_f64(EIGEN_TOLERANCE_EPS) * T::EPSILON * trace.abs();
-        let min = moments.x.min(moments.y).min(moments.z);
-        if min <= tol {
+        let (unit_moments, axes) = symmetric_eigen(&unit_sym);
+        check_moments(unit_moments)?;
+        let sym = Mat3::from_rows(
+            [tensor.m[0][0], o01 * scale, o02 * scale],
+            [o01 * scale, tensor.m[1][1], o12 * scale],
+            [o02 * scale, o12 * scale, tensor.m[2][2]],
+        );
+        // `axes` is a proper rotation (orthonormal columns to rounding, det +1 by construction):
+        // Shepperd's method of `Dcm` applies.
+        let rotation = Dcm::from_matrix_unchecked(axes).to_unit_quat();
+        Self::assemble(sym, unit_moments.scale(scale), axes, rotation, false)
+    }
+
+    /// A diagonal tensor of finite moments: principal frame = body frame, no decomposition (so
+    /// that code building bodies only from principal moments links no eigen-solver).
+    fn from_checked_diagonal(d: Vec3<T>) -> Result<Self, Error> {
+        let scale = d.max_abs();
+        if scale == T::ZERO {
             return Err(Error::NonPhysicalInertia);
         }
-        let (a, b, c) = (moments.x, moments.y, moments.z);
-        if a > b + c + tol || b > a + c + tol || c > a + b + tol {
-            return Err(Error::NonPhysicalInertia);
+        check_moments(d / scale)?;
+        Self::assemble(
+            Mat3::from_diagonal(d),
+            d,
+            Mat3::IDENTITY,
+            UnitQuat::IDENTITY,
+            true,
+        )
+    }
+
+    /// The inertia of a validated principal frame, rejected with [`Error::InvalidArgument`] if
+    /// its inverse (or, scaled back, a moment) is not representable.
+    fn assemble(
+        tensor: Mat3<T>,
+        moments: Vec3<T>,
+        axes: Mat3<T>,
+        rotation: UnitQuat<T>,
+        diagonal: bool,
+    ) -> Result<Self, Error> {
+        let inv = Vec3::new(T::ONE / moments.x, T::ONE / moments.y, T::ONE / moments.z);
+        let inverse = if diagonal {
+            Mat3::from_diagonal(inv)
+        } else {
+            axes * Mat3::from_diagonal(inv) * axes.transpose()
+        };
+        if !(inverse.is_finite() && moments.is_finite() && tensor.is_finite()) {
+            return Err(Error::InvalidArgument);
         }
-        let inv = Vec3::new(T::ONE / a, T::ONE / b, T::ONE / c);
-        let inverse = axes * Mat3::from_diagonal(inv) * axes.transpose();
-        let diagonal = o01 == T::ZERO && o02 == T::ZERO && o12 == T::ZERO;
         Ok(Self {
-            tensor: sym,
+            tensor,
             inverse,
             moments,
             axes,
-            // `axes` is a proper rotation (orthonormal columns to rounding, det +1 by
-            // construction): Shepperd's method of `Dcm` applies.
-            rotation: Dcm::from_matrix_unchecked(axes).to_unit_quat(),
+            rotation,
             diagonal,
         })
     }
@@ -187,16 +241,26 @@ impl<T: Real> Inertia<T> {
         self.diagonal
     }
 
-    /// Angular momentum of a rigid rotation, `L = I·ω` (6.5.3).
+    /// Angular momentum of a rigid rotation, `L = I·ω` (6.5.3). For a diagonal tensor only the
+    /// diagonal is multiplied (the same result: the products with the zero entries add nothing).
     #[inline]
     pub fn mul_vec(&self, omega: Vec3<T>) -> Vec3<T> {
-        self.tensor * omega
+        if self.diagonal {
+            self.moments.component_mul(omega)
+        } else {
+            self.tensor * omega
+        }
     }
 
-    /// Angular velocity from angular momentum, `ω = I⁻¹·J` (6.5.14a).
+    /// Angular velocity from angular momentum, `ω = I⁻¹·J` (6.5.14a). For a diagonal tensor
+    /// only the diagonal of `I⁻¹` is multiplied (as [`Inertia::mul_vec`]).
     #[inline]
     pub fn solve(&self, momentum: Vec3<T>) -> Vec3<T> {
-        self.inverse * momentum
+        if self.diagonal {
+            self.inverse.diagonal().component_mul(momentum)
+        } else {
+            self.inverse * momentum
+        }
     }
 
     /// Rotational kinetic energy `½ J·I⁻¹·J` (6.5.11).
@@ -208,15 +272,17 @@ impl<T: Real> Inertia<T> {
     /// Principal radii of gyration `kᵢ = √(λᵢ / M)` for a body of mass `mass`.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite mass, [`Error::InvalidArgument`] for `mass ≤ 0`.
+    /// [`Error::NonFinite`] for a non-finite mass, [`Error::InvalidArgument`] for `mass ≤ 0` or
+    /// a radius that overflows the type (a mass far below the moments).
     pub fn radii_of_gyration(&self, mass: T) -> Result<Vec3<T>, Error> {
-        let inv_m = inverse_mass(mass)?;
+        check_mass(mass)?;
         let m = self.moments;
-        Ok(Vec3::new(
-            (m.x * inv_m).sqrt(),
-            (m.y * inv_m).sqrt(),
-            (m.z * inv_m).sqrt(),
-        ))
+        let k = Vec3::new(
+            (m.x / mass).sqrt(),
+            (m.y / mass).sqrt(),
+            (m.z / mass).sqrt(),
+        );
+        representable_vec(k)
     }
 
     /// Radius of gyration about a body-frame axis through the reference point:
@@ -226,20 +292,50 @@ impl<T: Real> Inertia<T> {
     /// As [`Inertia::radii_of_gyration`], plus the errors of normalising `axis`
     /// ([`Error::ZeroNorm`], [`Error::NonFinite`]).
     pub fn radius_of_gyration_about(&self, axis: Vec3<T>, mass: T) -> Result<T, Error> {
-        let inv_m = inverse_mass(mass)?;
+        check_mass(mass)?;
         let n = axis.try_normalize()?;
-        Ok((n.dot(self.tensor * n) * inv_m).sqrt())
+        let k = (n.dot(self.tensor * n) / mass).sqrt();
+        if k.is_finite() {
+            Ok(k)
+        } else {
+            Err(Error::InvalidArgument)
+        }
     }
 }
 
-fn inverse_mass<T: Real>(mass: T) -> Result<T, Error> {
+/// The checks of principal moments (scaled to a largest magnitude of about one, so that the
+/// trace cannot overflow): positive definite and obeying the triangle inequality, both within
+/// [`EIGEN_TOLERANCE_EPS`].
+fn check_moments<T: Real>(moments: Vec3<T>) -> Result<(), Error> {
+    let (a, b, c) = (moments.x, moments.y, moments.z);
+    let tol = T::from_f64(EIGEN_TOLERANCE_EPS) * T::EPSILON * (a + b + c).abs();
+    let min = a.min(b).min(c);
+    // Written so that a NaN fails.
+    let positive = min > tol;
+    if !positive || a > b + c + tol || b > a + c + tol || c > a + b + tol {
+        return Err(Error::NonPhysicalInertia);
+    }
+    Ok(())
+}
+
+fn check_mass<T: Real>(mass: T) -> Result<(), Error> {
     if !mass.is_finite() {
         return Err(Error::NonFinite);
     }
     if mass <= T::ZERO {
         return Err(Error::InvalidArgument);
     }
-    Ok(T::ONE / mass)
+    Ok(())
+}
+
+/// A result computed from finite input, rejected with [`Error::InvalidArgument`] if it
+/// overflowed (an input outside the documented domain of magnitudes).
+fn representable_vec<T: Real>(v: Vec3<T>) -> Result<Vec3<T>, Error> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::InvalidArgument)
+    }
 }
 
 /// Eigen-decomposition of a symmetric 3×3 matrix by the cyclic Jacobi method.

@@ -51,7 +51,9 @@ pub struct Invariants<T> {
 
 /// Relative drifts of the [`Invariants`] from their initial values `E₀`, `|J₀|`, `L₀`:
 /// `|E − E₀|/|E₀|`, `||J| − |J₀||/|J₀|` and `|L − L₀|/|J₀|`. An initial value of zero (a body
-/// at rest) makes the corresponding drift absolute instead of relative.
+/// at rest), or one so small that the relative drift overflows the type, makes the
+/// corresponding drift absolute instead of relative. Domain: invariants whose differences are
+/// representable (below `MAX/2` in magnitude); then every drift is finite.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Drift<T> {
     /// `|E − E₀|/|E₀|`.
@@ -65,12 +67,21 @@ pub struct Drift<T> {
 impl<T: Real> Drift<T> {
     /// The drifts of `now` from `initial`.
     pub fn between(initial: &Invariants<T>, now: &Invariants<T>) -> Self {
-        let per = |x: T| if x == T::ZERO { T::ONE } else { x };
-        let n0 = per(initial.momentum_norm);
+        // |difference| relative to |reference|, or absolute where that is zero or the quotient
+        // overflows.
+        let relative = |diff: T, reference: T| {
+            let r = diff / reference.abs();
+            if reference != T::ZERO && r.is_finite() {
+                r
+            } else {
+                diff
+            }
+        };
+        let n0 = initial.momentum_norm;
         Self {
-            energy: ((now.energy - initial.energy) / per(initial.energy)).abs(),
-            momentum_norm: (now.momentum_norm - initial.momentum_norm).abs() / n0,
-            lab_momentum: (now.lab_momentum - initial.lab_momentum).norm() / n0,
+            energy: relative((now.energy - initial.energy).abs(), initial.energy),
+            momentum_norm: relative((now.momentum_norm - initial.momentum_norm).abs(), n0),
+            lab_momentum: relative((now.lab_momentum - initial.lab_momentum).norm(), n0),
         }
     }
 

@@ -105,12 +105,23 @@ fn positive<T: Real>(xs: &[T]) -> Result<(), Error> {
     }
 }
 
+/// A result computed from finite input: [`Error::InvalidArgument`] if it overflowed (an input
+/// outside the documented domain of magnitudes, see the module docs).
+fn representable<T: Real>(x: T) -> Result<T, Error> {
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(Error::InvalidArgument)
+    }
+}
+
 /// One centrifugal-stretch mode of a rotor (6.8.13)–(6.8.15): a stretch coordinate `r` of mass
 /// `m` held by a spring of frequency `ω_v`, on which the inverse inertia `μ = 1/I` depends with
 /// slope `∂μ/∂r` at rest.
 ///
 /// # Invariant
-/// `m > 0`, `ω_v > 0`, `∂μ/∂r` finite; built by [`StretchMode::try_new`].
+/// `m > 0`, `ω_v > 0`, `∂μ/∂r` finite, with the stiffness `mω_v²` positive and finite and the
+/// quartic coefficient `(∂μ/∂r)²/(8mω_v²)` finite; built by [`StretchMode::try_new`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StretchMode<T> {
     mass: T,
@@ -123,15 +134,30 @@ impl<T: Real> StretchMode<T> {
     /// `dmu_dr` (`∂μ/∂r`, 1/(kg m³) for a radius).
     ///
     /// # Errors
-    /// [`Error::NonFinite`]; [`Error::InvalidArgument`] unless `mass > 0` and `omega_v > 0`.
+    /// [`Error::NonFinite`]; [`Error::InvalidArgument`] unless `mass > 0` and `omega_v > 0`, or
+    /// when the stiffness or the quartic coefficient is not representable (overflows, or the
+    /// stiffness underflows to zero).
     pub fn try_new(mass: T, omega_v: T, dmu_dr: T) -> Result<Self, Error> {
         finite(&[dmu_dr])?;
         positive(&[mass, omega_v])?;
-        Ok(Self {
+        let mode = Self {
             mass,
             omega_v,
             dmu_dr,
-        })
+        };
+        mode.check()?;
+        Ok(mode)
+    }
+
+    /// The invariant's representability: a positive finite stiffness, a finite quartic
+    /// coefficient.
+    fn check(&self) -> Result<(), Error> {
+        let k = self.stiffness();
+        if k > T::ZERO && k.is_finite() && self.quartic_coefficient().is_finite() {
+            Ok(())
+        } else {
+            Err(Error::InvalidArgument)
+        }
     }
 
     /// The mass `m` of the stretch coordinate.
@@ -162,10 +188,11 @@ impl<T: Real> StretchMode<T> {
     /// with the sign of its own equilibrium condition; see the module docs).
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite `j`.
+    /// [`Error::NonFinite`] for a non-finite `j`; [`Error::InvalidArgument`] when the stretch
+    /// overflows the type (likewise for the other functions of this type).
     pub fn stretch(&self, j: T) -> Result<T, Error> {
         finite(&[j])?;
-        Ok(-j * j * self.dmu_dr / (T::TWO * self.stiffness()))
+        representable(-j * j * self.dmu_dr / (T::TWO * self.stiffness()))
     }
 
     /// The inverse inertia of the stretched rotor, `μ ≈ μ₀ + (∂μ/∂r)·d` (6.8.14a).
@@ -174,7 +201,7 @@ impl<T: Real> StretchMode<T> {
     /// [`Error::NonFinite`] for a non-finite input.
     pub fn stretched_inverse_inertia(&self, mu0: T, j: T) -> Result<T, Error> {
         finite(&[mu0])?;
-        Ok(mu0 + self.dmu_dr * self.stretch(j)?)
+        representable(mu0 + self.dmu_dr * self.stretch(j)?)
     }
 
     /// The quartic coefficient of the effective energy, `−(∂μ/∂r)²/(8mω_v²)` (6.8.15): the
@@ -191,7 +218,7 @@ impl<T: Real> StretchMode<T> {
     /// [`Error::NonFinite`] for a non-finite `j`.
     pub fn stretch_energy(&self, j: T) -> Result<T, Error> {
         let d = self.stretch(j)?;
-        Ok(T::HALF * self.stiffness() * d * d)
+        representable(T::HALF * self.stiffness() * d * d)
     }
 
     /// The effective (vibrationless, `p_v = 0`) energy at momentum `j` for rest inverse inertia
@@ -202,7 +229,7 @@ impl<T: Real> StretchMode<T> {
     pub fn effective_energy(&self, mu0: T, j: T) -> Result<T, Error> {
         finite(&[mu0, j])?;
         let j2 = j * j;
-        Ok(T::HALF * mu0 * j2 + self.quartic_coefficient() * j2 * j2)
+        representable(T::HALF * mu0 * j2 + self.quartic_coefficient() * j2 * j2)
     }
 }
 
@@ -216,7 +243,8 @@ pub const EQUILIBRIUM_MAX_ITERATIONS: usize = 64;
 /// `I = mr² = 1/μ`.
 ///
 /// # Invariant
-/// `m, ω_v, r₀ > 0` and finite; built by [`SpringRotor::try_new`].
+/// `m, ω_v, r₀ > 0` and finite, with `1/(mr₀²)` and the stretch mode ([`SpringRotor::mode`])
+/// representable; built by [`SpringRotor::try_new`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpringRotor<T> {
     mass: T,
@@ -229,14 +257,22 @@ impl<T: Real> SpringRotor<T> {
     /// `rest_radius` (m).
     ///
     /// # Errors
-    /// [`Error::NonFinite`]; [`Error::InvalidArgument`] unless all three are positive.
+    /// [`Error::NonFinite`]; [`Error::InvalidArgument`] unless all three are positive, or when
+    /// the rest inverse inertia or the stretch mode is not representable (magnitudes near the
+    /// ends of the type's range).
     pub fn try_new(mass: T, omega_v: T, rest_radius: T) -> Result<Self, Error> {
         positive(&[mass, omega_v, rest_radius])?;
-        Ok(Self {
+        let rotor = Self {
             mass,
             omega_v,
             rest_radius,
-        })
+        };
+        let mode = rotor.mode();
+        if !(rotor.rest_inverse_inertia().is_finite() && mode.dmu_dr.is_finite()) {
+            return Err(Error::InvalidArgument);
+        }
+        mode.check()?;
+        Ok(rotor)
     }
 
     /// The mass `m`, kg.
@@ -283,9 +319,11 @@ impl<T: Real> SpringRotor<T> {
         positive(&[radius])?;
         let (m, w) = (self.mass, self.omega_v);
         let d = radius - self.rest_radius;
-        Ok(p_v * p_v / (T::TWO * m)
-            + T::HALF * m * w * w * d * d
-            + j * j / (T::TWO * m * radius * radius))
+        representable(
+            p_v * p_v / (T::TWO * m)
+                + T::HALF * m * w * w * d * d
+                + j * j / (T::TWO * m * radius * radius),
+        )
     }
 
     /// The centrifugal equilibrium radius at turning rate `ω_J` (6.8.12):
@@ -302,7 +340,7 @@ impl<T: Real> SpringRotor<T> {
         if denom <= T::ZERO {
             return Err(Error::InvalidArgument);
         }
-        Ok(self.rest_radius * w2 / denom)
+        representable(self.rest_radius * w2 / denom)
     }
 
     /// The exact equilibrium radius at angular momentum `j`: the root `r ≥ r₀` of
@@ -581,14 +619,17 @@ impl<T: Real> SemiRigidRotor<T> {
     /// (6.8.18)–(6.8.20); the error against the exact spring equilibrium is `O(J⁶)`.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite `j`.
+    /// [`Error::NonFinite`] for a non-finite `j`; [`Error::InvalidArgument`] when the energy
+    /// overflows the type.
     pub fn energy(&self, j: Vec3<T>) -> Result<T, Error> {
         let j = j.try_finite()?;
         let (x2, y2, z2) = (j.x * j.x, j.y * j.y, j.z * j.z);
         let n2 = x2 + y2 + z2;
-        Ok(self.rest_inertia.energy_from_momentum(j)
-            + self.t0 * n2 * n2
-            + self.t4 * (x2 * x2 + y2 * y2 + z2 * z2))
+        representable(
+            self.rest_inertia.energy_from_momentum(j)
+                + self.t0 * n2 * n2
+                + self.t4 * (x2 * x2 + y2 * y2 + z2 * z2),
+        )
     }
 
     /// The exact flow of the isotropic term `t|J|⁴` of `basis` over `elapsed` seconds, as a
@@ -600,7 +641,8 @@ impl<T: Real> SemiRigidRotor<T> {
     /// `q ⊗ isotropic_turn(basis, J, t)`, whatever the integrator and whenever it is applied.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite input.
+    /// [`Error::NonFinite`] for a non-finite input; [`Error::InvalidArgument`] when the turn's
+    /// angle overflows the type.
     pub fn isotropic_turn(
         &self,
         basis: QuarticBasis,
@@ -610,7 +652,11 @@ impl<T: Real> SemiRigidRotor<T> {
         finite(&[elapsed])?;
         let j = momentum.try_finite()?;
         let rate = T::from_f64(4.0) * self.isotropic(basis) * j.norm_squared();
-        UnitQuat::exp(j.scale(rate * elapsed))
+        let phi = j.scale(rate * elapsed);
+        if !phi.is_finite() {
+            return Err(Error::InvalidArgument);
+        }
+        UnitQuat::exp(phi)
     }
 }
 
@@ -621,7 +667,8 @@ impl<T: Real> SemiRigidRotor<T> {
 /// # Errors
 /// As [`SemiRigidRotor::from_radial_springs`] for the masses (without the symmetry
 /// requirement); [`Error::NonFinite`] for a non-finite `j`; [`Error::InvalidArgument`] if `out`
-/// is shorter than `masses`.
+/// is shorter than `masses` or a shift overflows the type (then `out` holds the shifts
+/// computed before it).
 pub fn radial_stretches<T: Real>(
     masses: &[(T, Vec3<T>)],
     omega_v: T,
@@ -636,7 +683,7 @@ pub fn radial_stretches<T: Real>(
     let (_, mu0) = rest_inverse(masses)?;
     for ((m, r), o) in masses.iter().zip(out.iter_mut()) {
         let (d, _) = mode_of(&mu0, *m, *r, omega_v)?;
-        *o = -j.dot(d * j) / (T::TWO * *m * omega_v * omega_v);
+        *o = representable(-j.dot(d * j) / (T::TWO * *m * omega_v * omega_v))?;
     }
     Ok(())
 }

@@ -132,13 +132,16 @@ fn mul_exp_fine<const F: u32>(q: Quat<Fixed<F>>, f: [i32; 3]) -> Option<Quat<Fix
     ))
 }
 
-/// Newton iterations allowed: from `r = 1`, `x = 0.26` (the slowest case of the domain) needs 7.
+/// Newton iterations allowed: from `r = 1`, `x` just below 2 (the slowest case of the domain)
+/// needs 6.
 const MAX_NEWTON: u32 = 8;
 
-/// `1/√x` for `x ∈ (¼, 2)` by Newton's iteration `r ← r + r(1 − x r²)/2` from `r = 1`, until
+/// `1/√x` for `x ∈ (½, 2)` by Newton's iteration `r ← r + r(1 − x r²)/2` from `r = 1`, until
 /// the correction rounds to zero (at most 8 steps; for a drifting unit quaternion, `|x − 1|` of a
-/// few units of resolution, one or two). Outside the domain the result saturates or is
-/// inaccurate, never a panic.
+/// few units of resolution, one or two). The domain's lower end is where `r² = 1/x` leaves
+/// Q1.30 (`r² < 2`): below it `r·r` saturates and the result is wrong (`x = 0.39` gives a scale
+/// that leaves `|q|²` at 1.56). Outside the domain the result saturates or is inaccurate, never
+/// a panic.
 pub(crate) fn inv_sqrt_near_one<const F: u32>(x: Fixed<F>) -> Fixed<F> {
     let one = Fixed::<F>::ONE;
     let mut r = one;

@@ -54,7 +54,8 @@
 //!   and adds it to the increments at 2⁻³³, so the small coning term is not rounded to 2⁻³⁰.
 //! - Renormalisation: [`UnitQuat::renormalize_fast`] is `q + q·(1 − |q|²)/2` (one Newton step of
 //!   the inverse square root, no division); [`UnitQuat::renormalize`] iterates that step on the
-//!   scale until it stops changing (valid for `|q|² ∈ (¼, 2)`).
+//!   scale until it stops changing (valid for `|q|² ∈ (½, 2)`: below, the squared scale
+//!   `1/|q|²` leaves Q1.30).
 //!
 //! # Accuracy
 //! Measured against the f64 reference (`host-tests/tests/fixed_point.rs`,
@@ -301,6 +302,24 @@ impl<const F: u32> MulAssign for Fixed<F> {
     }
 }
 
+/// The sum of products of [`Ring::dot`], rounded to the format's resolution but not yet
+/// saturated (an `i64` raw value).
+#[inline]
+fn dot_wide<const F: u32, const N: usize>(a: [Fixed<F>; N], b: [Fixed<F>; N]) -> i64 {
+    const { assert!(N >= 1 && N <= 4, "Fixed::dot takes 1 to 4 terms") };
+    let mut p = [0i64; 4];
+    for (slot, (x, y)) in p.iter_mut().zip(a.into_iter().zip(b)) {
+        *slot = mul_wide(x.0, y.0);
+    }
+    // Each |product| < 2⁶² (symmetric range), so a pair sums without overflow; with 3 or 4
+    // terms the pair sums are halved first.
+    if N <= 2 {
+        round_shift(p[0] + p[1], F)
+    } else {
+        round_shift(((p[0] + p[1]) >> 1) + ((p[2] + p[3]) >> 1), F - 1)
+    }
+}
+
 impl<const F: u32> Ring for Fixed<F> {
     const ZERO: Self = Self(0);
     const ONE: Self = {
@@ -335,19 +354,12 @@ impl<const F: u32> Ring for Fixed<F> {
     }
     #[inline]
     fn dot<const N: usize>(a: [Self; N], b: [Self; N]) -> Self {
-        const { assert!(N >= 1 && N <= 4, "Fixed::dot takes 1 to 4 terms") };
-        let mut p = [0i64; 4];
-        for (slot, (x, y)) in p.iter_mut().zip(a.into_iter().zip(b)) {
-            *slot = mul_wide(x.0, y.0);
-        }
-        // Each |product| < 2⁶² (symmetric range), so a pair sums without overflow; with 3 or 4
-        // terms the pair sums are halved first.
-        let s = if N <= 2 {
-            round_shift(p[0] + p[1], F)
-        } else {
-            round_shift(((p[0] + p[1]) >> 1) + ((p[2] + p[3]) >> 1), F - 1)
-        };
-        Self(saturate(s))
+        Self(saturate(dot_wide(a, b)))
+    }
+    #[inline]
+    fn dot_fits<const N: usize>(a: [Self; N], b: [Self; N]) -> bool {
+        let s = dot_wide(a, b);
+        s >= -i64::from(i32::MAX) && s <= i64::from(i32::MAX)
     }
     #[inline]
     fn exp_beyond_series(phi: Vec3<Self>, _theta_sq: Self) -> Quat<Self> {

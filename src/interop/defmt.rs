@@ -67,6 +67,7 @@ impl Format for Error {
             Error::Singular => "Singular",
             Error::NonPhysicalInertia => "NonPhysicalInertia",
             Error::NotConverged => "NotConverged",
+            Error::StepTooLong => "StepTooLong",
             Error::InvalidArgument => "InvalidArgument",
             Error::OutOfRange => "OutOfRange",
         };

@@ -115,17 +115,25 @@ impl<T: Ring> Mat3<T> {
 }
 
 impl<T: Real> Mat3<T> {
-    /// The inverse, by the adjugate over the determinant.
+    /// The inverse, by the adjugate over the determinant of the matrix scaled to a largest entry
+    /// of one (so that the cofactors neither overflow nor underflow for entries anywhere in the
+    /// type's range).
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite entry; [`Error::Singular`] when
-    /// `|det| ≤ 8·ε·‖row0‖‖row1‖‖row2‖` (Hadamard's bound scaled by the rounding of the triple
-    /// product: below it the determinant's sign is not even known).
+    /// [`Error::NonFinite`] for a non-finite entry; [`Error::Singular`] when, for the scaled
+    /// matrix, `|det| ≤ 8·ε·‖row0‖‖row1‖‖row2‖` (Hadamard's bound scaled by the rounding of the
+    /// triple product: below it the determinant's sign is not even known), or when an entry of the
+    /// inverse overflows the type (the matrix is singular at the type's range).
     pub fn try_inverse(&self) -> Result<Self, Error> {
         if !self.is_finite() {
             return Err(Error::NonFinite);
         }
-        let (r0, r1, r2) = (self.row(0), self.row(1), self.row(2));
+        let s = self.max_abs();
+        if s == T::ZERO {
+            return Err(Error::Singular);
+        }
+        // Division, not a reciprocal: 1/s overflows for a subnormal s. Entries now in [−1, 1].
+        let (r0, r1, r2) = (self.row(0) / s, self.row(1) / s, self.row(2) / s);
         let c0 = r1.cross(r2);
         let c1 = r2.cross(r0);
         let c2 = r0.cross(r1);
@@ -134,7 +142,13 @@ impl<T: Real> Mat3<T> {
         if det.abs() <= bound {
             return Err(Error::Singular);
         }
-        Ok(Self::from_cols(c0, c1, c2).scale(T::ONE / det))
+        // (M/s)⁻¹ = s·M⁻¹: divide the adjugate by det, then by s.
+        let inv = Self::from_cols(c0 / det / s, c1 / det / s, c2 / det / s);
+        if inv.is_finite() {
+            Ok(inv)
+        } else {
+            Err(Error::Singular)
+        }
     }
 }
 

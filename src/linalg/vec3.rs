@@ -90,6 +90,22 @@ impl<T: Ring> Vec3<T> {
         self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
     }
 
+    /// `true` when `self + o` needs no saturation ([`Ring::dot_fits`]; always for the floats).
+    #[inline]
+    pub(crate) fn add_fits(self, o: Self) -> bool {
+        T::dot_fits([self.x, o.x], [T::ONE, T::ONE])
+            && T::dot_fits([self.y, o.y], [T::ONE, T::ONE])
+            && T::dot_fits([self.z, o.z], [T::ONE, T::ONE])
+    }
+
+    /// `true` when `self × o` needs no saturation ([`Ring::dot_fits`]; always for the floats).
+    #[inline]
+    pub(crate) fn cross_fits(self, o: Self) -> bool {
+        T::dot_fits([self.y, -self.z], [o.z, o.y])
+            && T::dot_fits([self.z, -self.x], [o.x, o.z])
+            && T::dot_fits([self.x, -self.y], [o.y, o.x])
+    }
+
     /// Returns `self` if every component is finite, else [`Error::NonFinite`].
     #[inline]
     pub fn try_finite(self) -> Result<Self, Error> {
@@ -111,18 +127,22 @@ impl<T: Real> Vec3<T> {
 
     /// The unit vector along `self`.
     ///
+    /// The vector is first divided by its largest absolute component, so that neither the norm
+    /// nor its reciprocal overflows or underflows: any non-zero finite vector is normalised,
+    /// however short (subnormal components included) or long.
+    ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite component; [`Error::ZeroNorm`] when `|self|` is zero
-    /// (no direction). Any non-zero finite vector is normalised, however short: floating-point
-    /// division keeps full relative precision.
+    /// (no direction).
     pub fn try_normalize(self) -> Result<Self, Error> {
         let v = self.try_finite()?;
-        let n = v.norm();
-        if n > T::ZERO && n.is_finite() {
-            Ok(v.scale(T::ONE / n))
-        } else {
-            Err(Error::ZeroNorm)
+        let m = v.max_abs();
+        if m == T::ZERO {
+            return Err(Error::ZeroNorm);
         }
+        // Division, not a reciprocal: 1/m overflows for a subnormal m. |v/m| ∈ [1, √3].
+        let s = v / m;
+        Ok(s.scale(T::ONE / s.norm_squared().sqrt()))
     }
 }
 

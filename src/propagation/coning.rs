@@ -36,11 +36,11 @@
 
 use heapless::Vec as HVec;
 
-use crate::propagation::Normalization;
 #[cfg(doc)]
 use crate::propagation::compensated::CompensatedAttitude;
 use crate::propagation::compensated::PropagatedAttitude;
 use crate::propagation::exponential::apply_rotation_vector;
+use crate::propagation::{Normalization, within_step_limit};
 use crate::{Error, Ring, UnitQuat, Vec3};
 
 /// An increment (coning) rule: how the rotation vector of one attitude update is formed.
@@ -162,6 +162,9 @@ pub fn four_sample_terms<T: Ring>(
 }
 
 /// `θₖ + (1/12) θₖ₋₁ × θₖ`: one increment with the previous-interval coning correction.
+///
+/// Domain (of this and the other rule functions): finite increments of at most
+/// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) rad each; the result is then finite (at most a few times `π`).
 #[inline]
 pub fn one_plus_previous<T: Ring>(previous: Vec3<T>, current: Vec3<T>) -> Vec3<T> {
     one_plus_previous_terms(previous, current).rotation_vector()
@@ -216,10 +219,12 @@ pub fn rotation_vector_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> V
 /// fixed-point update, integer arithmetic only (see [`crate::fixed`]).
 ///
 /// Unchecked (a non-finite increment gives a non-finite attitude): for an inner loop whose
-/// increments were validated when they were read. The exponential of the small per-update
-/// angle uses the series of [`UnitQuat::exp`] (no trigonometric call below 0.37 rad in f32,
-/// 1/8 rad in Q1.30); the rule's [`ConingTerms`] go through the update kernel
-/// [`apply_rotation_vector`] (in fixed point: [`UnitQuat::mul_exp_coning`]).
+/// increments were validated when they were read. Domain: finite increments of at most
+/// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) rad each (the checks of
+/// [`IncrementIntegrator::push`]). The exponential of the small per-update angle uses the series
+/// of [`UnitQuat::exp`] (no trigonometric call below 0.37 rad in f32, 1/8 rad in Q1.30); the
+/// rule's [`ConingTerms`] go through the update kernel [`apply_rotation_vector`] (in fixed point:
+/// [`UnitQuat::mul_exp_coning`]).
 #[inline]
 pub fn coning2_update<T: Ring>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
     apply_rotation_vector(q, two_sample_terms(t1, t2), Normalization::Fast)
@@ -297,10 +302,32 @@ impl<T: Ring, A: PropagatedAttitude<T>> IncrementIntegrator<T, A> {
     /// Returns the new attitude when it completes an update group, `None` otherwise.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite component; the increment is then discarded and
-    /// the state is unchanged.
+    /// [`Error::NonFinite`] for a NaN or infinite component. With a coning rule,
+    /// [`Error::StepTooLong`] for an increment larger than
+    /// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) (the coning rules are truncated series in the
+    /// increments, see there) and, in fixed point, [`Error::OutOfRange`] for an increment
+    /// component of a quarter of the format's range or more (0.25 rad in Q1.30: below it a group
+    /// of four increments, its rule's lever and cross product cannot saturate). With
+    /// [`ConingRule::Exp`] (the exact exponential of each increment, no series) any increment
+    /// whose squared norm is finite is taken, so that a rotation vector of any length is applied
+    /// as given; [`Error::InvalidArgument`] when the square overflows. Either way the increment
+    /// is discarded and the state is unchanged.
     pub fn push(&mut self, dtheta: Vec3<T>) -> Result<Option<UnitQuat<T>>, Error> {
         let dtheta = dtheta.try_finite()?;
+        if self.rule == ConingRule::Exp {
+            if !dtheta.norm_squared().is_finite() {
+                return Err(Error::InvalidArgument);
+            }
+        } else {
+            if !within_step_limit(dtheta) {
+                return Err(Error::StepTooLong);
+            }
+            // 8·|Δθᵢ| within the range (always for the floats).
+            let fits = |c: T| T::dot_fits([c.twice(); 4], [T::ONE; 4]);
+            if !(fits(dtheta.x) && fits(dtheta.y) && fits(dtheta.z)) {
+                return Err(Error::OutOfRange);
+            }
+        }
         let n = self.rule.samples_per_update();
         if self.group.push(dtheta).is_err() {
             // Unreachable: the group is cleared whenever it reaches n ≤ 4 = capacity. Handled
@@ -398,14 +425,46 @@ impl<T: Ring> ConingAccumulator<T> {
     /// Accumulates one increment (the high-rate step).
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite component (the increment is discarded).
+    /// [`Error::NonFinite`] for a NaN or infinite component; [`Error::StepTooLong`] when the
+    /// increment, or the increment sum `α` of the interval with it, is longer than
+    /// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE): the two-speed correction is a truncated series
+    /// in `α` (take the rotation vector more often). In fixed point, [`Error::OutOfRange`] when a
+    /// sum of the update (`α`, the lever `α + Δθₗ₋₁/6`, the cross product, `β`, `α + β`) would
+    /// saturate the format. Either way the increment is discarded and the state is unchanged.
     #[inline]
     pub fn push(&mut self, dtheta: Vec3<T>) -> Result<(), Error> {
-        self.push_unchecked(dtheta.try_finite()?);
+        let dtheta = dtheta.try_finite()?;
+        if !within_step_limit(dtheta) {
+            return Err(Error::StepTooLong);
+        }
+        if !self.alpha.add_fits(dtheta) {
+            return Err(Error::OutOfRange);
+        }
+        if !within_step_limit(self.alpha + dtheta) {
+            return Err(Error::StepTooLong);
+        }
+        if !self.update_fits(dtheta) {
+            return Err(Error::OutOfRange);
+        }
+        self.push_unchecked(dtheta);
         Ok(())
     }
 
-    /// [`ConingAccumulator::push`] without the finiteness check.
+    /// `true` when no sum of [`ConingAccumulator::push_unchecked`] with `dtheta` saturates
+    /// (always for the floats).
+    #[inline]
+    fn update_fits(&self, dtheta: Vec3<T>) -> bool {
+        let sixth = self.previous.scale(T::ratio::<1, 6>());
+        let half = (self.alpha + sixth).scale(T::HALF);
+        let dbeta = half.cross(dtheta);
+        self.alpha.add_fits(sixth)
+            && half.cross_fits(dtheta)
+            && self.beta.add_fits(dbeta)
+            && (self.alpha + dtheta).add_fits(self.beta + dbeta)
+    }
+
+    /// [`ConingAccumulator::push`] without the checks. Domain: finite increments whose interval
+    /// sum stays within [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE); then `α` and `β` stay finite.
     #[inline]
     pub fn push_unchecked(&mut self, dtheta: Vec3<T>) {
         let lever = self.alpha + self.previous.scale(T::ratio::<1, 6>());

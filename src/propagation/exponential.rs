@@ -7,7 +7,7 @@
 //! [`UnitQuat::exp`], which uses a series for small angles: no division by a tiny angle and no
 //! cutoff that returns the identity.
 
-use crate::propagation::{ConingTerms, Normalization};
+use crate::propagation::{ConingTerms, Normalization, exact_step_angle_limit};
 use crate::{Error, Real, Ring, UnitQuat, Vec3};
 
 /// `q ⊗ exp(ω_body Δt)`: the exact attitude after a constant body rate held for `dt` (6.6.4).
@@ -17,7 +17,9 @@ use crate::{Error, Real, Ring, UnitQuat, Vec3};
 /// [`Normalization`]).
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite rate, step or attitude component.
+/// [`Error::NonFinite`] for a non-finite rate, step or attitude component;
+/// [`Error::StepTooLong`] when the angle `|ω|·Δt` is beyond [`exact_step_angle_limit`] (its
+/// rounding alone exceeds half a radian), including when it overflows the type.
 ///
 /// ```
 /// use gyrostat::{UnitQuat, Vec3};
@@ -36,12 +38,18 @@ pub fn step_constant_rate<T: Real>(
         return Err(Error::NonFinite);
     }
     let phi = omega_body.try_finite()?.scale(dt);
-    // ω finite and Δt finite can still overflow to ∞ in the product.
-    Ok(q * UnitQuat::exp(phi)?)
+    // ω finite and Δt finite can still overflow to ∞ in the product: then the square does too.
+    let limit = exact_step_angle_limit::<T>();
+    let within = phi.norm_squared() <= limit * limit;
+    if !within {
+        return Err(Error::StepTooLong);
+    }
+    Ok(q * UnitQuat::exp_unchecked(phi))
 }
 
 /// [`step_constant_rate`] without the checks, for an inner loop with validated input: the
-/// update kernel [`apply_rotation_vector`] with `φ = ω Δt`, not renormalised.
+/// update kernel [`apply_rotation_vector`] with `φ = ω Δt`, not renormalised. Domain: finite
+/// `ω`, `Δt` with `|ω·Δt|` representable (a NaN or overflowing angle gives a NaN attitude).
 #[inline]
 pub fn step_constant_rate_unchecked<T: Real>(
     q: UnitQuat<T>,
@@ -53,8 +61,8 @@ pub fn step_constant_rate_unchecked<T: Real>(
 
 /// The update kernel of every exponential-map rule: `q ⊗ exp(φ)` followed by the normalisation
 /// policy, for a body-frame rotation vector `φ` accumulated over one update interval (by a coning
-/// rule, the two-speed accumulator, Magnus-4 or CF4). Unchecked: a non-finite `φ` gives a
-/// non-finite attitude.
+/// rule, the two-speed accumulator, Magnus-4 or CF4). Unchecked: a non-finite `φ` (or one whose
+/// norm overflows) gives a non-finite attitude.
 ///
 /// `φ` is a plain [`Vec3`] or, from a coning rule, its [`ConingTerms`] `sum + lever × last`
 /// (see [`RotationVectorForm`]). For the floats both are `q * UnitQuat::exp_unchecked(φ)` (series

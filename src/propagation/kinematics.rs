@@ -39,16 +39,19 @@ pub fn body_rate_from_quat_rate<T: Real>(q: UnitQuat<T>, q_dot: Quat<T>) -> Vec3
 /// otherwise. It is an SO(3) view: the relative rotation is taken as the shortest one (angle
 /// ≤ π), so a body that really turned by more than π during `dt` is aliased (sample faster).
 ///
+/// Domain: `dt` long enough for the rate to be representable (`dt` above about `π/MAX`; a
+/// subnormal `dt` between distinct attitudes overflows the rate).
+///
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite `dt` or attitude component; [`Error::InvalidArgument`]
-/// for `dt ≤ 0`.
+/// for `dt ≤ 0` or a rate that overflows the type.
 pub fn body_rate_between<T: Real>(
     q0: UnitQuat<T>,
     q1: UnitQuat<T>,
     dt: T,
 ) -> Result<Vec3<T>, Error> {
     check_dt(q0, q1, dt)?;
-    Ok((q0.inverse() * q1).log().scale(T::ONE / dt))
+    rate((q0.inverse() * q1).log(), dt)
 }
 
 /// The constant LAB-frame rate that turns `q0` into `q1` in `dt`: `log(q1 ⊗ q0*) / dt`
@@ -62,7 +65,18 @@ pub fn lab_rate_between<T: Real>(
     dt: T,
 ) -> Result<Vec3<T>, Error> {
     check_dt(q0, q1, dt)?;
-    Ok((q1 * q0.inverse()).log().scale(T::ONE / dt))
+    rate((q1 * q0.inverse()).log(), dt)
+}
+
+/// `φ/dt`, rejected with [`Error::InvalidArgument`] if it overflows (division, not a reciprocal:
+/// `1/dt` overflows for a subnormal `dt` even when `φ/dt` is representable).
+fn rate<T: Real>(phi: Vec3<T>, dt: T) -> Result<Vec3<T>, Error> {
+    let w = phi / dt;
+    if w.is_finite() {
+        Ok(w)
+    } else {
+        Err(Error::InvalidArgument)
+    }
 }
 
 fn check_dt<T: Real>(q0: UnitQuat<T>, q1: UnitQuat<T>, dt: T) -> Result<(), Error> {

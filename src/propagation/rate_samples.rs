@@ -40,12 +40,12 @@
 
 use heapless::Vec as HVec;
 
-use crate::propagation::Normalization;
 #[cfg(doc)]
 use crate::propagation::compensated::CompensatedAttitude;
 use crate::propagation::compensated::PropagatedAttitude;
 use crate::propagation::exponential::apply_rotation_vector;
 use crate::propagation::kinematics::quat_rate_body;
+use crate::propagation::{Normalization, within_step_limit};
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
 
 /// `√3`, to the f64 rounding.
@@ -164,13 +164,20 @@ pub fn midpoint_rate<T: Real>(window: &[Vec3<T>; 4], interval: usize) -> Vec3<T>
 
 /// The Magnus-4 rotation vector over one step `h` from the rates at the two Gauss nodes:
 /// `φ = (h/2)(ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂` (earlier node first in the cross product).
+///
+/// The commutator term is formed as `(hω₁) × (hω₂)`, products of the step's own angles, so that
+/// neither `h²` (a long step at a slow rate) nor `ω₁ × ω₂` (a short step at a fast rate)
+/// overflows: the result is finite whenever `|ω|·h` is (the domain of the step functions).
 #[inline]
 pub fn magnus4_rotation_vector<T: Real>(w1: Vec3<T>, w2: Vec3<T>, h: T) -> Vec3<T> {
-    (w1 + w2).scale(h * T::HALF) + w1.cross(w2).scale(h * h * T::from_f64(SQRT_3 / 12.0))
+    let (a, b) = (w1.scale(h), w2.scale(h));
+    (a + b).scale(T::HALF) + a.cross(b).scale(T::from_f64(SQRT_3 / 12.0))
 }
 
 /// One Magnus-4 step: `q ⊗ exp(φ)` with φ from [`magnus4_rotation_vector`]. Unchecked, not
-/// renormalised (a product of unit quaternions, unit to about one ulp).
+/// renormalised (a product of unit quaternions, unit to about one ulp). Domain (of this and the
+/// other step functions of this module): finite rates with `|ω|·h` at most a few times
+/// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) (the series stop converging at `2π`).
 #[inline]
 pub fn magnus4_step<T: Real>(q: UnitQuat<T>, w1: Vec3<T>, w2: Vec3<T>, h: T) -> UnitQuat<T> {
     apply_rotation_vector(q, magnus4_rotation_vector(w1, w2, h), Normalization::None)
@@ -209,7 +216,8 @@ fn cf4_update<T: Real>(
 
 /// One classical RK4 step of `q̇ = ½ q ⊗ (0, ω)` with the rates at the start, midpoint and end
 /// of the step. Returns the raw quaternion, off the unit sphere by the truncation error
-/// `O((|ω| h)⁵)`: apply a [`Normalization`] to it.
+/// (`|q|² = 1 − θ⁶/4608 + …` for the step angle `θ = |ω| h`): apply a [`Normalization`] to it.
+/// Within [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) `|q|²` stays above 0.85.
 #[inline]
 pub fn rk4_step<T: Real>(
     q: Quat<T>,
@@ -352,10 +360,24 @@ impl<T: Real, A: PropagatedAttitude<T>> RateIntegrator<T, A> {
     /// Adds the next rate sample (rad/s, body frame) and integrates every interval it completes.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite component; the sample is discarded and the
-    /// state is unchanged.
+    /// [`Error::NonFinite`] for a NaN or infinite component; [`Error::InvalidArgument`] for a
+    /// component beyond a quarter of the type's largest value (the interpolant's weighted sums of
+    /// four samples would overflow); [`Error::StepTooLong`] when the
+    /// sample turns the body by more than [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) in one sample interval
+    /// (`|ω|·dt > π`, where the methods' series stop converging; the interpolated node rates are
+    /// at most 1.625 times the largest sample of the window, the largest sum of the magnitudes of
+    /// the cubic Lagrange weights, so every step stays below `2π`). Either way the sample is
+    /// discarded and the state is unchanged.
     pub fn push(&mut self, omega: Vec3<T>) -> Result<Attitudes<T>, Error> {
         let omega = omega.try_finite()?;
+        // |ωᵢ| < MAX/4 ⇔ 4ω is finite: then every weighted sum of the window (the weights'
+        // magnitudes add up to at most 1.625) and every RK4 stage stays finite.
+        if !omega.scale(T::from_f64(4.0)).is_finite() {
+            return Err(Error::InvalidArgument);
+        }
+        if !within_step_limit(omega.scale(self.dt)) {
+            return Err(Error::StepTooLong);
+        }
         let mut out = Attitudes::new();
         match self.count {
             0..=2 => {

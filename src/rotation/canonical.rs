@@ -72,6 +72,11 @@ impl<T: Real> UnitQuat<T> {
     /// not unique; the one through the relative rotation's axis (sign per
     /// [`UnitQuat::canonical`]) is taken.
     ///
+    /// Domain: any finite `t` (a NaN or infinite `t` gives a NaN result). Where `t` times the
+    /// angle between the attitudes overflows (`|t|` beyond about `MAX/π`), the step's angle is
+    /// reduced modulo the spinor period `4π` first; the result is then a unit quaternion whose
+    /// angle has no correct digit (as it has none once `|t|·angle` exceeds `1/ε`).
+    ///
     /// ```
     /// use gyrostat::{UnitQuat, Vec3};
     /// let a = UnitQuat::exp(Vec3::new(0.0f32, 0.0, 0.0))?;
@@ -82,8 +87,22 @@ impl<T: Real> UnitQuat<T> {
     /// ```
     pub fn slerp(self, o: Self, t: T) -> Self {
         let rel = (self.inverse() * o).canonical();
-        let step = UnitQuat::exp_unchecked(rel.log().scale(t));
-        self * step
+        let phi = rel.log();
+        let v = phi.scale(t);
+        // The angle |t·φ| is representable (the square is tried first, the hypot only if it
+        // overflows).
+        let v = if v.norm_squared().is_finite() || v.norm().is_finite() {
+            v
+        } else {
+            // |t|·θ overflowed (θ = |φ| ≤ π, so |t| > MAX/π): reduce the spinor angle t·θ
+            // modulo 4π through the number of turns t·θ/(4π), which is finite (θ ≤ π).
+            let four_pi = T::from_f64(4.0) * T::PI;
+            let theta = phi.norm();
+            let turns = t * (theta / four_pi);
+            let frac = turns - turns.floor();
+            phi.scale(frac * four_pi / theta)
+        };
+        self * UnitQuat::exp_unchecked(v)
     }
 
     /// Normalised linear interpolation: `normalize((1 − t)·self + t·o')` with `o' = ±o` on

@@ -53,15 +53,25 @@ impl<T: Real> Dcm<T> {
 
     /// Accepts `m` as a rotation matrix if `‖mᵀm − 1‖_max ≤ tolerance` and `det m > 0`.
     ///
+    /// `tolerance` must be in `[0, 1)`: with one or more, columns of any length up to `√2` and
+    /// beyond pass, which are not near a rotation; below it every entry of an accepted matrix is
+    /// below `√2` in magnitude, which keeps [`Dcm::to_unit_quat`] and the other conversions
+    /// finite and unit.
+    ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite entry or tolerance; [`Error::NotRotation`] if the
-    /// test fails (including reflections, `det < 0`).
+    /// [`Error::NonFinite`] for a non-finite entry or tolerance; [`Error::InvalidArgument`] for a
+    /// tolerance outside `[0, 1)`; [`Error::NotRotation`] if the test fails (including
+    /// reflections, `det < 0`, and entries so large that `mᵀm` overflows).
     pub fn try_from_matrix(m: Mat3<T>, tolerance: T) -> Result<Self, Error> {
         if !m.is_finite() || !tolerance.is_finite() {
             return Err(Error::NonFinite);
         }
+        if !(tolerance >= T::ZERO && tolerance < T::ONE) {
+            return Err(Error::InvalidArgument);
+        }
         let e = (m.transpose() * m - Mat3::IDENTITY).max_abs();
-        if e > tolerance || m.determinant() <= T::ZERO {
+        // Written so that a NaN (∞ − ∞ of huge entries) fails the test.
+        if !(e <= tolerance && m.determinant() > T::ZERO) {
             return Err(Error::NotRotation);
         }
         Ok(Self(m))

@@ -26,6 +26,7 @@
 use crate::{Error, Mat3, Real, Vec3};
 
 use super::euler::Euler;
+use super::euler_rates::representable;
 
 impl<T: Real> Euler<T> {
     /// `E_bodyᵀ`: the Euler momenta from the body-frame angular momentum,
@@ -66,11 +67,15 @@ impl<T: Real> Euler<T> {
 
     /// The Euler momenta `E_bodyᵀ·J_body` (6.7.10d).
     ///
+    /// Domain: finite angles and a finite momentum whose Euler momenta are representable (the
+    /// entries of `E_bodyᵀ` are at most 1 in magnitude, so `|J|` up to about `MAX/2`).
+    ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite angle or momentum.
+    /// [`Error::NonFinite`] for a non-finite angle or momentum; [`Error::InvalidArgument`] when a
+    /// momentum overflows the type.
     pub fn try_euler_momenta_from_body(&self, momentum_body: Vec3<T>) -> Result<[T; 3], Error> {
         let m = finite_matrix(self, self.body_to_euler_momenta_matrix())?;
-        Ok((m * momentum_body.try_finite()?).to_array())
+        representable(m * momentum_body.try_finite()?).map(Vec3::to_array)
     }
 
     /// The Euler momenta `E_labᵀ·J_lab` (6.7.10c).
@@ -79,17 +84,20 @@ impl<T: Real> Euler<T> {
     /// As [`Euler::try_euler_momenta_from_body`].
     pub fn try_euler_momenta_from_lab(&self, momentum_lab: Vec3<T>) -> Result<[T; 3], Error> {
         let m = finite_matrix(self, self.lab_to_euler_momenta_matrix())?;
-        Ok((m * momentum_lab.try_finite()?).to_array())
+        representable(m * momentum_lab.try_finite()?).map(Vec3::to_array)
     }
 
     /// The body-frame angular momentum `(E_body⁻¹)ᵀ·p` from Euler momenta `p` (6.7.10b).
     ///
+    /// Domain: as [`Euler::try_rates_from_body`] (the entries of `(E_body⁻¹)ᵀ` are at most
+    /// `2/|det|`).
+    ///
     /// # Errors
-    /// As [`Euler::try_euler_momenta_to_body_matrix`], and [`Error::NonFinite`] for a
-    /// non-finite momentum.
+    /// As [`Euler::try_euler_momenta_to_body_matrix`], [`Error::NonFinite`] for a non-finite
+    /// momentum, and [`Error::InvalidArgument`] when a component overflows the type.
     pub fn try_body_momentum_from_euler_momenta(&self, momenta: [T; 3]) -> Result<Vec3<T>, Error> {
         let m = self.try_euler_momenta_to_body_matrix()?;
-        Ok(m * Vec3::from_array(momenta).try_finite()?)
+        representable(m * Vec3::from_array(momenta).try_finite()?)
     }
 
     /// The lab-frame angular momentum `(E_lab⁻¹)ᵀ·p` from Euler momenta `p` (6.7.10a).
@@ -98,7 +106,7 @@ impl<T: Real> Euler<T> {
     /// As [`Euler::try_body_momentum_from_euler_momenta`].
     pub fn try_lab_momentum_from_euler_momenta(&self, momenta: [T; 3]) -> Result<Vec3<T>, Error> {
         let m = self.try_euler_momenta_to_lab_matrix()?;
-        Ok(m * Vec3::from_array(momenta).try_finite()?)
+        representable(m * Vec3::from_array(momenta).try_finite()?)
     }
 }
 

@@ -97,11 +97,15 @@ impl<T: Real> Euler<T> {
 
     /// Euler-angle rates from the body angular velocity: `E_body⁻¹·ω_body`.
     ///
+    /// Domain: finite `ω` whose rates are representable (the entries of `E_body⁻¹` are at most
+    /// `2/|det|`, so `|ω|` up to about `MAX·|det|/4`).
+    ///
     /// # Errors
-    /// As [`Euler::try_body_to_rates_matrix`], and [`Error::NonFinite`] for a non-finite `ω`.
+    /// As [`Euler::try_body_to_rates_matrix`], [`Error::NonFinite`] for a non-finite `ω`, and
+    /// [`Error::InvalidArgument`] when a rate overflows the type.
     pub fn try_rates_from_body(&self, omega_body: Vec3<T>) -> Result<[T; 3], Error> {
         let m = self.try_body_to_rates_matrix()?;
-        Ok((m * omega_body.try_finite()?).to_array())
+        representable(m * omega_body.try_finite()?).map(Vec3::to_array)
     }
 
     /// Euler-angle rates from the lab angular velocity: `E_lab⁻¹·ω_lab`.
@@ -110,7 +114,18 @@ impl<T: Real> Euler<T> {
     /// As [`Euler::try_rates_from_body`].
     pub fn try_rates_from_lab(&self, omega_lab: Vec3<T>) -> Result<[T; 3], Error> {
         let m = self.try_lab_to_rates_matrix()?;
-        Ok((m * omega_lab.try_finite()?).to_array())
+        representable(m * omega_lab.try_finite()?).map(Vec3::to_array)
+    }
+}
+
+/// A result computed from finite input: [`Error::InvalidArgument`] if it overflowed (the input
+/// was outside the documented domain of magnitudes).
+#[inline]
+pub(crate) fn representable<T: Real>(v: Vec3<T>) -> Result<Vec3<T>, Error> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::InvalidArgument)
     }
 }
 

@@ -44,15 +44,22 @@ impl<T: Real> Mrp<T> {
         self.0
     }
 
-    /// The shadow set `−σ/|σ|²`, the same rotation.
+    /// The shadow set `−σ/|σ|²`, the same rotation, computed on `σ` scaled to a largest
+    /// component of one (no overflow or underflow of `|σ|²`).
     ///
     /// # Errors
-    /// [`Error::Singular`] for `σ = 0` (the identity's shadow is at infinity) or when `|σ|²`
-    /// underflows.
+    /// [`Error::Singular`] for `σ = 0` (the identity's shadow is at infinity) or when the shadow
+    /// overflows the type (`|σ|` below about `1/MAX`).
     pub fn try_shadow(self) -> Result<Self, Error> {
-        let n2 = self.0.norm_squared();
-        if n2 > T::ZERO && n2.is_finite() {
-            Ok(Self(self.0.scale(-T::ONE / n2)))
+        let m = self.0.max_abs();
+        if m == T::ZERO {
+            return Err(Error::Singular);
+        }
+        // −σ/|σ|² = −(σ/m) / (m·|σ/m|²), |σ/m|² ∈ [1, 3]; division, not a reciprocal of m.
+        let s = self.0 / m;
+        let shadow = -(s / s.norm_squared() / m);
+        if shadow.is_finite() {
+            Ok(Self(shadow))
         } else {
             Err(Error::Singular)
         }

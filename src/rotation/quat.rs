@@ -94,18 +94,32 @@ impl<T: Real> Quat<T> {
         self.w.hypot(self.x).hypot(self.y.hypot(self.z))
     }
 
-    /// The multiplicative inverse `conj(q)/|q|²`.
+    /// The multiplicative inverse `conj(q)/|q|²`, computed on `q` scaled to a largest component
+    /// of one (no overflow or underflow of `|q|²`).
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite component, [`Error::ZeroNorm`] for a zero quaternion
-    /// (or one whose squared norm underflows to zero).
+    /// or one so short that its inverse overflows the type (`|q|` below about `1/MAX`).
     pub fn try_inverse(self) -> Result<Self, Error> {
         if !self.is_finite() {
             return Err(Error::NonFinite);
         }
-        let n2 = self.norm_squared();
-        if n2 > T::ZERO && n2.is_finite() {
-            Ok(self.conjugate().scale(T::ONE / n2))
+        let m = self
+            .w
+            .abs()
+            .max(self.x.abs())
+            .max(self.y.abs())
+            .max(self.z.abs());
+        if m == T::ZERO {
+            return Err(Error::ZeroNorm);
+        }
+        // q⁻¹ = conj(q/m) / (m·|q/m|²), |q/m|² ∈ [1, 4]; division, not a reciprocal of m.
+        let s = Self::new(self.w / m, self.x / m, self.y / m, self.z / m);
+        let d = s.norm_squared();
+        let c = s.conjugate();
+        let inv = Self::new(c.w / d / m, c.x / d / m, c.y / d / m, c.z / d / m);
+        if inv.is_finite() {
+            Ok(inv)
         } else {
             Err(Error::ZeroNorm)
         }

@@ -143,7 +143,7 @@ impl<T: Ring> UnitQuat<T> {
     /// near one, so `√(w² + x² + y² + z²)` cannot overflow or underflow and the division is safe
     /// (no `hypot` needed, which keeps this cheap on an MCU). The scale is
     /// [`Ring::inv_sqrt_near_one`]: `1/√|q|²` for the floats, Newton's iteration to convergence in
-    /// fixed point (no division; valid for `|q|² ∈ (¼, 2)`).
+    /// fixed point (no division; valid for `|q|² ∈ (½, 2)`).
     #[inline]
     pub fn renormalize(self) -> Self {
         Self(self.0.scale(T::inv_sqrt_near_one(self.0.norm_squared())))
@@ -192,7 +192,9 @@ impl<T: Real> UnitQuat<T> {
             return Err(Error::NonFinite);
         }
         let m = q.w.abs().max(q.x.abs()).max(q.y.abs()).max(q.z.abs());
-        if m == T::ZERO {
+        // |q| ≤ 2m: a largest component at or below MIN_NORM/2 is rejected here, which also keeps
+        // the reciprocal 1/m below (2/ε) finite (for a subnormal m it would overflow).
+        if m <= Self::MIN_NORM * T::HALF {
             return Err(Error::ZeroNorm);
         }
         let scaled = q.scale(T::ONE / m);
@@ -208,13 +210,21 @@ impl<T: Real> UnitQuat<T> {
     /// For data that claims to be an attitude (files, telemetry, user input), where a norm far
     /// from one means the data is wrong rather than slightly rounded.
     ///
+    /// `tolerance` must be in `[0, 1)`: a tolerance of one or more would accept the zero
+    /// quaternion, which has no direction.
+    ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite component or tolerance; [`Error::NotUnit`] if the
-    /// norm is outside `1 ± tolerance`.
+    /// [`Error::NonFinite`] for a non-finite component or tolerance; [`Error::InvalidArgument`]
+    /// for a tolerance outside `[0, 1)`; [`Error::NotUnit`] if the norm is outside
+    /// `1 ± tolerance`.
     pub fn try_from_near_unit(q: Quat<T>, tolerance: T) -> Result<Self, Error> {
         if !q.is_finite() || !tolerance.is_finite() {
             return Err(Error::NonFinite);
         }
+        if !(tolerance >= T::ZERO && tolerance < T::ONE) {
+            return Err(Error::InvalidArgument);
+        }
+        // |q| ≥ 1 − tolerance > 0 once accepted, so 1/|q| is finite.
         let n = q.norm();
         if (n - T::ONE).abs() > tolerance {
             return Err(Error::NotUnit);
