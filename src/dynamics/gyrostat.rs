@@ -373,12 +373,12 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     #[inline]
     fn finish<S: StepState<T, N>>(&self, next: S, dt: T) -> Result<S, Error> {
         let n2 = next.plain().attitude.as_quat().norm_squared();
-        if n2 >= T::HALF && n2 <= T::TWO {
-            if let Some(next) = next.renormalized() {
-                if within_step_limit(self.omega(next.plain()).scale(dt)) {
-                    return Ok(next);
-                }
-            }
+        if n2 >= T::HALF
+            && n2 <= T::TWO
+            && let Some(next) = next.renormalized()
+            && within_step_limit(self.omega(next.plain()).scale(dt))
+        {
+            return Ok(next);
         }
         if next.plain().is_finite() {
             Err(Error::StepTooLong)

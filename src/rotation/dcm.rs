@@ -157,13 +157,13 @@ impl<T: Real> Dcm<T> {
     /// with Day's choice of the pivot (*Converting a rotation matrix to a quaternion*, 2015): one
     /// of `4w² = 1 + tr R`, `4x² = 1 + 2R₀₀ − tr R`, `4y²…`, `4z²…` that is at least 1, picked by
     /// two comparisons (`R₂₂ < 0`, then `R₀₀ > R₁₁` or `R₀₀ < −R₁₁`); the other three
-    /// components come from sums and differences of off-diagonal entries, and the four are scaled
-    /// by `1/(2√t)` of that pivot `t ≥ 1` (never a division by a small number). Result has
+    /// components come from sums and differences of off-diagonal entries, and the four are
+    /// divided by their norm (at least the pivot `t ≥ 1`: never a division by a small number). Result has
     /// `w ≥ 0` when `w` is the pivot, else the pivot component positive; call
     /// [`UnitQuat::canonical`] for the documented SO(3) representative.
     ///
-    /// For a matrix within the invariant's tolerance the result is a unit quaternion to that
-    /// tolerance (`|q| − 1` is half the matrix's departure from orthogonality, a few ulp).
+    /// The result is a unit quaternion to rounding for every matrix a `Dcm` holds (also one
+    /// accepted with a loose tolerance).
     #[inline]
     pub fn to_unit_quat(self) -> UnitQuat<T> {
         let m = &self.0.m;
@@ -173,7 +173,7 @@ impl<T: Real> Dcm<T> {
         let one = T::ONE;
         // Each branch's pivot t is ≥ 1: e.g. R₂₂ < 0 and R₀₀ > R₁₁ give
         // t = 1 + (R₀₀ − R₁₁) − R₂₂ > 1.
-        let (t, q) = if r22 < T::ZERO {
+        let (_pivot, q) = if r22 < T::ZERO {
             if r00 > r11 {
                 let t = one + r00 - r11 - r22;
                 (t, Quat::new(r21 - r12, t, r01 + r10, r02 + r20))
@@ -188,8 +188,11 @@ impl<T: Real> Dcm<T> {
             let t = one + r00 + r11 + r22;
             (t, Quat::new(t, r21 - r12, r02 - r20, r10 - r01))
         };
-        // q = 4c·(w, x, y, z) with c = √t/2 the pivot component: scale by 1/(2√t).
-        UnitQuat::new_unchecked(q.scale(T::HALF / t.sqrt()))
+        // q = 4c·(w, x, y, z) with c = √t/2 the pivot component. Dividing by |q| (≥ t ≥ 1, never
+        // small; entries ≤ 4, so no overflow) rather than by 2√t keeps the result unit for
+        // every matrix a `Dcm` accepts, not only for an orthogonal one: at the tolerance 1e-1
+        // the shortcut 1/(2√t) left |q| − 1 up to 3e-2 (adversarial campaign).
+        UnitQuat::new_unchecked(q.scale(one / q.norm_squared().sqrt()))
     }
 }
 
