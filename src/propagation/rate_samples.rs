@@ -112,11 +112,21 @@ pub(crate) const MID: usize = 2;
 pub(crate) const START: usize = 3;
 pub(crate) const END: usize = 4;
 
+/// The interpolant `Σᵢ wᵢ sᵢ` at one row of weights.
+///
+/// An index loop rather than an iterator fold (here and in [`interp_difference`]): it unrolls
+/// inside the step, so the f64 weights become constants of `T`. A `Zip::fold` that the optimiser
+/// leaves out of line gets the weights by pointer and converts each one at run time (a
+/// soft-float `f64 → f32` call on a single-precision FPU).
 #[inline(always)]
 fn interp<T: Real, const M: usize>(s: &[Vec3<T>; M], w: &[f64; M]) -> Vec3<T> {
-    s.iter()
-        .zip(w.iter())
-        .fold(Vec3::ZERO, |acc, (v, &wi)| acc + v.scale(T::from_f64(wi)))
+    let mut acc = Vec3::ZERO;
+    let mut i = 0;
+    while i < M {
+        acc += s[i].scale(T::from_f64(w[i]));
+        i += 1;
+    }
+    acc
 }
 
 /// The interpolant in difference form, `s_last + Σᵢ wᵢ (sᵢ − s_last)` (the weights add up to
@@ -130,12 +140,13 @@ pub(crate) fn interp_difference<T: Real, const M: usize>(
     w: &[f64; M],
 ) -> Vec3<T> {
     let last = s.last().copied().unwrap_or(Vec3::ZERO);
-    s.iter()
-        .zip(w.iter())
-        .take(M.saturating_sub(1))
-        .fold(last, |acc, (v, &wi)| {
-            acc + (*v - last).scale(T::from_f64(wi))
-        })
+    let mut acc = last;
+    let mut i = 0;
+    while i + 1 < M {
+        acc += (s[i] - last).scale(T::from_f64(w[i]));
+        i += 1;
+    }
+    acc
 }
 
 /// The rates at the two Gauss nodes of interval `interval` (0, 1 or 2; larger values mean 2)
