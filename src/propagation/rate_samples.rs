@@ -274,6 +274,29 @@ pub(crate) fn advance_plain<T: Real, const M: usize>(
     }
 }
 
+/// The checks of [`RateIntegrator::push`] on one sample, with its errors.
+///
+/// `|ωᵢ| < MAX/4 ⇔ 4ω is finite` (and a finite `4ω` implies a finite `ω`, so one test covers
+/// both until it fails): then every weighted sum of the window (the weights' magnitudes add up
+/// to at most 1.625) and every RK4 stage stays finite. Out of line, like
+/// [`RateIntegrator::start_up`], so that `push` stays small enough for LLVM to inline the whole
+/// steady-state step into it (measured on the Cortex-M4F: otherwise the compensated step's
+/// quaternion products stay calls).
+#[inline(never)]
+fn check_sample<T: Real>(omega: Vec3<T>, dt: T) -> Result<(), Error> {
+    if !omega.scale(T::from_f64(4.0)).is_finite() {
+        return Err(if omega.is_finite() {
+            Error::InvalidArgument
+        } else {
+            Error::NonFinite
+        });
+    }
+    if !within_step_limit(omega.scale(dt)) {
+        return Err(Error::StepTooLong);
+    }
+    Ok(())
+}
+
 /// Which rate-sample integrator a [`RateIntegrator`] runs.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -368,6 +391,23 @@ impl<T: Real, A: PropagatedAttitude<T>> RateIntegrator<T, A> {
         self.q.attitude()
     }
 
+    /// The fourth sample: completes the start-up window and integrates its three intervals.
+    /// Once per record, so kept out of [`RateIntegrator::push`]'s steady-state path.
+    #[cold]
+    #[inline(never)]
+    fn start_up(&mut self, omega: Vec3<T>) -> Attitudes<T> {
+        let mut out = Attitudes::new();
+        let [a, b, c, _] = self.window;
+        let s = [a, b, c, omega];
+        self.window = s;
+        self.count = 4;
+        for w in &W4 {
+            let q = self.advance(&s, w);
+            let _ = out.push(q);
+        }
+        out
+    }
+
     /// Adds the next rate sample (rad/s, body frame) and integrates every interval it completes.
     ///
     /// # Errors
@@ -380,15 +420,7 @@ impl<T: Real, A: PropagatedAttitude<T>> RateIntegrator<T, A> {
     /// the cubic Lagrange weights, so every step stays below `2π`). Either way the sample is
     /// discarded and the state is unchanged.
     pub fn push(&mut self, omega: Vec3<T>) -> Result<Attitudes<T>, Error> {
-        let omega = omega.try_finite()?;
-        // |ωᵢ| < MAX/4 ⇔ 4ω is finite: then every weighted sum of the window (the weights'
-        // magnitudes add up to at most 1.625) and every RK4 stage stays finite.
-        if !omega.scale(T::from_f64(4.0)).is_finite() {
-            return Err(Error::InvalidArgument);
-        }
-        if !within_step_limit(omega.scale(self.dt)) {
-            return Err(Error::StepTooLong);
-        }
+        check_sample(omega, self.dt)?;
         let mut out = Attitudes::new();
         match self.count {
             0..=2 => {
@@ -400,16 +432,7 @@ impl<T: Real, A: PropagatedAttitude<T>> RateIntegrator<T, A> {
                     let _ = out.push(self.q.attitude());
                 }
             }
-            3 => {
-                let [a, b, c, _] = self.window;
-                let s = [a, b, c, omega];
-                self.window = s;
-                self.count = 4;
-                for w in &W4 {
-                    let q = self.advance(&s, w);
-                    let _ = out.push(q);
-                }
-            }
+            3 => out = self.start_up(omega),
             _ => {
                 let [_, b, c, d] = self.window;
                 let s = [b, c, d, omega];
