@@ -87,8 +87,8 @@
 //!
 //! | operation | M0 soft f32 | M0 Q1.30 | M3 soft f32 | M3 Q1.30 | M4F f32 (FPU) | M4F Q1.30 |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | quaternion product | 3276 | 597 | 1886 | 175 | 46 | 168 |
-//! | 2-sample coning update (rule, exp, product, renormalisation) | 9080 | 1944 | 5155 | 703 | 104 | 680 |
+//! | quaternion product | 3261 | 606 | 1874 | 175 | 42 | 172 |
+//! | 2-sample coning update (rule, exp, product, renormalisation) | 9052 | 1941 | 5143 | 705 | 102 | 702 |
 //!
 //! # When to choose fixed point
 //! On a core without an FPU (Cortex-M0/M0+, M3), for the strapdown attitude update from gyro
