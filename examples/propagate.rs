@@ -90,8 +90,9 @@ OUTPUT (stdout): `k,qw,qx,qy,qz` after sample k (0-based) whenever k is a multip
 ERRORS (stderr, nothing else on stdout after them):
     error: line N: reason      (N counts every line from 1, blank ones too) exit status 1
         A line that is not three finite numbers, not UTF-8 text, or longer than 1 MiB, a sample
-        that turns the body so far that the angle itself is not known to 1e-3 rad (beyond
-        4.5e12 rad in f64, 8.4e3 rad with --f32: its attitude would be noise), and a sample whose
+        that turns the body by more than half a turn (coning rules and rate methods: their
+        series are meaningless there), an --algo exp increment so long that its angle is not
+        known to 1e-3 rad (beyond 4.5e12 rad in f64, 8.4e3 rad with --f32), and a sample whose
         attitude would not be a finite unit quaternion stop the run there. The rows before it are kept, and the attitude
         after the last valid sample is printed as promised above (after a malformed line the
         samples before it are integrated to their end, as if the input ended there).
@@ -340,17 +341,18 @@ fn checked<T: Real + Debug>(q: UnitQuat<T>, n: u64, what: &str) -> Result<UnitQu
     ))
 }
 
-/// The largest rounding of one sample's turn angle the tool accepts (rad). An angle `θ` is held
-/// to `θ·ε` of the run's type, and the attitude of that sample can be no better: beyond this
-/// (`θ > 1e-3/ε`: 4.5e12 rad in f64, 8.4e3 rad in f32) its rows would be noise however exactly
-/// the rule computes. (Smaller angles can still be too large for a rule's accuracy; that is the
-/// library's step limit.)
+/// The largest rounding of one increment's turn angle the tool accepts (rad). An angle `θ` is
+/// held to `θ·ε` of the run's type, and the attitude of that sample can be no better: beyond
+/// this (`θ > 1e-3/ε`: 4.5e12 rad in f64, 8.4e3 rad in f32) its rows would be noise however
+/// exactly the rule computes. Only `--algo exp` needs the check: the library applies an exact
+/// exponential to an increment of any length, while the coning rules and the rate methods
+/// reject a sample beyond half a turn themselves (`StepTooLong`).
 const TURN_RESOLUTION: f64 = 1e-3;
 
-/// Checks that `v · scale` (an increment, or a rate times the step) turns the body by an angle
-/// whose rounding in `T` stays within [`TURN_RESOLUTION`].
-fn resolvable<T: Real>(v: Vec3<T>, scale: f64, what: &str, n: u64) -> Result<(), Failure> {
-    let [x, y, z] = v.to_array().map(|c| c.to_f64() * scale);
+/// Checks that the increment `v` turns the body by an angle whose rounding in `T` stays within
+/// [`TURN_RESOLUTION`].
+fn resolvable<T: Real>(v: Vec3<T>, n: u64) -> Result<(), Failure> {
+    let [x, y, z] = v.to_array().map(|c| c.to_f64());
     let turn = x.hypot(y).hypot(z);
     let limit = TURN_RESOLUTION / T::EPSILON.to_f64();
     if turn <= limit {
@@ -359,7 +361,7 @@ fn resolvable<T: Real>(v: Vec3<T>, scale: f64, what: &str, n: u64) -> Result<(),
     Err(Failure::Row(
         n,
         format!(
-            "the {what} turns the body {turn:.3e} rad in one sample: beyond {limit:.2e} rad \
+            "the increment turns the body {turn:.3e} rad in one sample: beyond {limit:.2e} rad \
              the angle itself is not known to {TURN_RESOLUTION:e} rad in {}",
             if T::EPSILON.to_f64() < 1e-10 {
                 "f64"
@@ -398,7 +400,9 @@ where
             Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
             Err(e) => return Err(e),
         };
-        if let Err(e) = resolvable(v, 1.0, "increment", n) {
+        if rule == ConingRule::Exp
+            && let Err(e) = resolvable(v, n)
+        {
             break Some(e);
         }
         let q = integ
@@ -472,9 +476,6 @@ where
             Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
             Err(e) => return Err(e),
         };
-        if let Err(e) = resolvable(v, args_dt, "rate times --dt", n) {
-            break Some(e);
-        }
         let pushed = integ
             .push(v)
             .map_err(|e| Failure::Row(n, e.to_string()))

@@ -29,13 +29,6 @@ use plot::{Figure, Series};
 use stream::Csv;
 use torque::{ExternalTorque, Schedule};
 
-/// The largest rounding of one step's turn angle the tool accepts (rad). The angle `|ω|·dt` is
-/// held to `|ω|·dt·ε` of the run's type, and the attitude after the step can be no better:
-/// beyond this (`|ω|·dt > 1e-3/ε`: 4.5e12 rad in f64, 8.4e3 rad in f32) the rows would be noise
-/// whatever the integrator. (Smaller steps can still be too long for a method's accuracy; that
-/// is the library's step limit.)
-const TURN_RESOLUTION: f64 = 1e-3;
-
 /// The most `--wheel`s a run takes. The library's wheel count is a compile-time constant; this
 /// tool instantiates it for 0 to 4 wheels (three orthogonal wheels plus a skewed spare, or a
 /// four-wheel pyramid).
@@ -140,10 +133,9 @@ of wheel I relative to the body (rad/s). Rows are written as they are computed (
 least every 0.1 s).
 
 Errors print `simulate: error: reason` on stderr and exit with status 2: invalid input (before
-any output), and a run that cannot go on, after the rows written so far: a step that turns the
-body so far that the angle itself is not known to 1e-3 rad (|w| dt at the step's start beyond
-4.5e12 rad in f64, 8.4e3 rad with --f32; --integrator exact has no such limit), a step the
-library rejects, and a state that is no longer finite (values too large for f64, or f32 with --f32; checked at step 0
+any output), and a run that cannot go on, after the rows written so far: a step the library
+rejects (a step that turns the body by more than half a turn, |w| dt > pi at either end of the
+step, is too long for every integrator; --integrator exact has no such limit), and a state that is no longer finite (values too large for f64, or f32 with --f32; checked at step 0
 too, before any output). When stdout is closed early (a pipe into `head`), the run stops
 quietly with status 0.
 
@@ -1038,21 +1030,9 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
         k: u64,
         impulse: &mut Impulse,
     ) -> Result<State<T, N>, String> {
+        // The library's checked steps reject a step that turns the body by more than half a
+        // turn (`|w| dt` at either end, `MAX_STEP_ANGLE`) with `StepTooLong`.
         let fail = |e: Error| format!("step {k}: {e} (the step is too long for these rates?)");
-        if let Method::Step(_) = cfg.method {
-            // The rate the integrator turns the attitude at (a semi-rigid rotor's isotropic turn
-            // is exact and not part of it).
-            let turn = self.body.omega(state).norm().to_f64() * cfg.dt;
-            let limit = TURN_RESOLUTION / T::EPSILON.to_f64();
-            if turn.is_nan() || turn > limit {
-                return Err(format!(
-                    "step {k}: the body turns {turn:.3e} rad in one step (|w| dt at the step's \
-                     start): beyond {limit:.2e} rad the angle itself is not known to \
-                     {TURN_RESOLUTION:e} rad in {}; give a smaller --dt",
-                    if cfg.f32 { "f32" } else { "f64" }
-                ));
-            }
-        }
         let integ = match (cfg.method, &self.exact) {
             (Method::Exact, Some(x)) => {
                 let s = x.state_at(T::from_f64(k as f64 * cfg.dt));

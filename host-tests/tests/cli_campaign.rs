@@ -365,8 +365,8 @@ fn propagate_stops_at_the_first_bad_line_with_what_the_lines_before_give() {
 
 #[test]
 fn propagate_rejects_values_too_large_for_a_step() {
-    // Non-finite results, and turns whose angle is not known to 1e-3 rad (beyond 1e-3/eps:
-    // 4.5e12 rad in f64, 8.4e3 rad in f32).
+    // Non-finite results, and turns beyond a rule's half-turn limit (the library's StepTooLong)
+    // or, for `--algo exp`, beyond the angle's own resolution.
     for (args, input, line) in [
         (
             &["--input", "increments", "--algo", "coning2", "--dt", "0.01"][..],
