@@ -173,25 +173,25 @@ impl<T: Real> Dcm<T> {
         let one = T::ONE;
         // Each branch's pivot t is ≥ 1: e.g. R₂₂ < 0 and R₀₀ > R₁₁ give
         // t = 1 + (R₀₀ − R₁₁) − R₂₂ > 1.
-        let (_pivot, q) = if r22 < T::ZERO {
+        let q = if r22 < T::ZERO {
             if r00 > r11 {
                 let t = one + r00 - r11 - r22;
-                (t, Quat::new(r21 - r12, t, r01 + r10, r02 + r20))
+                Quat::new(r21 - r12, t, r01 + r10, r02 + r20)
             } else {
                 let t = one - r00 + r11 - r22;
-                (t, Quat::new(r02 - r20, r01 + r10, t, r12 + r21))
+                Quat::new(r02 - r20, r01 + r10, t, r12 + r21)
             }
         } else if r00 < -r11 {
             let t = one - r00 - r11 + r22;
-            (t, Quat::new(r10 - r01, r02 + r20, r12 + r21, t))
+            Quat::new(r10 - r01, r02 + r20, r12 + r21, t)
         } else {
             let t = one + r00 + r11 + r22;
-            (t, Quat::new(t, r21 - r12, r02 - r20, r10 - r01))
+            Quat::new(t, r21 - r12, r02 - r20, r10 - r01)
         };
         // q = 4c·(w, x, y, z) with c = √t/2 the pivot component. Dividing by |q| (≥ t ≥ 1, never
-        // small; entries ≤ 4, so no overflow) rather than by 2√t keeps the result unit for
-        // every matrix a `Dcm` accepts, not only for an orthogonal one: at the tolerance 1e-1
-        // the shortcut 1/(2√t) left |q| − 1 up to 3e-2 (adversarial campaign).
+        // small; entries ≤ 4, so no overflow) keeps the result unit for every matrix a `Dcm`
+        // accepts; the cheaper 1/(2√t) is exact only for an orthogonal matrix (|q| − 1 reaches
+        // 3e-2 at the tolerance 1e-1).
         UnitQuat::new_unchecked(q.scale(one / q.norm_squared().sqrt()))
     }
 }
