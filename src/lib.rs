@@ -86,6 +86,7 @@ pub use error::Error;
 struct ReadmeDoctests;
 pub use linalg::{Axis, Complex, Mat3, Vec3};
 pub use real::{Real, Ring};
+pub use rotation::ExpMap;
 pub use rotation::{
     AxisAngle, Dcm, Euler, EulerSequence, Gibbs, GimbalPolicy, Mrp, PolarAxisAngle, RotationVector,
 };

@@ -656,7 +656,7 @@ impl<T: Real> SemiRigidRotor<T> {
         if !phi.is_finite() {
             return Err(Error::InvalidArgument);
         }
-        UnitQuat::exp(phi)
+        UnitQuat::try_exp(phi)
     }
 }
 

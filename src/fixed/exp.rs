@@ -1,10 +1,33 @@
-//! The fixed-point kernels behind [`crate::Ring::exp_beyond_series`] and
-//! [`crate::Ring::inv_sqrt_near_one`].
+//! The fixed-point kernels of the exponential map: [`ExpMap`] for [`Fixed<F>`], beside the
+//! floats' (in `rotation/exp.rs`). The arithmetic they rest on is the scalar layer's
+//! (`real/wide.rs`); the algorithms are documented in the [module docs](super).
 
-use super::Fixed;
-use super::wide::{mul_wide, round_shift, saturate};
-use crate::rotation::half_angle_series;
+use crate::real::fixed::Fixed;
+use crate::real::wide::{mul_wide, round_shift, saturate};
+use crate::rotation::{ExpMap, half_angle_series};
 use crate::{Quat, Ring, Vec3};
+
+/// Scaling and squaring past the series; the product with the exponential fused on the series
+/// domain.
+impl<const F: u32> ExpMap for Fixed<F> {
+    #[inline]
+    fn exp_beyond_series(phi: Vec3<Self>, _theta_sq: Self) -> Quat<Self> {
+        exp_large(phi)
+    }
+    #[inline]
+    fn mul_exp(q: Quat<Self>, phi: Vec3<Self>) -> Quat<Self> {
+        mul_exp(q, phi)
+    }
+    #[inline]
+    fn mul_exp_coning(
+        q: Quat<Self>,
+        sum: Vec3<Self>,
+        lever: Vec3<Self>,
+        last: Vec3<Self>,
+    ) -> Quat<Self> {
+        mul_exp_coning(q, sum, lever, last)
+    }
+}
 
 /// Halvings needed at most: `|φ|² < 3·2² = 12` for components in `[−2, 2)`, and `12/4⁵ < 1/64`.
 const MAX_HALVINGS: u32 = 5;
@@ -21,7 +44,7 @@ const MAX_HALVINGS: u32 = 5;
 /// absolute resolution, so the error of `c` grows only by the doubling of `c² − P` (≤ 2ᵏ times
 /// the series' rounding, measured in `host-tests/tests/fixed_point.rs`). Nothing is divided.
 /// The result `(c₀, s₀·φ)` scales the original `φ`.
-pub(crate) fn exp_large<const F: u32>(phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
+fn exp_large<const F: u32>(phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
     // θ² in units of 2^-(2F−2): each square < 2⁶², shifted by 2, three of them < 3·2⁶⁰.
     let sq = |x: Fixed<F>| mul_wide(x.0, x.0) >> 2;
     let t2 = sq(phi.x) + sq(phi.y) + sq(phi.z);
@@ -56,7 +79,7 @@ const FINE: u32 = 3;
 
 /// `q ⊗ exp(φ)`, fused on the series domain (`|φ|² ≤ 1/64`); beyond it, the product with
 /// [`exp_large`]. See [`mul_exp_fine`].
-pub(crate) fn mul_exp<const F: u32>(q: Quat<Fixed<F>>, phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
+fn mul_exp<const F: u32>(q: Quat<Fixed<F>>, phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
     // Components below ¼ rad fit 32 bits with FINE more fraction bits.
     let quarter = 1i32 << (F - 2);
     let fits = |x: Fixed<F>| x.0.unsigned_abs() < quarter as u32;
@@ -72,7 +95,7 @@ pub(crate) fn mul_exp<const F: u32>(q: Quat<Fixed<F>>, phi: Vec3<Fixed<F>>) -> Q
 /// `q ⊗ exp(sum + lever × last)`: the cross product is formed exactly (64 bits) and rounded once
 /// to the fine scale 2^−(F+3), where it is added to the sum (exact there); then as
 /// [`mul_exp_fine`]. Beyond the fused domain, the rounded rotation vector goes to [`mul_exp`].
-pub(crate) fn mul_exp_coning<const F: u32>(
+fn mul_exp_coning<const F: u32>(
     q: Quat<Fixed<F>>,
     sum: Vec3<Fixed<F>>,
     lever: Vec3<Fixed<F>>,
@@ -130,28 +153,4 @@ fn mul_exp_fine<const F: u32>(q: Quat<Fixed<F>>, f: [i32; 3]) -> Option<Quat<Fix
         out(cc(qy) + uu(qw, uy) - uu(qx, uz) + uu(qz, ux)),
         out(cc(qz) + uu(qw, uz) + uu(qx, uy) - uu(qy, ux)),
     ))
-}
-
-/// Newton iterations allowed: from `r = 1`, `x` just below 2 (the slowest case of the domain)
-/// needs 6.
-const MAX_NEWTON: u32 = 8;
-
-/// `1/√x` for `x ∈ (½, 2)` by Newton's iteration `r ← r + r(1 − x r²)/2` from `r = 1`, until
-/// the correction rounds to zero (at most 8 steps; for a drifting unit quaternion, `|x − 1|` of a
-/// few units of resolution, one or two). The domain's lower end is where `r² = 1/x` leaves
-/// Q1.30 (`r² < 2`): below it `r·r` saturates and the result is wrong (`x = 0.39` gives a scale
-/// that leaves `|q|²` at 1.56). Outside the domain the result saturates or is inaccurate, never
-/// a panic.
-pub(crate) fn inv_sqrt_near_one<const F: u32>(x: Fixed<F>) -> Fixed<F> {
-    let one = Fixed::<F>::ONE;
-    let mut r = one;
-    for _ in 0..MAX_NEWTON {
-        let e = one - x * (r * r);
-        let d = (r * e) * Fixed::<F>::HALF;
-        if d == Fixed::<F>::ZERO {
-            break;
-        }
-        r += d;
-    }
-    r
 }

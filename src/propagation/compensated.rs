@@ -61,7 +61,8 @@ use crate::propagation::Normalization;
 use crate::propagation::coning::{ConingRule, apply_rule, coning_terms_for};
 use crate::propagation::kinematics::quat_rate_body;
 use crate::propagation::rate_samples::{RateMethod, Weights, advance_plain, interp_difference};
-use crate::{Quat, Real, Ring, UnitQuat, Vec3};
+use crate::rotation::ExpMap;
+use crate::{Quat, Real, UnitQuat, Vec3};
 
 /// An attitude with its rounding error carried: `q + q_lo`, `q` the attitude rounded to `T`.
 ///
@@ -176,11 +177,11 @@ impl<T: Real> CompensatedAttitude<T> {
 }
 
 /// The attitude an increment or rate integrator carries: a [`UnitQuat`] (the plain update, for
-/// every [`Ring`] type, fixed point included) or a [`CompensatedAttitude`] (the compensated
+/// every [`ExpMap`] type, fixed point included) or a [`CompensatedAttitude`] (the compensated
 /// update, [`Real`] types). Sealed.
 pub trait PropagatedAttitude<T>: sealed::Propagate<T> {}
 
-impl<T: Ring> PropagatedAttitude<T> for UnitQuat<T> {}
+impl<T: ExpMap> PropagatedAttitude<T> for UnitQuat<T> {}
 impl<T: Real> PropagatedAttitude<T> for CompensatedAttitude<T> {}
 
 pub(crate) mod sealed {
@@ -215,7 +216,7 @@ pub(crate) mod sealed {
             T: Real;
     }
 
-    impl<T: Ring> Propagate<T> for UnitQuat<T> {
+    impl<T: ExpMap> Propagate<T> for UnitQuat<T> {
         #[inline(always)]
         fn attitude(&self) -> UnitQuat<T> {
             *self

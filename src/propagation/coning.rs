@@ -41,6 +41,7 @@ use crate::propagation::compensated::CompensatedAttitude;
 use crate::propagation::compensated::PropagatedAttitude;
 use crate::propagation::exponential::apply_rotation_vector;
 use crate::propagation::{Normalization, within_step_limit};
+use crate::rotation::ExpMap;
 use crate::{Error, Ring, UnitQuat, Vec3};
 
 /// An increment (coning) rule: how the rotation vector of one attitude update is formed.
@@ -226,7 +227,7 @@ pub fn rotation_vector_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> V
 /// rule's [`ConingTerms`] go through the update kernel [`apply_rotation_vector`] (in fixed point:
 /// [`UnitQuat::mul_exp_coning`]).
 #[inline]
-pub fn coning2_update<T: Ring>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
+pub fn coning2_update<T: ExpMap>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
     apply_rotation_vector(q, two_sample_terms(t1, t2), Normalization::Fast)
 }
 
@@ -238,7 +239,7 @@ pub type IncrementBuffer<T> = HVec<Vec3<T>, 4>;
 /// [`ConingRule::Exp`], else the [`ConingTerms`] of the rule that fits their number
 /// ([`coning_terms_for`]).
 #[inline]
-pub(crate) fn apply_rule<T: Ring>(
+pub(crate) fn apply_rule<T: ExpMap>(
     q: UnitQuat<T>,
     rule: ConingRule,
     previous: Vec3<T>,
@@ -286,7 +287,7 @@ pub struct IncrementIntegrator<T, A = UnitQuat<T>> {
     previous: Vec3<T>,
 }
 
-impl<T: Ring, A: PropagatedAttitude<T>> IncrementIntegrator<T, A> {
+impl<T: ExpMap, A: PropagatedAttitude<T>> IncrementIntegrator<T, A> {
     /// Starts at attitude `q0`: a [`UnitQuat`] (plain) or a [`CompensatedAttitude`].
     pub fn new(q0: A, rule: ConingRule, norm: Normalization) -> Self {
         Self {
@@ -496,7 +497,7 @@ impl<T: Ring> ConingAccumulator<T> {
 }
 
 #[cfg(feature = "defmt")]
-impl<T: Ring + defmt::Format> defmt::Format for IncrementIntegrator<T> {
+impl<T: ExpMap + defmt::Format> defmt::Format for IncrementIntegrator<T> {
     fn format(&self, f: defmt::Formatter<'_>) {
         defmt::write!(
             f,

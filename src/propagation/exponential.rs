@@ -8,7 +8,8 @@
 //! cutoff that returns the identity.
 
 use crate::propagation::{ConingTerms, Normalization, exact_step_angle_limit};
-use crate::{Error, Real, Ring, UnitQuat, Vec3};
+use crate::rotation::ExpMap;
+use crate::{Error, Real, UnitQuat, Vec3};
 
 /// `q ⊗ exp(ω_body Δt)`: the exact attitude after a constant body rate held for `dt` (6.6.4).
 ///
@@ -71,7 +72,7 @@ pub fn step_constant_rate_unchecked<T: Real>(
 /// than the format) and, for a coning rule, also forms the cross product exactly and adds it at
 /// that finer resolution ([`UnitQuat::mul_exp_coning`]).
 #[inline(always)]
-pub fn apply_rotation_vector<T: Ring, P: RotationVectorForm<T>>(
+pub fn apply_rotation_vector<T: ExpMap, P: RotationVectorForm<T>>(
     q: UnitQuat<T>,
     phi: P,
     norm: Normalization,
@@ -85,7 +86,7 @@ mod sealed {
 
 /// The forms of a rotation vector `φ` that [`apply_rotation_vector`] takes: a plain [`Vec3`], or
 /// a coning rule's [`ConingTerms`] (`φ = sum + lever × last`). Sealed.
-pub trait RotationVectorForm<T: Ring>: Copy + sealed::Sealed {
+pub trait RotationVectorForm<T: ExpMap>: Copy + sealed::Sealed {
     /// `q ⊗ exp(φ)`, not renormalised.
     fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T>;
 }
@@ -93,18 +94,18 @@ pub trait RotationVectorForm<T: Ring>: Copy + sealed::Sealed {
 impl<T> sealed::Sealed for Vec3<T> {}
 impl<T> sealed::Sealed for ConingTerms<T> {}
 
-/// [`UnitQuat::mul_exp`].
-impl<T: Ring> RotationVectorForm<T> for Vec3<T> {
+/// [`UnitQuat::mul_exp_unchecked`].
+impl<T: ExpMap> RotationVectorForm<T> for Vec3<T> {
     #[inline(always)]
     fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T> {
-        q.mul_exp(self)
+        q.mul_exp_unchecked(self)
     }
 }
 
-/// [`UnitQuat::mul_exp_coning`].
-impl<T: Ring> RotationVectorForm<T> for ConingTerms<T> {
+/// [`UnitQuat::mul_exp_coning_unchecked`].
+impl<T: ExpMap> RotationVectorForm<T> for ConingTerms<T> {
     #[inline(always)]
     fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T> {
-        q.mul_exp_coning(self)
+        q.mul_exp_coning_unchecked(self.sum, self.lever, self.last)
     }
 }

@@ -7,10 +7,69 @@
 //! Both maps switch to truncated Taylor series below a per-type threshold (associated consts:
 //! [`Ring::EXP_SERIES_MAX_SQ`], [`Real::LOG_SERIES_MAX_SQ`]), so that no tiny angle is ever
 //! divided by and the identity is approached smoothly (there is no cutoff that returns the
-//! identity). The exponential map is generic over [`Ring`] (it runs in fixed point too); the
+//! identity). The exponential map is generic over [`ExpMap`] (every float, and fixed point); the
 //! logarithm over [`Real`].
 
 use crate::{Error, Quat, Real, Ring, UnitQuat, Vec3};
+
+/// The scalar types the exponential map runs on, with their per-type kernels: f32 and f64
+/// (every [`Real`]) and the fixed-point [`crate::fixed::Fixed`].
+///
+/// The map itself, [`UnitQuat::exp_unchecked`], is one generic series below
+/// [`Ring::EXP_SERIES_MAX_SQ`]; past it, and in the attitude update `q ⊗ exp(φ)`, each kind of
+/// scalar has its own algorithm: the floats take `sin`/`cos` of the half angle, fixed point
+/// halves the angle until the series applies and doubles back, and fuses the product with the
+/// exponential so that the small rotation increment is never rounded to the format's step (see
+/// [`crate::fixed`]). These kernels belong to the rotation layer, which owns quaternions, and
+/// not to the scalar traits below it, which know nothing of vectors: hence a trait of its own,
+/// implemented here for every [`Real`] and in `fixed/exp.rs` for fixed point.
+///
+/// Every [`Real`] implements it, so code generic over [`Real`] uses the exponential map without
+/// naming this trait; code generic over [`Ring`] that calls the map (the increment path of
+/// [`crate::propagation`]) is generic over `ExpMap` instead. Only gyrostat's scalar types can
+/// implement it ([`Ring`] is sealed).
+pub trait ExpMap: Ring {
+    /// The exponential map `exp(φ) = (cos(θ/2), sin(θ/2)·φ/θ)`, `θ = |φ|`, for
+    /// `theta_sq = |φ|² >` [`Ring::EXP_SERIES_MAX_SQ`] (or not finite): the part of
+    /// [`UnitQuat::exp_unchecked`] past its series.
+    fn exp_beyond_series(phi: Vec3<Self>, theta_sq: Self) -> Quat<Self>;
+
+    /// `q ⊗ exp(φ)`: the attitude update by a body-frame rotation vector, the step of every
+    /// increment integrator ([`UnitQuat::mul_exp_unchecked`]).
+    ///
+    /// The floats form `exp(φ)` and multiply. Fixed point fuses the two on the series domain:
+    /// `sin(θ/2)/θ·φ`, a small vector, is kept with 3 more fraction bits than the format, and each
+    /// component of the product is summed in 64 bits and rounded once, so that the rotation
+    /// increment itself is never rounded to the format's resolution (a constant rate would
+    /// otherwise integrate that rounding linearly).
+    #[inline]
+    fn mul_exp(q: Quat<Self>, phi: Vec3<Self>) -> Quat<Self> {
+        q * *UnitQuat::exp_unchecked(phi).as_quat()
+    }
+
+    /// `q ⊗ exp(sum + lever × last)`: the attitude update of a coning rule
+    /// ([`UnitQuat::mul_exp_coning_unchecked`]). The floats form the rotation vector and call
+    /// [`ExpMap::mul_exp`]; fixed point forms the cross product exactly and adds it to the sum at
+    /// the finer resolution of its fused exponential, so that the small coning term is rounded to
+    /// 2^−(F+3), not to the format's step.
+    #[inline]
+    fn mul_exp_coning(
+        q: Quat<Self>,
+        sum: Vec3<Self>,
+        lever: Vec3<Self>,
+        last: Vec3<Self>,
+    ) -> Quat<Self> {
+        Self::mul_exp(q, sum + lever.cross(last))
+    }
+}
+
+/// The floats: `sin`/`cos` of the half angle past the series.
+impl<T: Real> ExpMap for T {
+    #[inline]
+    fn exp_beyond_series(phi: Vec3<T>, theta_sq: T) -> Quat<T> {
+        exp_beyond_series_real(phi, theta_sq)
+    }
+}
 
 /// `(cos(θ/2), sin(θ/2)/θ)` for `θ² = theta_sq ≤` [`Ring::EXP_SERIES_MAX_SQ`], by the series
 /// `cos(θ/2) = 1 − θ²/8 + θ⁴/384 − …`, `sin(θ/2)/θ = ½ − θ²/48 + θ⁴/3840 − …` truncated after
@@ -29,9 +88,9 @@ pub(crate) fn half_angle_series<T: Ring>(theta_sq: T) -> (T, T) {
     (c, s)
 }
 
-/// The floats' [`Ring::exp_beyond_series`]: `sin`/`cos` of the half angle, and the overflow path.
+/// The floats' [`ExpMap::exp_beyond_series`]: `sin`/`cos` of the half angle, and the overflow path.
 #[inline]
-pub(crate) fn exp_beyond_series_real<T: Real>(phi: Vec3<T>, n2: T) -> Quat<T> {
+fn exp_beyond_series_real<T: Real>(phi: Vec3<T>, n2: T) -> Quat<T> {
     if !n2.is_finite() {
         // |φ|² overflowed (|φ| ≳ 1e19 in f32, 1e154 in f64): take the angle with hypot and
         // scale by 1/|φ| instead (no tiny-angle issue at this size).
@@ -47,12 +106,12 @@ pub(crate) fn exp_beyond_series_real<T: Real>(phi: Vec3<T>, n2: T) -> Quat<T> {
     Quat::from_parts(c, phi.scale(s * inv))
 }
 
-impl<T: Ring> UnitQuat<T> {
-    /// [`UnitQuat::exp`] without the finiteness check, for a hot loop whose input was validated
+impl<T: ExpMap> UnitQuat<T> {
+    /// [`UnitQuat::try_exp`] without the finiteness check, for a hot loop whose input was validated
     /// upstream. A non-finite `φ` gives a non-finite result.
     ///
     /// Below [`Ring::EXP_SERIES_MAX_SQ`] (f32: 0.37 rad, f64: 0.013 rad, Q1.30: 1/8 rad) the
-    /// series, no trigonometric call; beyond, [`Ring::exp_beyond_series`]. For fixed point this
+    /// series, no trigonometric call; beyond, [`ExpMap::exp_beyond_series`]. For fixed point this
     /// is the exponential map itself: total on every representable `φ`, integer arithmetic only
     /// (see [`crate::fixed`]).
     #[inline(always)]
@@ -67,28 +126,25 @@ impl<T: Ring> UnitQuat<T> {
     }
 }
 
-impl<T: Ring> UnitQuat<T> {
+impl<T: ExpMap> UnitQuat<T> {
     /// `self ⊗ exp(φ)`: the attitude after the body-frame rotation vector `φ`, unchecked (see
     /// [`UnitQuat::exp_unchecked`]). Equal to `self * UnitQuat::exp_unchecked(phi)` for the
-    /// floats; fused in fixed point ([`Ring::mul_exp`]): one rounding per component, with the
+    /// floats; fused in fixed point ([`ExpMap::mul_exp`]): one rounding per component, with the
     /// small rotation increment carried at a finer resolution than the format.
     #[inline]
-    pub fn mul_exp(self, phi: Vec3<T>) -> Self {
+    pub fn mul_exp_unchecked(self, phi: Vec3<T>) -> Self {
         Self::new_unchecked(T::mul_exp(self.into_quat(), phi))
     }
 
-    /// `self ⊗ exp(φ)` for a coning rule's rotation vector `φ = sum + lever × last`
-    /// ([`crate::propagation::ConingTerms`]). Equal to `self.mul_exp(terms.rotation_vector())`
-    /// for the floats; in fixed point the coning term is formed exactly and kept at the fused
-    /// exponential's finer resolution ([`Ring::mul_exp_coning`]).
+    /// `self ⊗ exp(sum + lever × last)`, unchecked: the update of a coning rule, whose rotation
+    /// vector is the sum of the increments plus a cross product of them (the coning term, see
+    /// [`crate::propagation::ConingTerms`]). Equal to
+    /// `self.mul_exp_unchecked(sum + lever.cross(last))` for the floats; in fixed point the
+    /// coning term is formed exactly and kept at the fused exponential's finer resolution
+    /// ([`ExpMap::mul_exp_coning`]).
     #[inline]
-    pub fn mul_exp_coning(self, terms: crate::propagation::ConingTerms<T>) -> Self {
-        Self::new_unchecked(T::mul_exp_coning(
-            self.into_quat(),
-            terms.sum,
-            terms.lever,
-            terms.last,
-        ))
+    pub fn mul_exp_coning_unchecked(self, sum: Vec3<T>, lever: Vec3<T>, last: Vec3<T>) -> Self {
+        Self::new_unchecked(T::mul_exp_coning(self.into_quat(), sum, lever, last))
     }
 }
 
@@ -105,14 +161,14 @@ impl<T: Real> UnitQuat<T> {
     ///
     /// ```
     /// use gyrostat::{UnitQuat, Vec3};
-    /// let q = UnitQuat::exp(Vec3::new(0.0f64, 0.0, core::f64::consts::PI))?;
+    /// let q = UnitQuat::try_exp(Vec3::new(0.0f64, 0.0, core::f64::consts::PI))?;
     /// assert!((q.z() - 1.0).abs() < 1e-15); // half-turn about z
-    /// let tiny = UnitQuat::exp(Vec3::new(1e-30f32, 0.0, 0.0))?;
+    /// let tiny = UnitQuat::try_exp(Vec3::new(1e-30f32, 0.0, 0.0))?;
     /// assert_eq!(tiny.x(), 5e-31); // not snapped to the identity
     /// # Ok::<(), gyrostat::Error>(())
     /// ```
     #[inline]
-    pub fn exp(phi: Vec3<T>) -> Result<Self, Error> {
+    pub fn try_exp(phi: Vec3<T>) -> Result<Self, Error> {
         let phi = phi.try_finite()?;
         if !phi.norm_squared().is_finite() && !phi.norm().is_finite() {
             // |φ| itself overflows: the angle (mod 4π) is not representable.
@@ -122,7 +178,7 @@ impl<T: Real> UnitQuat<T> {
     }
 
     /// The logarithm map onto rotation vectors of angle in `[0, π]`: the inverse of
-    /// [`UnitQuat::exp`] on that range.
+    /// [`UnitQuat::try_exp`] on that range.
     ///
     /// This is an SO(3) view: `q` and `−q` give the same rotation vector (the sign is chosen so
     /// that `w ≥ 0`). The angle is `2·atan2(|v|, |w|)`, accurate at every angle including near 0

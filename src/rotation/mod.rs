@@ -72,4 +72,5 @@ pub use rotvec::RotationVector;
 pub use su2::Su2;
 pub use unit_quat::UnitQuat;
 
-pub(crate) use exp::{exp_beyond_series_real, half_angle_series};
+pub use exp::ExpMap;
+pub(crate) use exp::half_angle_series;
