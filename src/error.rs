@@ -30,7 +30,7 @@ pub enum Error {
     NotConverged,
     /// A step is longer than its method's validity limit: the rotation it would take in one step
     /// (`|ω|·Δt`, a gyro increment, an accumulated update interval) is beyond the bound the method
-    /// documents ([`crate::propagation::MAX_STEP_ANGLE`] for the approximate methods), where its
+    /// documents ([`crate::step_limit::MAX_STEP_ANGLE`] for the approximate methods), where its
     /// result would carry no correct digit. Take shorter steps.
     StepTooLong,
     /// An argument is outside the documented domain (for example a negative step or count, or a

@@ -77,6 +77,7 @@ pub mod linalg;
 pub mod propagation;
 pub mod real;
 pub mod rotation;
+pub mod step_limit;
 
 pub use error::Error;
 

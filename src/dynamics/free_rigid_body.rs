@@ -82,7 +82,7 @@ use super::elliptic::{
     pow2_scale, sech_tanh,
 };
 use crate::dynamics::{Inertia, State};
-use crate::propagation::exact_step_angle_limit;
+use crate::step_limit::exact_step_angle_limit;
 use crate::{Axis, Error, Real, UnitQuat, Vec3};
 
 /// Two principal moments within this relative distance (`|Iₐ − I_b| ≤ tol·max`) are treated as

@@ -18,7 +18,7 @@
 //! [`Gyrostat::control`]) or a law `f(t, state)` evaluated at the integrator's stages (the host
 //! form). Both check the step once and return a typed error for a non-finite result or a step
 //! beyond the methods' validity limit: the body may turn by at most
-//! [`MAX_STEP_ANGLE`](crate::propagation::MAX_STEP_ANGLE) (half a turn) per step, `|ω|·dt ≤ π` at
+//! [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) (half a turn) per step, `|ω|·dt ≤ π` at
 //! the start and at the end of the step ([`Error::StepTooLong`]).
 //!
 //! ```
@@ -41,7 +41,7 @@ use crate::dynamics::inertia::Inertia;
 use crate::dynamics::monitors::{Invariants, lab_momentum, momentum_norm};
 use crate::dynamics::splitting::Stages;
 use crate::dynamics::state::{CompensatedState, Control, ControlLaw, State, WheelCommand};
-use crate::propagation::within_step_limit;
+use crate::step_limit::within_step_limit;
 use crate::{Error, Real, UnitQuat, Vec3};
 
 /// The integration method of a step.
@@ -278,7 +278,7 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     /// see [`crate::dynamics::compensated`]); the result is of the same type.
     ///
     /// Validity limit: the body turns by at most
-    /// [`MAX_STEP_ANGLE`](crate::propagation::MAX_STEP_ANGLE) in the step, `|ω|·dt ≤ π` with the
+    /// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) in the step, `|ω|·dt ≤ π` with the
     /// body rate `ω` of the state before and of the state after the step. Every method here is a
     /// series in that angle (RK4's polynomial, the splittings' composition error); beyond half a
     /// turn per step none of them approximates the motion. (`|J|` and the energy of a state are

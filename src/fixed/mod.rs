@@ -46,11 +46,11 @@
 //!   scaling and squaring (halve the angle up to five times, double back with
 //!   `cos 2x = cos²x − sin²x`), correct for every representable `φ` (`|φ| < 2√3`), including
 //!   angles beyond π. No angle is rejected.
-//! - The attitude update `q ⊗ exp(φ)` ([`UnitQuat::mul_exp`], used by every increment
+//! - The attitude update `q ⊗ exp(φ)` ([`UnitQuat::mul_exp_unchecked`], used by every increment
 //!   integrator): fused, so that the small rotation increment `sin(θ/2)/θ·φ` is carried with 3
 //!   more fraction bits (2⁻³³) and each output component is rounded once. Without it, a constant
 //!   rate would integrate the rounding of its (identical) increment quaternion linearly. A
-//!   coning rule's update ([`UnitQuat::mul_exp_coning`]) also forms its cross product exactly
+//!   coning rule's update ([`UnitQuat::mul_exp_coning_unchecked`]) also forms its cross product exactly
 //!   and adds it to the increments at 2⁻³³, so the small coning term is not rounded to 2⁻³⁰.
 //! - Renormalisation: [`UnitQuat::renormalize_fast`] is `q + q·(1 − |q|²)/2` (one Newton step of
 //!   the inverse square root, no division); [`UnitQuat::renormalize`] iterates that step on the
@@ -122,6 +122,9 @@
 mod exp;
 
 pub use crate::real::fixed::{Fixed, Q24, Q30};
+
+#[cfg(doc)]
+use crate::Ring;
 
 use crate::real::fixed::pow2_neg;
 use crate::real::wide::{mul_wide, round_shift, saturate};

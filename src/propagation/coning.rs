@@ -40,7 +40,8 @@ use heapless::Vec as HVec;
 use crate::propagation::compensated::CompensatedAttitude;
 use crate::propagation::compensated::PropagatedAttitude;
 use crate::propagation::exponential::apply_rotation_vector;
-use crate::propagation::{Normalization, within_step_limit};
+use crate::propagation::Normalization;
+use crate::step_limit::within_step_limit;
 use crate::rotation::ExpMap;
 use crate::{Error, Ring, UnitQuat, Vec3};
 
@@ -165,7 +166,7 @@ pub fn four_sample_terms<T: Ring>(
 /// `θₖ + (1/12) θₖ₋₁ × θₖ`: one increment with the previous-interval coning correction.
 ///
 /// Domain (of this and the other rule functions): finite increments of at most
-/// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) rad each; the result is then finite (at most a few times `π`).
+/// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) rad each; the result is then finite (at most a few times `π`).
 #[inline]
 pub fn one_plus_previous<T: Ring>(previous: Vec3<T>, current: Vec3<T>) -> Vec3<T> {
     one_plus_previous_terms(previous, current).rotation_vector()
@@ -221,9 +222,9 @@ pub fn rotation_vector_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> V
 ///
 /// Unchecked (a non-finite increment gives a non-finite attitude): for an inner loop whose
 /// increments were validated when they were read. Domain: finite increments of at most
-/// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) rad each (the checks of
+/// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) rad each (the checks of
 /// [`IncrementIntegrator::push`]). The exponential of the small per-update angle uses the series
-/// of [`UnitQuat::exp`] (no trigonometric call below 0.37 rad in f32, 1/8 rad in Q1.30); the
+/// of [`UnitQuat::try_exp`] (no trigonometric call below 0.37 rad in f32, 1/8 rad in Q1.30); the
 /// rule's [`ConingTerms`] go through the update kernel [`apply_rotation_vector`] (in fixed point:
 /// [`UnitQuat::mul_exp_coning`]).
 #[inline]
@@ -305,7 +306,7 @@ impl<T: ExpMap, A: PropagatedAttitude<T>> IncrementIntegrator<T, A> {
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite component. With a coning rule,
     /// [`Error::StepTooLong`] for an increment larger than
-    /// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) (the coning rules are truncated series in the
+    /// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) (the coning rules are truncated series in the
     /// increments, see there) and, in fixed point, [`Error::OutOfRange`] for an increment
     /// component of a quarter of the format's range or more (0.25 rad in Q1.30: below it a group
     /// of four increments, its rule's lever and cross product cannot saturate). With
@@ -428,7 +429,7 @@ impl<T: Ring> ConingAccumulator<T> {
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite component; [`Error::StepTooLong`] when the
     /// increment, or the increment sum `α` of the interval with it, is longer than
-    /// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE): the two-speed correction is a truncated series
+    /// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE): the two-speed correction is a truncated series
     /// in `α` (take the rotation vector more often). In fixed point, [`Error::OutOfRange`] when a
     /// sum of the update (`α`, the lever `α + Δθₗ₋₁/6`, the cross product, `β`, `α + β`) would
     /// saturate the format. Either way the increment is discarded and the state is unchanged.
@@ -465,7 +466,7 @@ impl<T: Ring> ConingAccumulator<T> {
     }
 
     /// [`ConingAccumulator::push`] without the checks. Domain: finite increments whose interval
-    /// sum stays within [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE); then `α` and `β` stay finite.
+    /// sum stays within [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE); then `α` and `β` stay finite.
     #[inline]
     pub fn push_unchecked(&mut self, dtheta: Vec3<T>) {
         let lever = self.alpha + self.previous.scale(T::ratio::<1, 6>());

@@ -4,10 +4,11 @@
 //! `Θ = ω Δt` (6.6.4), applied in the body frame: `q(t + Δt) = q(t) ⊗ exp(ω Δt)`. This is the
 //! exact solution of `q̇ = ½ q ⊗ (0, ω)` for any `|ω| Δt`, including beyond π (the spinor then
 //! keeps turning continuously: a 2π whirl gives `−q`, seed (6.6.6c)). The exponential is
-//! [`UnitQuat::exp`], which uses a series for small angles: no division by a tiny angle and no
+//! [`UnitQuat::try_exp`], which uses a series for small angles: no division by a tiny angle and no
 //! cutoff that returns the identity.
 
-use crate::propagation::{ConingTerms, Normalization, exact_step_angle_limit};
+use crate::propagation::{ConingTerms, Normalization};
+use crate::step_limit::exact_step_angle_limit;
 use crate::rotation::ExpMap;
 use crate::{Error, Real, UnitQuat, Vec3};
 

@@ -32,50 +32,6 @@
 
 pub mod compensated;
 
-use crate::{Real, Ring, Vec3};
-
-/// The largest rotation one step of an approximate propagation or dynamics method may take:
-/// `π` rad, half a turn. A longer step gives [`crate::Error::StepTooLong`].
-///
-/// Why π: every approximate update in gyrostat is a truncated series in the step's rotation
-/// angle `θ` (`|ω|·Δt`, a gyro increment, or an accumulated update interval). The coning rules
-/// and the two-speed accumulator truncate the Bortz rotation-vector equation and Magnus-4 and
-/// CF4 the Magnus expansion, both of which converge only for `θ < 2π` (Moan & Niesen, *Found.
-/// Comput. Math.* 8 (2008), for Magnus); classical RK4 is unstable on the rotation's
-/// eigenvalues `±iθ/2` beyond `θ = 4√2 ≈ 5.66`; the Lie–Poisson splittings' error terms are
-/// powers of the sub-step angles. At `π` each method is at half its radius of convergence or
-/// closer to the origin; at `2π` none of them approximates anything. A step of more than half a
-/// turn is also aliased for everything downstream: the attitudes at its ends are joined by the
-/// shorter rotation the other way ([`kinematics::body_rate_between`]).
-///
-/// The checked entry points test it ([`coning::IncrementIntegrator::push`] with a coning rule,
-/// [`coning::ConingAccumulator::push`], [`rate_samples::RateIntegrator::push`],
-/// [`crate::dynamics::Gyrostat::step`]); the unchecked step functions state it as their domain.
-pub const MAX_STEP_ANGLE: f64 = core::f64::consts::PI;
-
-/// `true` when a rotation vector `v` turns by at most [`MAX_STEP_ANGLE`]: `|v/4|² ≤ π²/16`.
-///
-/// The quarter keeps the square inside Q1.30's range (`|v/4|² < 0.75` for components below
-/// 2 rad); for the floats it is exact, so the test is `|v|² ≤ π²` (the rational
-/// 223764909/362754007 is π²/16 to 7e-19). An overflowing square fails, and so does a NaN: the
-/// callers check their inputs for finiteness first, so a NaN here is a rate that could not be
-/// represented.
-#[inline]
-pub(crate) fn within_step_limit<T: Ring>(v: Vec3<T>) -> bool {
-    v.scale(T::ratio::<1, 4>()).norm_squared() <= T::ratio::<223_764_909, 362_754_007>()
-}
-
-/// The validity limit of the exact steps (the exponential of a rate held constant,
-/// [`exponential::step_constant_rate`]): `|ω|·Δt ≤ 1/ε` (8.4e6 rad in f32, 4.5e15 in f64).
-///
-/// An exact step has no truncation error at any angle, but its angle is the product `ω·Δt`
-/// rounded to the type, off by up to `ε/2` of itself: beyond `1/ε` that rounding alone is half a
-/// radian or more, and the attitude after the step has no correct digit.
-#[inline]
-pub fn exact_step_angle_limit<T: Real>() -> T {
-    T::ONE / T::EPSILON
-}
-
 pub mod coning;
 pub mod exponential;
 pub mod kinematics;

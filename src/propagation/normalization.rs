@@ -44,7 +44,7 @@ impl Normalization {
     /// a larger `|δ|` (an RK4 step turning by more than about 0.19 rad in f64, 1 rad in f32: the step's norm
     /// error is `θ⁶/4608` for the angle `θ`) is
     /// renormalised exactly instead. Domain: `|q|²` finite and positive (the RK4 steps of
-    /// [`crate::propagation::rate_samples`] within [`crate::propagation::MAX_STEP_ANGLE`] keep it
+    /// [`crate::propagation::rate_samples`] within [`crate::step_limit::MAX_STEP_ANGLE`] keep it
     /// above one half). With [`Normalization::None`] the quaternion is wrapped as is: the
     /// caller has chosen to let `|q|` drift, and [`norm_deviation`] measures by how much.
     #[inline]

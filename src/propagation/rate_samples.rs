@@ -45,7 +45,8 @@ use crate::propagation::compensated::CompensatedAttitude;
 use crate::propagation::compensated::PropagatedAttitude;
 use crate::propagation::exponential::apply_rotation_vector;
 use crate::propagation::kinematics::quat_rate_body;
-use crate::propagation::{Normalization, within_step_limit};
+use crate::propagation::Normalization;
+use crate::step_limit::within_step_limit;
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
 
 /// `√3`, to the f64 rounding.
@@ -188,7 +189,7 @@ pub fn magnus4_rotation_vector<T: Real>(w1: Vec3<T>, w2: Vec3<T>, h: T) -> Vec3<
 /// One Magnus-4 step: `q ⊗ exp(φ)` with φ from [`magnus4_rotation_vector`]. Unchecked, not
 /// renormalised (a product of unit quaternions, unit to about one ulp). Domain (of this and the
 /// other step functions of this module): finite rates with `|ω|·h` at most a few times
-/// [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) (the series stop converging at `2π`).
+/// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) (the series stop converging at `2π`).
 #[inline]
 pub fn magnus4_step<T: Real>(q: UnitQuat<T>, w1: Vec3<T>, w2: Vec3<T>, h: T) -> UnitQuat<T> {
     apply_rotation_vector(q, magnus4_rotation_vector(w1, w2, h), Normalization::None)
@@ -228,7 +229,7 @@ fn cf4_update<T: Real>(
 /// One classical RK4 step of `q̇ = ½ q ⊗ (0, ω)` with the rates at the start, midpoint and end
 /// of the step. Returns the raw quaternion, off the unit sphere by the truncation error
 /// (`|q|² = 1 − θ⁶/4608 + …` for the step angle `θ = |ω| h`): apply a [`Normalization`] to it.
-/// Within [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) `|q|²` stays above 0.85.
+/// Within [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) `|q|²` stays above 0.85.
 #[inline]
 pub fn rk4_step<T: Real>(
     q: Quat<T>,
@@ -414,7 +415,7 @@ impl<T: Real, A: PropagatedAttitude<T>> RateIntegrator<T, A> {
     /// [`Error::NonFinite`] for a NaN or infinite component; [`Error::InvalidArgument`] for a
     /// component beyond a quarter of the type's largest value (the interpolant's weighted sums of
     /// four samples would overflow); [`Error::StepTooLong`] when the
-    /// sample turns the body by more than [`MAX_STEP_ANGLE`](super::MAX_STEP_ANGLE) in one sample interval
+    /// sample turns the body by more than [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) in one sample interval
     /// (`|ω|·dt > π`, where the methods' series stop converging; the interpolated node rates are
     /// at most 1.625 times the largest sample of the window, the largest sum of the magnitudes of
     /// the cubic Lagrange weights, so every step stays below `2π`). Either way the sample is

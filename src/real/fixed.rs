@@ -113,7 +113,7 @@ impl<const F: u32> Fixed<F> {
 
     /// The product in another format: `self · other` rounded (ties to even) to `H` fraction bits,
     /// saturated. For example a rate in Q7.24 times a step in Q1.30 gives an increment in Q1.30
-    /// ([`increment_from_rate`]). `F + G ≥ H` is checked at compile time.
+    /// ([`crate::fixed::increment_from_rate`]). `F + G ≥ H` is checked at compile time.
     #[inline]
     pub fn mul_to<const G: u32, const H: u32>(self, other: Fixed<G>) -> Fixed<H> {
         let shift = const {

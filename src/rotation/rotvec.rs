@@ -5,7 +5,7 @@ use crate::{Error, Real, UnitQuat, Vec3};
 /// A rotation vector `φ = Θ·n̂`: the rotation by `|φ|` about `φ̂`, the seed's whirl vector
 /// `Θ = Ω τ` (6.6.4).
 ///
-/// Built on [`UnitQuat::exp`] / [`UnitQuat::log`], which use series below a small-angle threshold
+/// Built on [`UnitQuat::try_exp`] / [`UnitQuat::log`], which use series below a small-angle threshold
 /// (no division by a tiny angle) and `atan2` near π.
 ///
 /// Any finite vector is accepted; `|φ| > π` keeps its spinor meaning through
@@ -44,7 +44,7 @@ impl<T: Real> RotationVector<T> {
         self.0.norm()
     }
 
-    /// `exp(φ)`, sign kept (see [`UnitQuat::exp`]).
+    /// `exp(φ)`, sign kept (see [`UnitQuat::try_exp`]).
     #[inline]
     pub fn to_unit_quat(self) -> UnitQuat<T> {
         UnitQuat::exp_unchecked(self.0)
