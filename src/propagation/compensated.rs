@@ -57,17 +57,18 @@
 use crate::compensated::{
     add_compensated, renormalize_compensated, rotate_compensated, sixth_pair, two_sum,
 };
-use crate::propagation::Normalization;
-use crate::propagation::coning::{ConingRule, apply_rule, coning_terms_for};
-use crate::propagation::kinematics::quat_rate_body;
-use crate::propagation::rate_samples::{RateMethod, Weights, advance_plain, interp_difference};
-use crate::rotation::ExpMap;
+use crate::propagation::coning::{ConingRule, coning_terms_for};
+use crate::propagation::kernels::rk4_slope_sum;
+use crate::propagation::normalization::Normalization;
+use crate::propagation::rate_samples::{
+    END, G1, G2, MID, RateMethod, SQRT_3, START, Weights, interp_difference,
+};
 use crate::{Quat, Real, UnitQuat, Vec3};
 
 /// An attitude with its rounding error carried: `q + q_lo`, `q` the attitude rounded to `T`.
 ///
 /// Give it to [`crate::propagation::IncrementIntegrator::new`] or
-/// [`crate::propagation::RateIntegrator::new`] in place of a [`UnitQuat`] to run that
+/// [`crate::propagation::RateIntegrator::try_new`] in place of a [`UnitQuat`] to run that
 /// integrator compensated (see the module docs); or update it directly with
 /// [`CompensatedAttitude::rotated`] (for example with the rotation vector of a
 /// [`crate::propagation::ConingAccumulator`]).
@@ -128,7 +129,7 @@ impl<T: Real> CompensatedAttitude<T> {
 
     /// `q ⊗ exp(φ)` in compensated form, then the normalisation policy (see the module docs).
     /// `φ` is taken as exact (an increment, or a rule's rotation vector); unchecked, like
-    /// [`crate::propagation::exponential::apply_rotation_vector`].
+    /// [`crate::propagation::kernels::apply_rotation_vector`].
     #[inline]
     pub fn rotated(self, phi: Vec3<T>, norm: Normalization) -> Self {
         self.rotated_pair(phi, Vec3::ZERO, norm)
@@ -147,7 +148,12 @@ impl<T: Real> CompensatedAttitude<T> {
     /// `q + (large + small)` in compensated form (an integrator's increment), then the
     /// normalisation policy.
     #[inline]
-    fn incremented(mut self, large: Quat<T>, small: Quat<T>, norm: Normalization) -> Self {
+    pub(crate) fn incremented(
+        mut self,
+        large: Quat<T>,
+        small: Quat<T>,
+        norm: Normalization,
+    ) -> Self {
         let mut q = self.q.into_quat();
         add_compensated(&mut q, &mut self.lo, large, small);
         self.q = UnitQuat::new_unchecked(q);
@@ -176,109 +182,6 @@ impl<T: Real> CompensatedAttitude<T> {
     }
 }
 
-/// The attitude an increment or rate integrator carries: a [`UnitQuat`] (the plain update, for
-/// every [`ExpMap`] type, fixed point included) or a [`CompensatedAttitude`] (the compensated
-/// update, [`Real`] types). Sealed.
-pub trait PropagatedAttitude<T>: sealed::Propagate<T> {}
-
-impl<T: ExpMap> PropagatedAttitude<T> for UnitQuat<T> {}
-impl<T: Real> PropagatedAttitude<T> for CompensatedAttitude<T> {}
-
-pub(crate) mod sealed {
-    use super::*;
-
-    /// The updates of an attitude kind (crate-internal: the methods of
-    /// [`super::PropagatedAttitude`]).
-    pub trait Propagate<T>: Copy {
-        /// The attitude, rounded to `T`.
-        fn attitude(&self) -> UnitQuat<T>;
-        /// One update by `rule` from `samples` (1 to 4 increments; `previous` the increment
-        /// before them).
-        fn increments(
-            self,
-            rule: ConingRule,
-            previous: Vec3<T>,
-            samples: &[Vec3<T>],
-            norm: Normalization,
-        ) -> Self;
-        /// One step of `method` over one interval of an `M`-sample window (`weights`: that
-        /// interval's interpolation rows), step `h + h_lo`.
-        fn rates<const M: usize>(
-            self,
-            method: RateMethod,
-            window: &[Vec3<T>; M],
-            weights: &Weights<M>,
-            h: T,
-            h_lo: T,
-            norm: Normalization,
-        ) -> Self
-        where
-            T: Real;
-    }
-
-    impl<T: ExpMap> Propagate<T> for UnitQuat<T> {
-        #[inline(always)]
-        fn attitude(&self) -> UnitQuat<T> {
-            *self
-        }
-        #[inline(always)]
-        fn increments(
-            self,
-            rule: ConingRule,
-            previous: Vec3<T>,
-            samples: &[Vec3<T>],
-            norm: Normalization,
-        ) -> Self {
-            apply_rule(self, rule, previous, samples, norm)
-        }
-        #[inline(always)]
-        fn rates<const M: usize>(
-            self,
-            method: RateMethod,
-            window: &[Vec3<T>; M],
-            weights: &Weights<M>,
-            h: T,
-            _h_lo: T,
-            norm: Normalization,
-        ) -> Self
-        where
-            T: Real,
-        {
-            advance_plain(self, method, window, weights, h, norm)
-        }
-    }
-
-    impl<T: Real> Propagate<T> for CompensatedAttitude<T> {
-        #[inline(always)]
-        fn attitude(&self) -> UnitQuat<T> {
-            self.q
-        }
-        #[inline(always)]
-        fn increments(
-            self,
-            rule: ConingRule,
-            previous: Vec3<T>,
-            samples: &[Vec3<T>],
-            norm: Normalization,
-        ) -> Self {
-            let (phi, phi_lo) = rule_vector(rule, previous, samples);
-            self.rotated_pair(phi, phi_lo, norm)
-        }
-        #[inline(always)]
-        fn rates<const M: usize>(
-            self,
-            method: RateMethod,
-            window: &[Vec3<T>; M],
-            weights: &Weights<M>,
-            h: T,
-            h_lo: T,
-            norm: Normalization,
-        ) -> Self {
-            advance_compensated(self, method, window, weights, h, h_lo, norm)
-        }
-    }
-}
-
 /// `a + b` as a compensated pair, component by component (TwoSum).
 #[inline(always)]
 fn two_sum_vec<T: Real>(a: Vec3<T>, b: Vec3<T>) -> (Vec3<T>, Vec3<T>) {
@@ -302,7 +205,7 @@ fn two_product_vec<T: Real>(a: Vec3<T>, s: T) -> (Vec3<T>, Vec3<T>) {
 /// exactly (TwoSum), the coning term `lever × last` of the rule that fits their number
 /// ([`coning_terms_for`], the plain update's terms) added to the low part; [`ConingRule::Exp`]
 /// has no coning term.
-fn rule_vector<T: Real>(
+pub(crate) fn rule_vector<T: Real>(
     rule: ConingRule,
     previous: Vec3<T>,
     samples: &[Vec3<T>],
@@ -323,15 +226,12 @@ fn rule_vector<T: Real>(
     (sum, lo + coning)
 }
 
-/// `√3`, to the f64 rounding.
-const SQRT_3: f64 = 1.732_050_807_568_877_2;
-
 /// One compensated step of a rate method: the node rates interpolated in difference form, the
 /// large part of each rotation vector formed as an exact pair. Inlined, so that the f64
 /// interpolation weights fold into f32 constants (a call would convert them at run time: about
 /// 900 more instructions per step on a Cortex-M4F).
 #[inline(always)]
-fn advance_compensated<T: Real, const M: usize>(
+pub(crate) fn advance_compensated<T: Real, const M: usize>(
     q: CompensatedAttitude<T>,
     method: RateMethod,
     s: &[Vec3<T>; M],
@@ -340,7 +240,6 @@ fn advance_compensated<T: Real, const M: usize>(
     h_lo: T,
     norm: Normalization,
 ) -> CompensatedAttitude<T> {
-    use crate::propagation::rate_samples::{END, G1, G2, MID, START};
     match method {
         RateMethod::Magnus4 | RateMethod::Cf4 => {
             let (w1, w2) = (interp_difference(s, &w[G1]), interp_difference(s, &w[G2]));
@@ -370,13 +269,7 @@ fn advance_compensated<T: Real, const M: usize>(
                 interp_difference(s, &w[MID]),
                 interp_difference(s, &w[END]),
             );
-            let q0 = q.q.into_quat();
-            let hh = h * T::HALF;
-            let k1 = quat_rate_body(q0, ws);
-            let k2 = quat_rate_body(q0 + k1.scale(hh), wm);
-            let k3 = quat_rate_body(q0 + k2.scale(hh), wm);
-            let k4 = quat_rate_body(q0 + k3.scale(h), we);
-            let sum = k1 + (k2 + k3).scale(T::TWO) + k4;
+            let sum = rk4_slope_sum(q.q.into_quat(), ws, wm, we, h);
             // h/6 as an exact pair, plus the step's remainder h_lo/6.
             let (h6, h6_lo) = sixth_pair(h);
             let small = sum.scale(h6_lo + h_lo / T::from_f64(6.0));

@@ -34,16 +34,8 @@
 //! rate it accumulates the increment sum `α` and the coning term `β` with the one-plus-previous
 //! correction; at the attitude rate `φ = α + β` goes through one exponential.
 
-use heapless::Vec as HVec;
-
-#[cfg(doc)]
-use crate::propagation::compensated::CompensatedAttitude;
-use crate::propagation::compensated::PropagatedAttitude;
-use crate::propagation::exponential::apply_rotation_vector;
-use crate::propagation::Normalization;
 use crate::step_limit::within_step_limit;
-use crate::rotation::ExpMap;
-use crate::{Error, Ring, UnitQuat, Vec3};
+use crate::{Error, Ring, Vec3};
 
 /// An increment (coning) rule: how the rotation vector of one attitude update is formed.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -86,7 +78,7 @@ impl ConingRule {
 /// A rule's rotation vector in the form every rule shares, `φ = sum + lever × last`: the sum of
 /// the increments, the (scaled) earlier increments, and the last increment.
 ///
-/// [`UnitQuat::mul_exp_coning`] takes this form, so that fixed point can form the coning term
+/// [`crate::UnitQuat::mul_exp_coning_unchecked`] takes this form, so that fixed point can form the coning term
 /// `lever × last` (small, and nearly constant under coning) at a finer resolution than the
 /// format instead of rounding it to 2⁻³⁰ every update.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -216,181 +208,6 @@ pub fn rotation_vector_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> V
     coning_terms_for(previous, samples).rotation_vector()
 }
 
-/// The complete 2-sample update on the hot path: `q ⊗ exp(θ₁ + θ₂ + ⅔ θ₁ × θ₂)`, then the fast
-/// renormalisation `q + q·(1 − |q|²)/2`. Generic over [`Ring`]: with `T = Q30` it is the
-/// fixed-point update, integer arithmetic only (see [`crate::fixed`]).
-///
-/// Unchecked (a non-finite increment gives a non-finite attitude): for an inner loop whose
-/// increments were validated when they were read. Domain: finite increments of at most
-/// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) rad each (the checks of
-/// [`IncrementIntegrator::push`]). The exponential of the small per-update angle uses the series
-/// of [`UnitQuat::try_exp`] (no trigonometric call below 0.37 rad in f32, 1/8 rad in Q1.30); the
-/// rule's [`ConingTerms`] go through the update kernel [`apply_rotation_vector`] (in fixed point:
-/// [`UnitQuat::mul_exp_coning`]).
-#[inline]
-pub fn coning2_update<T: ExpMap>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
-    apply_rotation_vector(q, two_sample_terms(t1, t2), Normalization::Fast)
-}
-
-/// Buffer of the increments of the current update group.
-pub type IncrementBuffer<T> = HVec<Vec3<T>, 4>;
-
-/// The plain update of [`IncrementIntegrator`]: `normalise(q ⊗ exp(φ))` through the update
-/// kernel [`apply_rotation_vector`], with `φ` the sum of `samples` (a plain vector) for
-/// [`ConingRule::Exp`], else the [`ConingTerms`] of the rule that fits their number
-/// ([`coning_terms_for`]).
-#[inline]
-pub(crate) fn apply_rule<T: ExpMap>(
-    q: UnitQuat<T>,
-    rule: ConingRule,
-    previous: Vec3<T>,
-    samples: &[Vec3<T>],
-    norm: Normalization,
-) -> UnitQuat<T> {
-    match (rule, samples) {
-        (ConingRule::Exp, s) => {
-            let phi = match s {
-                [a] => *a,
-                s => s.iter().fold(Vec3::ZERO, |acc, t| acc + *t),
-            };
-            apply_rotation_vector(q, phi, norm)
-        }
-        (_, s) => apply_rotation_vector(q, coning_terms_for(previous, s), norm),
-    }
-}
-
-/// Increment integrator: owns the attitude and the increments of the current update group.
-///
-/// Plain data (no allocation, fixed capacity), so an interrupt handler can own it. Feed one
-/// increment per sample with [`IncrementIntegrator::push`]; every
-/// [`ConingRule::samples_per_update`] increments it performs one attitude update
-/// `q ← normalise(q ⊗ exp(φ))`.
-///
-/// The attitude it carries is a [`UnitQuat`] (the plain update) or, when it is started from a
-/// [`CompensatedAttitude`], the compensated pair (see [`crate::propagation::compensated`]: the
-/// f32 attitude then does not drift from rounding over hours).
-///
-/// ```
-/// use gyrostat::{UnitQuat, Vec3};
-/// use gyrostat::propagation::{ConingRule, IncrementIntegrator, Normalization};
-/// let mut integ = IncrementIntegrator::new(UnitQuat::<f32>::IDENTITY, ConingRule::TwoSample, Normalization::Fast);
-/// assert_eq!(integ.push(Vec3::new(0.001, 0.0, 0.0))?, None); // first of the pair
-/// assert!(integ.push(Vec3::new(0.0, 0.001, 0.0))?.is_some()); // update done
-/// # Ok::<(), gyrostat::Error>(())
-/// ```
-#[derive(Clone, Debug)]
-pub struct IncrementIntegrator<T, A = UnitQuat<T>> {
-    q: A,
-    rule: ConingRule,
-    norm: Normalization,
-    group: IncrementBuffer<T>,
-    /// The increment just before the current group (zero before the first).
-    previous: Vec3<T>,
-}
-
-impl<T: ExpMap, A: PropagatedAttitude<T>> IncrementIntegrator<T, A> {
-    /// Starts at attitude `q0`: a [`UnitQuat`] (plain) or a [`CompensatedAttitude`].
-    pub fn new(q0: A, rule: ConingRule, norm: Normalization) -> Self {
-        Self {
-            q: q0,
-            rule,
-            norm,
-            group: HVec::new(),
-            previous: Vec3::ZERO,
-        }
-    }
-
-    /// Adds one increment `Δθ` (rad, body frame, the integral of `ω` over one sample interval).
-    /// Returns the new attitude when it completes an update group, `None` otherwise.
-    ///
-    /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite component. With a coning rule,
-    /// [`Error::StepTooLong`] for an increment larger than
-    /// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) (the coning rules are truncated series in the
-    /// increments, see there) and, in fixed point, [`Error::OutOfRange`] for an increment
-    /// component of a quarter of the format's range or more (0.25 rad in Q1.30: below it a group
-    /// of four increments, its rule's lever and cross product cannot saturate). With
-    /// [`ConingRule::Exp`] (the exact exponential of each increment, no series) any increment
-    /// whose squared norm is finite is taken, so that a rotation vector of any length is applied
-    /// as given; [`Error::InvalidArgument`] when the square overflows. Either way the increment
-    /// is discarded and the state is unchanged.
-    pub fn push(&mut self, dtheta: Vec3<T>) -> Result<Option<UnitQuat<T>>, Error> {
-        let dtheta = dtheta.try_finite()?;
-        if self.rule == ConingRule::Exp {
-            if !dtheta.norm_squared().is_finite() {
-                return Err(Error::InvalidArgument);
-            }
-        } else {
-            if !within_step_limit(dtheta) {
-                return Err(Error::StepTooLong);
-            }
-            // 8·|Δθᵢ| within the range (always for the floats).
-            let fits = |c: T| T::dot_fits([c.twice(); 4], [T::ONE; 4]);
-            if !(fits(dtheta.x) && fits(dtheta.y) && fits(dtheta.z)) {
-                return Err(Error::OutOfRange);
-            }
-        }
-        let n = self.rule.samples_per_update();
-        if self.group.push(dtheta).is_err() {
-            // Unreachable: the group is cleared whenever it reaches n ≤ 4 = capacity. Handled
-            // without panicking by committing the full group and starting a new one.
-            self.commit();
-            let _ = self.group.push(dtheta);
-        }
-        if self.group.len() >= n {
-            self.commit();
-            return Ok(Some(self.q.attitude()));
-        }
-        Ok(None)
-    }
-
-    fn commit(&mut self) {
-        if let Some(last) = self.group.last().copied() {
-            self.q = self
-                .q
-                .increments(self.rule, self.previous, self.group.as_slice(), self.norm);
-            self.previous = last;
-            self.group.clear();
-        }
-    }
-
-    /// The attitude after the last completed update group.
-    pub fn attitude(&self) -> UnitQuat<T> {
-        self.q.attitude()
-    }
-
-    /// The carried attitude (for a [`CompensatedAttitude`], with its low part).
-    pub fn carried_attitude(&self) -> A {
-        self.q
-    }
-
-    /// Increments received since the last update (0 to `samples_per_update − 1`).
-    pub fn pending(&self) -> usize {
-        self.group.len()
-    }
-
-    /// The attitude after every increment received so far, without committing: the pending
-    /// increments of an incomplete group are applied with the highest-order rule that fits
-    /// their number (see [`rotation_vector_for`]). Equal to [`IncrementIntegrator::attitude`]
-    /// when nothing is pending.
-    pub fn provisional_attitude(&self) -> UnitQuat<T> {
-        if self.group.is_empty() {
-            self.q.attitude()
-        } else {
-            self.q
-                .increments(self.rule, self.previous, self.group.as_slice(), self.norm)
-                .attitude()
-        }
-    }
-
-    /// Commits a trailing partial group (end of a record) with the highest-order rule that fits
-    /// it, and returns the attitude after every increment received.
-    pub fn flush(&mut self) -> UnitQuat<T> {
-        self.commit();
-        self.q.attitude()
-    }
-}
-
 /// Two-speed coning integration (Savage 1998): high-rate accumulation, low-rate update.
 ///
 /// At the gyro rate, [`ConingAccumulator::push`] updates the increment sum and the coning term
@@ -400,7 +217,7 @@ impl<T: ExpMap, A: PropagatedAttitude<T>> IncrementIntegrator<T, A> {
 ///
 /// (a handful of multiply-adds per sample, no exponential); at the attitude rate,
 /// [`ConingAccumulator::take`] returns `φ = α + β` for one update `q ⊗ exp(φ)` (see
-/// [`crate::propagation::exponential::apply_rotation_vector`]) and restarts the sums. `Δθₗ₋₁`
+/// [`crate::propagation::kernels::apply_rotation_vector`]) and restarts the sums. `Δθₗ₋₁`
 /// carries across update boundaries. The residual coning drift is that of the one-plus-previous
 /// rule at the SAMPLE interval, `α²Ω (Ωh)⁴/60`, whatever the update interval (to leading order
 /// in `α`: the neglected `O(α⁴)` terms grow with the update interval, measured +18% over the
@@ -494,20 +311,6 @@ impl<T: Ring> ConingAccumulator<T> {
         self.beta = Vec3::ZERO;
         self.count = 0;
         phi
-    }
-}
-
-#[cfg(feature = "defmt")]
-impl<T: ExpMap + defmt::Format> defmt::Format for IncrementIntegrator<T> {
-    fn format(&self, f: defmt::Formatter<'_>) {
-        defmt::write!(
-            f,
-            "IncrementIntegrator(q={}, rule={}, norm={}, pending={})",
-            self.q,
-            self.rule,
-            self.norm,
-            self.group.len()
-        )
     }
 }
 

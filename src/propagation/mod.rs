@@ -11,7 +11,7 @@
 //! |---|---|---|---|
 //! | a rate held constant over the step | [`exponential`] | exact step `q ⊗ exp(ω Δt)` | exact |
 //! | integrated increments `Δθ` | [`coning`] | one exponential per increment | drift `α²Ω(Ωh)²/12` |
-//! | | | one sample + previous (`Δθₖ₋₁ × Δθₖ / 12`), also as the two-speed [`coning::ConingAccumulator`] | `α²Ω(Ωh)⁴/60` |
+//! | | | one sample + previous (`Δθₖ₋₁ × Δθₖ / 12`), also as the two-speed [`ConingAccumulator`] | `α²Ω(Ωh)⁴/60` |
 //! | | | 2-, 3-, 4-sample rules | `α²Ω(ΩT)⁴/960`, `α²Ω(ΩT)⁶/204120`, `α²Ω(ΩT)⁸/82575360` |
 //! | equally spaced rate samples `ω(k h)` | [`rate_samples`] | Magnus-4, commutator-free CF4, RK4 + renormalisation | order 4 |
 //!
@@ -20,26 +20,41 @@
 //! cone axis, measured in `host-tests/tests/propagation_coning.rs`.)
 //!
 //! Every exponential-map rule forms a body-frame rotation vector `φ` and then goes through one
-//! update kernel, [`exponential::apply_rotation_vector`]: `q ← normalise(q ⊗ exp(φ))`.
+//! update kernel, [`kernels::apply_rotation_vector`]: `q ← normalise(q ⊗ exp(φ))`.
 //! [`kinematics`] has the differential equation itself and the rate between two attitudes;
 //! [`normalization`] the renormalisation policy and the `|q|` health value.
 //!
-//! # Hot path
-//! Each module has a validated entry point (a constructor or a `push` that checks its input
-//! for NaN and infinity and returns [`crate::Error`]) and lean unchecked step functions for an
-//! inner loop whose input was validated upstream: [`coning::coning2_update`] is the complete
-//! 2-sample update (rotation vector, exponential by series, product, fast renormalisation).
+//! # Checked entry points and kernels
+//! The streaming integrators check every sample (NaN, infinity, the step's validity limit
+//! [`crate::step_limit::MAX_STEP_ANGLE`]) and return [`crate::Error`]: [`IncrementIntegrator`]
+//! for gyro increments (any [`ConingRule`]), [`ConingAccumulator`] for the two-speed form,
+//! [`RateIntegrator`] for rate samples (any [`RateMethod`]). Each carries a
+//! [`PropagatedAttitude`]: a plain [`crate::UnitQuat`] or a [`CompensatedAttitude`] (the f32
+//! attitude with its rounding carried, [`compensated`]). The updates they run are the
+//! unchecked [`kernels`], for an inner loop whose input was validated upstream:
+//! [`kernels::coning2_update`] is the complete 2-sample update (rotation vector, exponential by
+//! series, product, fast renormalisation).
+//!
+//! Files: the rules' formulas ([`coning`], [`rate_samples`]) at the bottom, then the
+//! [`kernels`] and the [`compensated`] updates built on them, the attitude trait over both, and
+//! the integrators on top.
 
+mod attitude;
 pub mod compensated;
-
 pub mod coning;
 pub mod exponential;
+mod increment_integrator;
+pub mod kernels;
 pub mod kinematics;
 pub mod normalization;
+mod rate_integrator;
 pub mod rate_samples;
 
-pub use compensated::{CompensatedAttitude, PropagatedAttitude};
-pub use coning::{ConingAccumulator, ConingRule, ConingTerms, IncrementIntegrator};
-pub use exponential::RotationVectorForm;
+pub use attitude::PropagatedAttitude;
+pub use compensated::CompensatedAttitude;
+pub use coning::{ConingAccumulator, ConingRule, ConingTerms};
+pub use increment_integrator::{IncrementBuffer, IncrementIntegrator};
+pub use kernels::RotationVectorForm;
 pub use normalization::Normalization;
-pub use rate_samples::{RateIntegrator, RateMethod};
+pub use rate_integrator::{Attitudes, RateIntegrator};
+pub use rate_samples::RateMethod;

@@ -6,8 +6,8 @@
 
 use core::ops::{Add, AddAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
-use super::wide::{mul_wide, ratio_bits, round_shift, sat_add, sat_sub, saturate};
 use super::Ring;
+use super::wide::{mul_wide, ratio_bits, round_shift, sat_add, sat_sub, saturate};
 use crate::Error;
 
 /// A signed fixed-point number with `FRAC` fraction bits in an `i32`: the format `Q(31−FRAC).FRAC`,

@@ -62,8 +62,8 @@
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
-mod float;
 pub(crate) mod fixed;
+mod float;
 pub(crate) mod wide;
 
 pub(crate) mod sealed {

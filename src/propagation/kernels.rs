@@ -1,0 +1,217 @@
+//! The unchecked attitude updates: the hot-path kernels behind the checked integrators.
+//!
+//! Every function here skips validation: it trusts its input to be finite and within the
+//! step's validity limit ([`crate::step_limit::MAX_STEP_ANGLE`] for the approximate methods),
+//! which the checked entry points ([`crate::propagation::IncrementIntegrator::push`],
+//! [`crate::propagation::ConingAccumulator::push`], [`crate::propagation::RateIntegrator::push`],
+//! [`crate::propagation::exponential::step_constant_rate`]) test once per sample. Outside it a
+//! non-finite input gives a non-finite attitude, never a panic. Call them from an inner loop
+//! whose input was validated where it was read.
+//!
+//! - [`apply_rotation_vector`]: the one update kernel every exponential-map rule goes through,
+//!   `q ← normalise(q ⊗ exp(φ))`;
+//! - [`coning2_update`]: the complete 2-sample coning update (fixed point: [`crate::fixed`]);
+//! - [`magnus4_step`], [`cf4_step`], [`rk4_step`]: one step of the rate-sample methods from the
+//!   rates at their nodes ([`crate::propagation::rate_samples`]);
+//! - [`step_constant_rate`]: the exact step of a rate held constant.
+
+use crate::propagation::coning::{ConingRule, ConingTerms, coning_terms_for, two_sample_terms};
+use crate::propagation::kinematics::quat_rate_body;
+use crate::propagation::normalization::Normalization;
+use crate::propagation::rate_samples::{
+    END, G1, G2, MID, RateMethod, START, Weights, cf4_rotation_vectors, interp,
+    magnus4_rotation_vector,
+};
+use crate::rotation::ExpMap;
+use crate::{Quat, Real, UnitQuat, Vec3};
+
+/// The update kernel of every exponential-map rule: `q ⊗ exp(φ)` followed by the normalisation
+/// policy, for a body-frame rotation vector `φ` accumulated over one update interval (by a coning
+/// rule, the two-speed accumulator, Magnus-4 or CF4). Unchecked: a non-finite `φ` (or one whose
+/// norm overflows) gives a non-finite attitude.
+///
+/// `φ` is a plain [`Vec3`] or, from a coning rule, its [`ConingTerms`] `sum + lever × last`
+/// (see [`RotationVectorForm`]). For the floats both are `q * UnitQuat::exp_unchecked(φ)` (series
+/// below the type's small-angle threshold). Fixed point fuses the product with the exponential
+/// ([`UnitQuat::mul_exp_unchecked`]: one rounding per component, the rotation increment carried 3 bits finer
+/// than the format) and, for a coning rule, also forms the cross product exactly and adds it at
+/// that finer resolution ([`UnitQuat::mul_exp_coning_unchecked`]).
+#[inline(always)]
+pub fn apply_rotation_vector<T: ExpMap, P: RotationVectorForm<T>>(
+    q: UnitQuat<T>,
+    phi: P,
+    norm: Normalization,
+) -> UnitQuat<T> {
+    norm.apply(phi.mul_exp_onto(q))
+}
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// The forms of a rotation vector `φ` that [`apply_rotation_vector`] takes: a plain [`Vec3`], or
+/// a coning rule's [`ConingTerms`] (`φ = sum + lever × last`). Sealed.
+pub trait RotationVectorForm<T: ExpMap>: Copy + sealed::Sealed {
+    /// `q ⊗ exp(φ)`, not renormalised.
+    fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T>;
+}
+
+impl<T> sealed::Sealed for Vec3<T> {}
+impl<T> sealed::Sealed for ConingTerms<T> {}
+
+/// [`UnitQuat::mul_exp_unchecked`].
+impl<T: ExpMap> RotationVectorForm<T> for Vec3<T> {
+    #[inline(always)]
+    fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T> {
+        q.mul_exp_unchecked(self)
+    }
+}
+
+/// [`UnitQuat::mul_exp_coning_unchecked`].
+impl<T: ExpMap> RotationVectorForm<T> for ConingTerms<T> {
+    #[inline(always)]
+    fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T> {
+        q.mul_exp_coning_unchecked(self.sum, self.lever, self.last)
+    }
+}
+
+/// The complete 2-sample update on the hot path: `q ⊗ exp(θ₁ + θ₂ + ⅔ θ₁ × θ₂)`, then the fast
+/// renormalisation `q + q·(1 − |q|²)/2`. Generic over [`ExpMap`]: with `T = Q30` it is the
+/// fixed-point update, integer arithmetic only (see [`crate::fixed`]).
+///
+/// Unchecked (a non-finite increment gives a non-finite attitude): for an inner loop whose
+/// increments were validated when they were read. Domain: finite increments of at most
+/// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) rad each (the checks of
+/// [`crate::propagation::IncrementIntegrator::push`]). The exponential of the small per-update angle uses the series
+/// of [`UnitQuat::try_exp`] (no trigonometric call below 0.37 rad in f32, 1/8 rad in Q1.30); the
+/// rule's [`ConingTerms`] go through the update kernel [`apply_rotation_vector`] (in fixed point:
+/// [`UnitQuat::mul_exp_coning_unchecked`]).
+#[inline]
+pub fn coning2_update<T: ExpMap>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
+    apply_rotation_vector(q, two_sample_terms(t1, t2), Normalization::Fast)
+}
+
+/// One Magnus-4 step: `q ⊗ exp(φ)` with φ from [`magnus4_rotation_vector`]. Unchecked, not
+/// renormalised (a product of unit quaternions, unit to about one ulp). Domain (of this and the
+/// other step functions of this module): finite rates with `|ω|·h` at most a few times
+/// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) (the series stop converging at `2π`).
+#[inline]
+pub fn magnus4_step<T: Real>(q: UnitQuat<T>, w1: Vec3<T>, w2: Vec3<T>, h: T) -> UnitQuat<T> {
+    apply_rotation_vector(q, magnus4_rotation_vector(w1, w2, h), Normalization::None)
+}
+
+/// One commutator-free CF4 step: `q ⊗ exp(φ_first) ⊗ exp(φ_second)` (see
+/// [`cf4_rotation_vectors`]). Unchecked, not renormalised.
+#[inline]
+pub fn cf4_step<T: Real>(q: UnitQuat<T>, w1: Vec3<T>, w2: Vec3<T>, h: T) -> UnitQuat<T> {
+    cf4_update(q, w1, w2, h, Normalization::None)
+}
+
+/// [`cf4_step`] followed by the normalisation policy: two applications of the update kernel
+/// [`apply_rotation_vector`], the policy applied once, after the second.
+#[inline]
+fn cf4_update<T: Real>(
+    q: UnitQuat<T>,
+    w1: Vec3<T>,
+    w2: Vec3<T>,
+    h: T,
+    norm: Normalization,
+) -> UnitQuat<T> {
+    let (p1, p2) = cf4_rotation_vectors(w1, w2, h);
+    apply_rotation_vector(apply_rotation_vector(q, p1, Normalization::None), p2, norm)
+}
+
+/// One classical RK4 step of `q̇ = ½ q ⊗ (0, ω)` with the rates at the start, midpoint and end
+/// of the step. Returns the raw quaternion, off the unit sphere by the truncation error
+/// (`|q|² = 1 − θ⁶/4608 + …` for the step angle `θ = |ω| h`): apply a [`Normalization`] to it.
+/// Within [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) `|q|²` stays above 0.85.
+#[inline]
+pub fn rk4_step<T: Real>(
+    q: Quat<T>,
+    w_start: Vec3<T>,
+    w_mid: Vec3<T>,
+    w_end: Vec3<T>,
+    h: T,
+) -> Quat<T> {
+    q + rk4_slope_sum(q, w_start, w_mid, w_end, h).scale(h / T::from_f64(6.0))
+}
+
+/// The weighted slopes of one RK4 step, `k₁ + 2k₂ + 2k₃ + k₄` (the step adds `h/6` times them:
+/// [`rk4_step`]; the compensated step with `h/6` as an exact pair).
+#[inline(always)]
+pub(crate) fn rk4_slope_sum<T: Real>(
+    q: Quat<T>,
+    w_start: Vec3<T>,
+    w_mid: Vec3<T>,
+    w_end: Vec3<T>,
+    h: T,
+) -> Quat<T> {
+    let hh = h * T::HALF;
+    let k1 = quat_rate_body(q, w_start);
+    let k2 = quat_rate_body(q + k1.scale(hh), w_mid);
+    let k3 = quat_rate_body(q + k2.scale(hh), w_mid);
+    let k4 = quat_rate_body(q + k3.scale(h), w_end);
+    k1 + (k2 + k3).scale(T::TWO) + k4
+}
+
+/// [`crate::propagation::exponential::step_constant_rate`] without the checks, for an inner loop
+/// with validated input: the
+/// update kernel [`apply_rotation_vector`] with `φ = ω Δt`, not renormalised. Domain: finite
+/// `ω`, `Δt` with `|ω·Δt|` representable (a NaN or overflowing angle gives a NaN attitude).
+#[inline]
+pub fn step_constant_rate<T: Real>(q: UnitQuat<T>, omega_body: Vec3<T>, dt: T) -> UnitQuat<T> {
+    apply_rotation_vector(q, omega_body.scale(dt), Normalization::None)
+}
+
+/// The plain update of [`crate::propagation::IncrementIntegrator`]: `normalise(q ⊗ exp(φ))` through the update
+/// kernel [`apply_rotation_vector`], with `φ` the sum of `samples` (a plain vector) for
+/// [`ConingRule::Exp`], else the [`ConingTerms`] of the rule that fits their number
+/// ([`coning_terms_for`]).
+#[inline]
+pub(crate) fn apply_rule<T: ExpMap>(
+    q: UnitQuat<T>,
+    rule: ConingRule,
+    previous: Vec3<T>,
+    samples: &[Vec3<T>],
+    norm: Normalization,
+) -> UnitQuat<T> {
+    match (rule, samples) {
+        (ConingRule::Exp, s) => {
+            let phi = match s {
+                [a] => *a,
+                s => s.iter().fold(Vec3::ZERO, |acc, t| acc + *t),
+            };
+            apply_rotation_vector(q, phi, norm)
+        }
+        (_, s) => apply_rotation_vector(q, coning_terms_for(previous, s), norm),
+    }
+}
+
+/// The plain step of [`crate::propagation::RateIntegrator`] over one interval of an `M`-sample window.
+#[inline(always)]
+pub(crate) fn advance_plain<T: Real, const M: usize>(
+    q: UnitQuat<T>,
+    method: RateMethod,
+    s: &[Vec3<T>; M],
+    w: &Weights<M>,
+    h: T,
+    norm: Normalization,
+) -> UnitQuat<T> {
+    match method {
+        RateMethod::Magnus4 => {
+            let phi = magnus4_rotation_vector(interp(s, &w[G1]), interp(s, &w[G2]), h);
+            apply_rotation_vector(q, phi, norm)
+        }
+        RateMethod::Cf4 => cf4_update(q, interp(s, &w[G1]), interp(s, &w[G2]), h, norm),
+        RateMethod::Rk4 => {
+            let q = rk4_step(
+                *q.as_quat(),
+                interp(s, &w[START]),
+                interp(s, &w[MID]),
+                interp(s, &w[END]),
+                h,
+            );
+            norm.apply_quat(q)
+        }
+    }
+}
