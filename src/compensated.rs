@@ -9,7 +9,7 @@
 //! increment's own computation remain, so a long accumulation of small increments keeps the
 //! accuracy of the increments instead of losing half an ulp of `x` at each addition — and, what
 //! matters more, instead of losing it with the same sign every time when `x` passes through the
-//! same values again and again (see `crate::dynamics::compensated`).
+//! same values again and again (see `crate::dynamics::integrators`).
 //!
 //! Requirements, met by every target gyrostat supports (thumbv6m/7m/7em/8m, RISC-V, x86-64 with
 //! SSE, aarch64): IEEE binary floating point, round to nearest, no extended-precision

@@ -8,49 +8,52 @@
 //! One body type, one state type, one step: a [`Gyrostat`] (rigid body when it has no wheels)
 //! advances a [`State`] with [`Gyrostat::step`] (torque-free) or [`Gyrostat::step_with`] (a held
 //! [`Control`] or a control law). The same step advances a [`CompensatedState`], the state with
-//! its rounding errors carried, for long f32 runs as accurate as the method ([`compensated`]).
+//! its rounding errors carried, for long f32 runs as accurate as the method
+//! ([`integrators`]).
 //!
+//! The body:
 //! - [`inertia`]: the validated [`Inertia`] tensor, principal axes ([`inertia::symmetric_eigen`]).
 //! - [`hamiltonian`]: rigid, gyro-rotor (6.9.2) and quartic (6.8.20) models [`BodyHamiltonian`],
 //!   their body rate, Hessian and the momentum of a given rate.
+//! - [`gyrostat`]: the body [`Gyrostat`] (reaction wheels, constant rotors) and the Euler
+//!   equation [`angular_acceleration`].
 //! - [`state`]: [`State`], [`CompensatedState`], [`Control`], [`ControlLaw`], [`WheelCommand`].
-//! - [`gyrostat`]: the body [`Gyrostat`] (reaction wheels, constant rotors), [`Integrator`],
-//!   the step, and the Euler equation [`angular_acceleration`].
-//! - [`splitting`]: the Lie–Poisson flows and their compositions (Strang, Yoshida, Suzuki);
-//!   RK4 is the private `rk4` module.
-//! - [`compensated`]: the same steps on a [`CompensatedState`], and why a plain f32 splitting
-//!   loses to RK4 on long runs (measured).
 //! - [`monitors`]: energy, `|J|`, lab momentum ([`Invariants`]) and their drift over a run
 //!   ([`DriftMonitor`]).
-//! - [`elliptic`]: `K(m)`, Jacobi `sn, cn, dn`, Carlson `R_F`, `R_J`, `F(φ|m)`, `Π(n; φ|m)`.
-//! - [`free_rigid_body`]: the exact torque-free rigid body [`FreeRigidBody`] (Landau–Lifshitz
-//!   §37 for the body momentum, the elliptic integral of the third kind for the attitude).
-//! - [`analysis`]: the seed's closed forms of §6.7–6.9 (6.7.27, 6.7.39–43, 6.8.6–10, 6.9.4).
 //! - [`mass`]: inertia tensors from point masses, parallel-axis shift, radius of gyration,
 //!   impulses (6.4.11–15, 6.5.4–6, 6.5.15).
-//! - [`euler_coordinates`]: the rigid rotor in Euler angles — metric, Euler momenta, kinetic
-//!   energy, Hamiltonian and Hamilton's velocity equations; the symmetric top (6.7.16–6.7.44).
 //! - [`semi_rigid`]: centrifugal stretching of spring-mass rotors and the quartic Hamiltonian
 //!   coefficients it produces (6.8.11–6.8.20).
+//!
+//! The step and the methods:
+//! - [`Gyrostat::step`], [`Gyrostat::step_with`] and [`StepState`] (a private `step` module): the
+//!   checks of a step and the dispatch to a method.
+//! - [`integrators`]: [`Integrator`] (RK4, the Lie–Poisson splittings Strang, Yoshida, Suzuki),
+//!   each on the plain and the compensated state, and why a plain f32 splitting loses to RK4 on
+//!   long runs (measured). Each method depends on the body only.
+//!
+//! The closed forms ([`closed_form`]): the exact free rigid body [`FreeRigidBody`], the elliptic
+//! functions, the rigid rotor and symmetric top in Euler coordinates, the seed's analysis.
+//!
+//! Layers inside: the body at the bottom (inertia, Hamiltonian, gyrostat, state, monitors); the
+//! integrators and the closed forms on the body; the step on the integrators.
 
-pub mod analysis;
-pub mod compensated;
-pub mod elliptic;
-pub mod euler_coordinates;
-pub mod free_rigid_body;
+pub mod closed_form;
 pub mod gyrostat;
 pub mod hamiltonian;
 pub mod inertia;
+pub mod integrators;
 pub mod mass;
 pub mod monitors;
-mod rk4;
 pub mod semi_rigid;
-pub mod splitting;
 pub mod state;
+mod step;
 
-pub use free_rigid_body::FreeRigidBody;
-pub use gyrostat::{Gyrostat, Integrator, StepState, Wheel, angular_acceleration};
+pub use closed_form::FreeRigidBody;
+pub use gyrostat::{Gyrostat, Wheel, angular_acceleration};
 pub use hamiltonian::{BodyHamiltonian, Quartic};
 pub use inertia::Inertia;
+pub use integrators::Integrator;
 pub use monitors::{Drift, DriftMonitor, Invariants, lab_momentum, momentum_norm};
 pub use state::{CompensatedState, Control, ControlLaw, State, WheelCommand};
+pub use step::StepState;

@@ -6,7 +6,7 @@
 //!
 //! [`CompensatedState`] is the same state with the rounding errors of its attitude, momentum and
 //! wheel speeds carried beside it, for compensated integration (see
-//! [`crate::dynamics::compensated`]): the step takes and returns either type.
+//! [`crate::dynamics::integrators`]): the step takes and returns either type.
 //!
 //! The inputs of a step are a [`Control`] (external torque and wheel torques), either held over
 //! the step (the firmware form: one value per control cycle) or produced by a law `f(t, state)`
@@ -57,7 +57,7 @@ impl<T: Real, const N: usize> State<T, N> {
 }
 
 /// A [`State`] with the rounding errors of its components carried beside it: the state of a
-/// compensated integration ([`crate::dynamics::compensated`]).
+/// compensated integration ([`crate::dynamics::integrators`]).
 ///
 /// Each component is a pair: the value rounded to `T` ([`CompensatedState::state`], what the
 /// caller reads and what a control law sees) and its low-order part, the rounding error of the
@@ -65,7 +65,7 @@ impl<T: Real, const N: usize> State<T, N> {
 /// [`crate::dynamics::Gyrostat::step_with`] take and return it like a [`State`]; every
 /// rotation, kick and renormalisation then adds its increment to the pair without losing its
 /// rounding, so f32 runs do not drift from the rounding bias described in
-/// [`crate::dynamics::compensated`]. The attitude is the direction of `q + q_lo`; its norm is 1
+/// [`crate::dynamics::integrators`]. The attitude is the direction of `q + q_lo`; its norm is 1
 /// within a few ulp.
 ///
 /// ```
@@ -190,7 +190,7 @@ pub enum WheelCommand<T, const N: usize> {
 ///
 /// Implemented for a [`Control`] value (held over the whole step) and for every closure
 /// `FnMut(T, &State<T, N>) -> Control<T, N>` (a law evaluated at the integrator's stages). See
-/// [`crate::dynamics::splitting`] for the order of the splitting methods with state-dependent
+/// [`crate::dynamics::integrators`] for the order of the splitting methods with state-dependent
 /// laws.
 pub trait ControlLaw<T, const N: usize> {
     /// The control at time `t` in state `state`.

@@ -18,9 +18,9 @@
 //! infinite `Ok`. Ratios of moments are formed before products, so bodies anywhere in the
 //! type's range are handled.
 
-use crate::dynamics::Inertia;
-use crate::dynamics::elliptic::pow2_scale;
-use crate::dynamics::free_rigid_body::EQUAL_MOMENTS_TOLERANCE;
+use super::elliptic::pow2_scale;
+use super::free_rigid_body::EQUAL_MOMENTS_TOLERANCE;
+use crate::dynamics::inertia::Inertia;
 use crate::{Axis, Error, Real, Vec3};
 
 fn check_finite<T: Real>(xs: &[T]) -> Result<(), Error> {

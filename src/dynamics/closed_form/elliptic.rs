@@ -1,7 +1,7 @@
 //! Elliptic integrals and Jacobi elliptic functions, `no_std`, allocation-free, panic-free.
 //!
 //! These are the special functions of the exact torque-free rigid body
-//! ([`crate::dynamics::free_rigid_body`]): the body momentum is a triple `(cn, sn, dn)` of Jacobi
+//! ([`crate::dynamics::closed_form::free_rigid_body`]): the body momentum is a triple `(cn, sn, dn)` of Jacobi
 //! functions (Landau & Lifshitz, *Mechanics*, §37) and the attitude angle about the fixed lab
 //! momentum is an incomplete elliptic integral of the third kind.
 //!
@@ -208,7 +208,7 @@ fn agm<T: Real>(m: T, m1: T) -> Agm<T> {
 /// (`K(1)` is infinite).
 ///
 /// ```
-/// use gyrostat::dynamics::elliptic::complete_k;
+/// use gyrostat::dynamics::closed_form::elliptic::complete_k;
 /// assert!((complete_k(0.0f64)? - core::f64::consts::FRAC_PI_2).abs() < 1e-15);
 /// // K(1/2) = Γ(1/4)² / (4√π)
 /// assert!((complete_k(0.5f64)? - 1.854_074_677_301_372).abs() < 1e-15);
@@ -280,7 +280,7 @@ pub(crate) fn sech_tanh<T: Real>(u: T) -> (T, T) {
 /// `m > 1`, or `|u| > 1/ε` with `m < 1` (see the module docs).
 ///
 /// ```
-/// use gyrostat::dynamics::elliptic::{complete_k, sn_cn_dn};
+/// use gyrostat::dynamics::closed_form::elliptic::{complete_k, sn_cn_dn};
 /// let m = 0.7f64;
 /// let (sn, cn, dn) = sn_cn_dn(complete_k(m)?, m)?;
 /// assert!((sn - 1.0).abs() < 1e-14 && cn.abs() < 1e-14 && (dn - (1.0 - m).sqrt()).abs() < 1e-14);

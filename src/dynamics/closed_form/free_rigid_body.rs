@@ -81,7 +81,8 @@ use super::elliptic::{
     amplitude_parts, complete_k_unchecked, f_reduced, pi_complete_unchecked, pi_with_complete,
     pow2_scale, sech_tanh,
 };
-use crate::dynamics::{Inertia, State};
+use crate::dynamics::inertia::Inertia;
+use crate::dynamics::state::State;
 use crate::step_limit::exact_step_angle_limit;
 use crate::{Axis, Error, Real, UnitQuat, Vec3};
 
