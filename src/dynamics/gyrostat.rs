@@ -102,6 +102,25 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         Self { model, wheels }
     }
 
+    /// A rigid body carrying reaction wheels: `inertia` is the whole body's tensor with the
+    /// wheels locked, `H = ½ (J − h)·I⁻¹·(J − h)` with `h` the wheels' momentum. Infallible
+    /// because both are validated ([`Inertia::try_from_principal`], [`Wheel::try_new`]); the
+    /// rigid body is `Gyrostat::rigid`, the same with no wheels.
+    ///
+    /// ```
+    /// use gyrostat::dynamics::{Gyrostat, Inertia, Wheel};
+    /// use gyrostat::Vec3;
+    /// let inertia = Inertia::try_from_principal(Vec3::new(6.0f64, 4.0, 3.0))?;
+    /// let wheel = Wheel::try_new(Vec3::new(0.0, 1.0, 0.0), 0.05)?;
+    /// let body = Gyrostat::with_wheels(inertia, [wheel]);
+    /// assert_eq!(body.rotor_momentum(&[60.0]), Vec3::new(0.0, 3.0, 0.0));
+    /// # Ok::<(), gyrostat::Error>(())
+    /// ```
+    #[inline]
+    pub fn with_wheels(inertia: Inertia<T>, wheels: [Wheel<T>; N]) -> Self {
+        Self::new(BodyHamiltonian::rigid(inertia), wheels)
+    }
+
     /// The body Hamiltonian.
     #[inline]
     pub fn model(&self) -> &BodyHamiltonian<T> {
@@ -156,11 +175,11 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
 
     /// The state with body rate `omega` (body frame) instead of momentum: the `J` with
     /// `∇H(J) = ω` at the rotor momentum of `wheel_speeds` (`J = I·ω + h` without a quartic
-    /// term; see [`BodyHamiltonian::momentum_from_omega_with_rotor`]).
+    /// term; see [`BodyHamiltonian::try_momentum_from_omega_with_rotor`]).
     ///
     /// # Errors
-    /// As [`BodyHamiltonian::momentum_from_omega_with_rotor`].
-    pub fn state_from_omega(
+    /// As [`BodyHamiltonian::try_momentum_from_omega_with_rotor`].
+    pub fn try_state_from_omega(
         &self,
         attitude: UnitQuat<T>,
         omega: Vec3<T>,
@@ -169,7 +188,7 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         let h = self.rotor_momentum(&wheel_speeds);
         Ok(State {
             attitude,
-            momentum: self.model.momentum_from_omega_with_rotor(omega, h)?,
+            momentum: self.model.try_momentum_from_omega_with_rotor(omega, h)?,
             wheel_speeds,
         })
     }

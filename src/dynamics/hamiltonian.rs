@@ -12,18 +12,18 @@
 //!   (6.8.20a) or cubic `t₂₂(J₁²J₂² + J₁²J₃² + J₂²J₃²)` (6.8.20b) centrifugal-distortion term.
 //!
 //! The inverse map, the momentum `J` of a given body rate `ω`, is
-//! [`BodyHamiltonian::momentum_from_omega`] (linear without a quartic term, Newton's method with
+//! [`BodyHamiltonian::try_momentum_from_omega`] (linear without a quartic term, Newton's method with
 //! the Hessian [`BodyHamiltonian::hessian`] with one).
 
 use crate::dynamics::inertia::Inertia;
 use crate::{Error, Mat3, Real, Vec3};
 
-/// Newton steps [`BodyHamiltonian::momentum_from_omega`] takes at most. From the linear guess
+/// Newton steps [`BodyHamiltonian::try_momentum_from_omega`] takes at most. From the linear guess
 /// `J = I·ω + S` the iteration converges quadratically while the quartic term is a perturbation
 /// of the quadratic one (a handful of steps); the cap bounds the cost when it is not.
 pub const MOMENTUM_SOLVE_MAX_STEPS: usize = 50;
 
-/// Relative Newton step `|ΔJ| ≤ tol·(1 + |J|)` at which [`BodyHamiltonian::momentum_from_omega`]
+/// Relative Newton step `|ΔJ| ≤ tol·(1 + |J|)` at which [`BodyHamiltonian::try_momentum_from_omega`]
 /// stops: 1e-14, about 50 f64 ulp, where the quadratic convergence has reached rounding. Below
 /// f32's resolution, so an f32 solve runs all [`MOMENTUM_SOLVE_MAX_STEPS`] steps and is then
 /// judged by [`MOMENTUM_SOLVE_RESIDUAL`].
@@ -169,7 +169,7 @@ impl<T: Real> BodyHamiltonian<T> {
     /// The momentum `J` with body rate `∇H(J) = ω` at the model's own rotor momentum `S`.
     ///
     /// # Errors
-    /// As [`BodyHamiltonian::momentum_from_omega_with_rotor`].
+    /// As [`BodyHamiltonian::try_momentum_from_omega_with_rotor`].
     ///
     /// ```
     /// use gyrostat::dynamics::{BodyHamiltonian, Inertia, Quartic};
@@ -177,12 +177,12 @@ impl<T: Real> BodyHamiltonian<T> {
     /// let i = Inertia::try_from_principal(Vec3::new(6.0f64, 4.0, 3.0))?;
     /// let h = BodyHamiltonian::try_new(i, Vec3::ZERO, Quartic::Cubic(0.002))?;
     /// let omega = Vec3::new(0.5, 1.0, 0.3);
-    /// let j = h.momentum_from_omega(omega)?;
+    /// let j = h.try_momentum_from_omega(omega)?;
     /// assert!((h.omega(j) - omega).norm() < 1e-14);
     /// # Ok::<(), gyrostat::Error>(())
     /// ```
-    pub fn momentum_from_omega(&self, omega: Vec3<T>) -> Result<Vec3<T>, Error> {
-        self.momentum_from_omega_with_rotor(omega, self.spin)
+    pub fn try_momentum_from_omega(&self, omega: Vec3<T>) -> Result<Vec3<T>, Error> {
+        self.try_momentum_from_omega_with_rotor(omega, self.spin)
     }
 
     /// The momentum `J` with body rate `∇H(J) = ω` at total rotor momentum `s`: `J = I·ω + s`
@@ -195,7 +195,7 @@ impl<T: Real> BodyHamiltonian<T> {
     /// when `I·ω + s` overflows the type; [`Error::Singular`] where the Hessian is singular (the
     /// rate does not determine the momentum there); [`Error::NotConverged`] when the iterates
     /// diverge (including to infinity) or the last one misses [`MOMENTUM_SOLVE_RESIDUAL`].
-    pub fn momentum_from_omega_with_rotor(
+    pub fn try_momentum_from_omega_with_rotor(
         &self,
         omega: Vec3<T>,
         s: Vec3<T>,

@@ -65,9 +65,9 @@
 //! use gyrostat::{UnitQuat, Vec3};
 //!
 //! // Six 1 kg masses at 0.5 m on springs of 20 rad/s: an octahedral rotor.
-//! let rotor = SemiRigidRotor::symmetric(Arrangement::Octahedral, 1.0f64, 20.0, 0.5)?;
+//! let rotor = SemiRigidRotor::try_symmetric(Arrangement::Octahedral, 1.0f64, 20.0, 0.5)?;
 //! let basis = Arrangement::Octahedral.natural_basis();
-//! let h = rotor.body_hamiltonian(basis)?; // rest inertia + Quartic::Octahedral(t₄)
+//! let h = rotor.try_body_hamiltonian(basis)?; // rest inertia + Quartic::Octahedral(t₄)
 //! let body = Gyrostat::from(h);
 //! let mut s = State::new(UnitQuat::IDENTITY, Vec3::new(0.3, 0.2, 0.1));
 //! let dt = 0.01;
@@ -386,7 +386,7 @@ impl<T: Real> SpringRotor<T> {
     }
 }
 
-/// The symmetric arrangements of equal masses of [`SemiRigidRotor::symmetric`].
+/// The symmetric arrangements of equal masses of [`SemiRigidRotor::try_symmetric`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Arrangement {
     /// Six masses on `±x, ±y, ±z` (SF₆-like): octahedral quartic (6.8.20a).
@@ -490,7 +490,7 @@ impl<T: Real> SemiRigidRotor<T> {
     /// tensor that is not diagonal); [`Error::ZeroNorm`] for a mass at the origin (no radial
     /// direction); [`Error::Singular`] or [`Error::NonPhysicalInertia`] for a rest inertia that
     /// is not invertible or not physical (masses on a line).
-    pub fn from_radial_springs(masses: &[(T, Vec3<T>)], omega_v: T) -> Result<Self, Error> {
+    pub fn try_from_radial_springs(masses: &[(T, Vec3<T>)], omega_v: T) -> Result<Self, Error> {
         check_masses(masses, omega_v)?;
         let (i0, mu0) = rest_inverse(masses)?;
         // Quartic coefficients of −Σ w (J·D·J)², D symmetric (see `coefficients`).
@@ -533,7 +533,7 @@ impl<T: Real> SemiRigidRotor<T> {
     /// # Errors
     /// [`Error::NonFinite`]; [`Error::InvalidArgument`] unless `mass`, `omega_v`,
     /// `rest_radius` are positive.
-    pub fn symmetric(
+    pub fn try_symmetric(
         arrangement: Arrangement,
         mass: T,
         omega_v: T,
@@ -544,7 +544,7 @@ impl<T: Real> SemiRigidRotor<T> {
         let d = rest_radius / T::from_f64(3.0).sqrt();
         let at = |x: T, y: T, z: T| (mass, Vec3::new(x, y, z));
         match arrangement {
-            Arrangement::Octahedral => Self::from_radial_springs(
+            Arrangement::Octahedral => Self::try_from_radial_springs(
                 &[
                     at(p, o, o),
                     at(-p, o, o),
@@ -555,7 +555,7 @@ impl<T: Real> SemiRigidRotor<T> {
                 ],
                 omega_v,
             ),
-            Arrangement::Cubic => Self::from_radial_springs(
+            Arrangement::Cubic => Self::try_from_radial_springs(
                 &[
                     at(d, d, d),
                     at(d, d, -d),
@@ -568,7 +568,7 @@ impl<T: Real> SemiRigidRotor<T> {
                 ],
                 omega_v,
             ),
-            Arrangement::Tetrahedral => Self::from_radial_springs(
+            Arrangement::Tetrahedral => Self::try_from_radial_springs(
                 &[at(d, d, d), at(d, -d, -d), at(-d, d, -d), at(-d, -d, d)],
                 omega_v,
             ),
@@ -611,7 +611,7 @@ impl<T: Real> SemiRigidRotor<T> {
     ///
     /// # Errors
     /// As [`BodyHamiltonian::try_new`] (none for a rotor built by this type's constructors).
-    pub fn body_hamiltonian(&self, basis: QuarticBasis) -> Result<BodyHamiltonian<T>, Error> {
+    pub fn try_body_hamiltonian(&self, basis: QuarticBasis) -> Result<BodyHamiltonian<T>, Error> {
         BodyHamiltonian::try_new(self.rest_inertia, Vec3::ZERO, self.quartic(basis))
     }
 
@@ -637,7 +637,7 @@ impl<T: Real> SemiRigidRotor<T> {
     ///
     /// The term is a Casimir (it Poisson-commutes with every `H(J)`), so the semi-rigid state
     /// at time `t` is the state `(q, J)` at `t` of the [`Gyrostat`](crate::dynamics::Gyrostat) of
-    /// [`SemiRigidRotor::body_hamiltonian`], with attitude
+    /// [`SemiRigidRotor::try_body_hamiltonian`], with attitude
     /// `q ⊗ isotropic_turn(basis, J, t)`, whatever the integrator and whenever it is applied.
     ///
     /// # Errors
@@ -662,10 +662,10 @@ impl<T: Real> SemiRigidRotor<T> {
 
 /// The equilibrium shifts of the spring radii at body momentum `j` (6.8.17):
 /// `δr_j = −J·(∂μ/∂r_j)·J / (2 m_j ω_v²)`, written into `out` in the order of `masses`
-/// (first order in `J²`; the model of [`SemiRigidRotor::from_radial_springs`], any arrangement).
+/// (first order in `J²`; the model of [`SemiRigidRotor::try_from_radial_springs`], any arrangement).
 ///
 /// # Errors
-/// As [`SemiRigidRotor::from_radial_springs`] for the masses (without the symmetry
+/// As [`SemiRigidRotor::try_from_radial_springs`] for the masses (without the symmetry
 /// requirement); [`Error::NonFinite`] for a non-finite `j`; [`Error::InvalidArgument`] if `out`
 /// is shorter than `masses` or a shift overflows the type (then `out` holds the shifts
 /// computed before it).

@@ -70,7 +70,7 @@ use crate::{Quat, Real, UnitQuat, Vec3};
 /// Give it to [`crate::propagation::IncrementIntegrator::new`] or
 /// [`crate::propagation::RateIntegrator::try_new`] in place of a [`UnitQuat`] to run that
 /// integrator compensated (see the module docs); or update it directly with
-/// [`CompensatedAttitude::rotated`] (for example with the rotation vector of a
+/// [`CompensatedAttitude::rotated_unchecked`] (for example with the rotation vector of a
 /// [`crate::propagation::ConingAccumulator`]).
 ///
 /// ```
@@ -131,14 +131,19 @@ impl<T: Real> CompensatedAttitude<T> {
     /// `φ` is taken as exact (an increment, or a rule's rotation vector); unchecked, like
     /// [`crate::propagation::kernels::apply_rotation_vector`].
     #[inline]
-    pub fn rotated(self, phi: Vec3<T>, norm: Normalization) -> Self {
-        self.rotated_pair(phi, Vec3::ZERO, norm)
+    pub fn rotated_unchecked(self, phi: Vec3<T>, norm: Normalization) -> Self {
+        self.rotated_pair_unchecked(phi, Vec3::ZERO, norm)
     }
 
     /// `q ⊗ exp(φ + φ_lo)` for a rotation vector given as a compensated pair (`φ_lo` below an
     /// ulp of `φ`, or a small correction such as a coning term), then the normalisation policy.
     #[inline]
-    pub fn rotated_pair(mut self, phi: Vec3<T>, phi_lo: Vec3<T>, norm: Normalization) -> Self {
+    pub fn rotated_pair_unchecked(
+        mut self,
+        phi: Vec3<T>,
+        phi_lo: Vec3<T>,
+        norm: Normalization,
+    ) -> Self {
         let mut q = self.q.into_quat();
         rotate_compensated(&mut q, &mut self.lo, phi, phi_lo);
         self.q = UnitQuat::new_unchecked(q);
@@ -255,12 +260,12 @@ pub(crate) fn advance_compensated<T: Real, const M: usize>(
             if method == RateMethod::Magnus4 {
                 // φ = (h/2)(ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂.
                 let commutator = w1.cross(w2).scale(h * h * T::from_f64(SQRT_3 / 12.0));
-                q.rotated_pair(base, base_lo + commutator, norm)
+                q.rotated_pair_unchecked(base, base_lo + commutator, norm)
             } else {
                 // φ₁,₂ = (h/4)(ω₁ + ω₂) ± (√3/6) h (ω₁ − ω₂): the CF4 weights ¼ ± √3/6.
                 let diff = (w1 - w2).scale(h * T::from_f64(SQRT_3 / 6.0));
-                q.rotated_pair(base, base_lo + diff, Normalization::None)
-                    .rotated_pair(base, base_lo - diff, norm)
+                q.rotated_pair_unchecked(base, base_lo + diff, Normalization::None)
+                    .rotated_pair_unchecked(base, base_lo - diff, norm)
             }
         }
         RateMethod::Rk4 => {

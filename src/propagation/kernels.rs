@@ -211,7 +211,7 @@ pub(crate) fn advance_plain<T: Real, const M: usize>(
                 interp(s, &w[END]),
                 h,
             );
-            norm.apply_quat(q)
+            norm.apply_quat_unchecked(q)
         }
     }
 }

@@ -48,7 +48,7 @@ impl Normalization {
     /// above one half). With [`Normalization::None`] the quaternion is wrapped as is: the
     /// caller has chosen to let `|q|` drift, and [`norm_deviation`] measures by how much.
     #[inline]
-    pub fn apply_quat<T: Real>(self, q: Quat<T>) -> UnitQuat<T> {
+    pub fn apply_quat_unchecked<T: Real>(self, q: Quat<T>) -> UnitQuat<T> {
         let q = UnitQuat::new_unchecked(q);
         match self {
             Normalization::Fast => {

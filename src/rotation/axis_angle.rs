@@ -1,6 +1,6 @@
 //! Axis–angle forms: a unit axis and an angle, and the seed's polar axis angles `[φ, ϑ, Θ]`.
 
-use crate::{Error, Real, Su2, UnitQuat, Vec3};
+use crate::{Error, Real, RotationVector, Su2, UnitQuat, Vec3};
 
 /// A rotation by `angle` (radians, right-handed) about a unit `axis`: `q = (cos Θ/2, sin Θ/2·n̂)`,
 /// seed (6.6.4) and the Rodrigues matrix (6.6.13–15).
@@ -10,7 +10,7 @@ use crate::{Error, Real, Su2, UnitQuat, Vec3};
 /// [`AxisAngle::new_unchecked`].
 ///
 /// Conversions from a quaternion: [`AxisAngle::from`] is the SO(3) view (angle in `[0, π]`);
-/// [`AxisAngle::from_spinor`] keeps the spinor sign (angle in `[0, 2π]`), so that converting back
+/// [`AxisAngle::from_unit_quat`] keeps the spinor sign (angle in `[0, 2π]`), so that converting back
 /// gives the same SU(2) element.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AxisAngle<T> {
@@ -55,13 +55,13 @@ impl<T: Real> AxisAngle<T> {
     /// `(cos(Θ/2), sin(Θ/2)·n̂)`, sign kept (an angle of 2π gives `−1`).
     #[inline]
     pub fn to_unit_quat(self) -> UnitQuat<T> {
-        UnitQuat::from_unit_axis_angle(self.axis, self.angle)
+        UnitQuat::from_axis_angle_unchecked(self.axis, self.angle)
     }
 
     /// The sign-keeping inverse of [`AxisAngle::to_unit_quat`]: angle `2·atan2(|v|, w)` in
     /// `[0, 2π]`, axis `v/|v|`. For the identity (and `−1`), where the axis is undefined, the axis
     /// is `+x` by convention.
-    pub fn from_spinor(q: UnitQuat<T>) -> Self {
+    pub fn from_unit_quat(q: UnitQuat<T>) -> Self {
         let v = q.as_quat().vector();
         let angle = T::TWO * v.norm().atan2(q.w());
         Self {
@@ -70,10 +70,12 @@ impl<T: Real> AxisAngle<T> {
         }
     }
 
-    /// The rotation vector `angle·axis` (the whirl vector of (6.6.4)).
+    /// The rotation vector `angle·axis` (the whirl vector of (6.6.4)), spinor meaning kept (an
+    /// angle beyond π stays beyond π).
     #[inline]
-    pub fn to_rotation_vector(self) -> Vec3<T> {
-        self.axis.scale(self.angle)
+    pub fn to_rotation_vector(self) -> RotationVector<T> {
+        // A unit axis times a finite angle: finite, with the angle's magnitude as its norm.
+        RotationVector(self.axis.scale(self.angle))
     }
 }
 
@@ -82,7 +84,7 @@ impl<T: Real> From<UnitQuat<T>> for AxisAngle<T> {
     /// identity gets axis `+x`. A half-turn keeps the axis direction of `q` after the sign choice
     /// of [`UnitQuat::canonical`].
     fn from(q: UnitQuat<T>) -> Self {
-        Self::from_spinor(q.canonical())
+        Self::from_unit_quat(q.canonical())
     }
 }
 
@@ -131,7 +133,7 @@ impl<T: Real> PolarAxisAngle<T> {
         if !(self.phi.is_finite() && self.theta.is_finite() && self.angle.is_finite()) {
             return Err(Error::NonFinite);
         }
-        Ok(UnitQuat::from_unit_axis_angle(self.axis(), self.angle))
+        Ok(UnitQuat::from_axis_angle_unchecked(self.axis(), self.angle))
     }
 
     /// The spinor `R[φ, ϑ, Θ]` of (6.6.4).
@@ -146,7 +148,7 @@ impl<T: Real> PolarAxisAngle<T> {
     /// `ϑ = atan2(hypot(x, y), z) ∈ [0, π]`, `φ = atan2(y, x) ∈ (−π, π]` — the inverse of (6.6.5a)
     /// with atan2 in place of the seed's `cos⁻¹`/`tan⁻¹` (6.6.5c). For the identity and `−1`,
     /// where the axis is undefined, `φ = ϑ = 0`.
-    pub fn from_spinor(q: UnitQuat<T>) -> Self {
+    pub fn from_unit_quat(q: UnitQuat<T>) -> Self {
         let v = q.as_quat().vector();
         Self {
             phi: v.y.atan2(v.x),
@@ -157,16 +159,16 @@ impl<T: Real> PolarAxisAngle<T> {
 }
 
 impl<T: Real> From<UnitQuat<T>> for PolarAxisAngle<T> {
-    /// Sign kept: see [`PolarAxisAngle::from_spinor`].
+    /// Sign kept: see [`PolarAxisAngle::from_unit_quat`].
     #[inline]
     fn from(q: UnitQuat<T>) -> Self {
-        Self::from_spinor(q)
+        Self::from_unit_quat(q)
     }
 }
 
 impl<T: Real> From<Su2<T>> for PolarAxisAngle<T> {
     #[inline]
     fn from(u: Su2<T>) -> Self {
-        Self::from_spinor(UnitQuat::from(u))
+        Self::from_unit_quat(UnitQuat::from(u))
     }
 }

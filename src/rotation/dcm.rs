@@ -13,21 +13,21 @@ use crate::{Error, Mat3, Quat, Real, UnitQuat, Vec3};
 ///
 /// # Invariant
 /// `‖RᵀR − 1‖_max ≤` the tolerance given to [`Dcm::try_from_matrix`] and `det R > 0`; or the
-/// matrix was orthonormalised by [`Dcm::from_matrix_orthonormalized`]; or the caller promised it
+/// matrix was orthonormalised by [`Dcm::try_from_matrix_orthonormalized`]; or the caller promised it
 /// ([`Dcm::from_matrix_unchecked`]).
 ///
 /// ```
 /// use gyrostat::{Dcm, Error, Mat3};
 /// let noisy = Mat3::from_rows([1.001, 0.002, 0.0], [-0.001, 0.999, 0.0], [0.0, 0.0, 1.0f64]);
 /// assert_eq!(Dcm::try_from_matrix(noisy, 1e-6), Err(Error::NotRotation));
-/// let r = Dcm::from_matrix_orthonormalized(noisy)?.into_matrix();
+/// let r = Dcm::try_from_matrix_orthonormalized(noisy)?.into_matrix();
 /// assert!((r.transpose() * r - Mat3::IDENTITY).max_abs() < 1e-15);
 /// # Ok::<(), gyrostat::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dcm<T>(Mat3<T>);
 
-/// Largest Newton steps of the polar iteration in [`Dcm::from_matrix_orthonormalized`]. With
+/// Largest Newton steps of the polar iteration in [`Dcm::try_from_matrix_orthonormalized`]. With
 /// Higham's norm scaling the iteration converges in under 10 steps for condition numbers up to
 /// 1e16 (Higham, *Functions of Matrices*, §8.6); 30 leaves a wide margin.
 const POLAR_MAX_STEPS: usize = 30;
@@ -46,7 +46,7 @@ impl<T: Real> Dcm<T> {
     /// Default tolerance for [`Dcm::try_from_matrix`] on `‖RᵀR − 1‖_max`: `1000·ε`
     /// (1.2e-4 for f32, 2.2e-13 for f64). Generous enough for a matrix written with full
     /// precision and read back, or computed by a short chain of products; anything further off is
-    /// not a rotation matrix but data needing [`Dcm::from_matrix_orthonormalized`].
+    /// not a rotation matrix but data needing [`Dcm::try_from_matrix_orthonormalized`].
     pub fn default_tolerance() -> T {
         T::from_f64(1000.0) * T::EPSILON
     }
@@ -86,7 +86,7 @@ impl<T: Real> Dcm<T> {
     /// [`Error::NonFinite`] for a non-finite entry; [`Error::NotRotation`] when `det m ≤ 0` (a
     /// reflection or rank-deficient matrix has no nearest rotation in this sense), when `m` is
     /// numerically singular, or if the iteration has not converged within its step budget.
-    pub fn from_matrix_orthonormalized(m: Mat3<T>) -> Result<Self, Error> {
+    pub fn try_from_matrix_orthonormalized(m: Mat3<T>) -> Result<Self, Error> {
         if !m.is_finite() {
             return Err(Error::NonFinite);
         }

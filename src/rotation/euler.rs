@@ -141,7 +141,12 @@ impl EulerSequence {
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] if two adjacent axes are equal (`XXY`, `ZYY`).
-    pub const fn new(first: Axis, second: Axis, third: Axis, frame: Frame) -> Result<Self, Error> {
+    pub const fn try_new(
+        first: Axis,
+        second: Axis,
+        third: Axis,
+        frame: Frame,
+    ) -> Result<Self, Error> {
         if first.index() == second.index() || second.index() == third.index() {
             return Err(Error::InvalidArgument);
         }
@@ -156,7 +161,7 @@ impl EulerSequence {
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for anything else.
-    pub fn parse(s: &str) -> Result<Self, Error> {
+    pub fn try_from_str(s: &str) -> Result<Self, Error> {
         let b = s.as_bytes();
         let [c0, c1, c2] = match b {
             [c0, c1, c2] => [*c0, *c1, *c2],
@@ -176,7 +181,7 @@ impl EulerSequence {
             b'z' => Ok(Axis::Z),
             _ => Err(Error::InvalidArgument),
         };
-        Self::new(ax(c0)?, ax(c1)?, ax(c2)?, frame)
+        Self::try_new(ax(c0)?, ax(c1)?, ax(c2)?, frame)
     }
 
     /// The three axes in the order the angles are given.
@@ -213,7 +218,7 @@ impl EulerSequence {
 impl FromStr for EulerSequence {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self, Error> {
-        Self::parse(s)
+        Self::try_from_str(s)
     }
 }
 
@@ -382,10 +387,10 @@ impl<T: Real> Euler<T> {
     /// SU(2) matrix (6.6.3), so `(α, β, γ)` and `(α + 2π, β, γ)` give opposite quaternions, as the
     /// 4π sequence (6.6.6c–d) requires. Use [`UnitQuat::canonical`] for an SO(3) representative.
     ///
-    /// Angles are not range-checked; a non-finite angle gives a non-finite quaternion (use
-    /// [`Euler::try_to_unit_quat`] for untrusted input).
+    /// Unchecked: angles are not range-checked, and a non-finite angle gives a non-finite
+    /// quaternion (use [`Euler::try_to_unit_quat`] for untrusted input).
     #[inline]
-    pub fn to_unit_quat(&self) -> UnitQuat<T> {
+    pub fn to_unit_quat_unchecked(&self) -> UnitQuat<T> {
         let (axes, _) = self.sequence.product_order();
         let [a0, a1, a2] = self.angles;
         let (p0, p2) = match self.sequence.frame() {
@@ -398,13 +403,13 @@ impl<T: Real> Euler<T> {
         UnitQuat::new_unchecked(mul_elementary(q, axes[2], s[2], c[2]))
     }
 
-    /// [`Euler::to_unit_quat`] with a finiteness check.
+    /// [`Euler::to_unit_quat_unchecked`] with a finiteness check.
     ///
     /// # Errors
     /// [`Error::NonFinite`] if an angle is NaN or infinite.
     pub fn try_to_unit_quat(&self) -> Result<UnitQuat<T>, Error> {
         if self.angles.iter().all(|a| a.is_finite()) {
-            Ok(self.to_unit_quat())
+            Ok(self.to_unit_quat_unchecked())
         } else {
             Err(Error::NonFinite)
         }
@@ -432,13 +437,14 @@ impl<T: Real> UnitQuat<T> {
     /// use gyrostat::rotation::{Euler, EulerSequence, GimbalPolicy, Pole};
     /// let seq = EulerSequence::ZYX;
     /// // Pitch exactly +90°: yaw and roll are not separately determined.
-    /// let q = Euler::new(seq, [0.3f64, core::f64::consts::FRAC_PI_2, 0.1]).to_unit_quat();
+    /// let q = Euler::new(seq, [0.3f64, core::f64::consts::FRAC_PI_2, 0.1]).try_to_unit_quat()?;
     /// let sol = q.to_euler(seq, GimbalPolicy::ZeroThird);
     /// let lock = sol.singularity.expect("at the pole");
     /// assert_eq!(lock.pole, Pole::Upper);
     /// // Only yaw − roll is determined (s = −1 for ZYX at +90°): 0.3 − 0.1.
     /// assert!((lock.combined_angle - 0.2).abs() < 1e-15);
     /// assert!((sol.euler.angles[0] - 0.2).abs() < 1e-15 && sol.euler.angles[2] == 0.0);
+    /// # Ok::<(), gyrostat::Error>(())
     /// ```
     pub fn to_euler(self, sequence: EulerSequence, policy: GimbalPolicy<T>) -> EulerSolution<T> {
         let q = self.as_quat();
@@ -588,18 +594,20 @@ fn lock_sign<T: Real>(sequence: EulerSequence, pole: Pole) -> T {
     if s > 0 { T::ONE } else { -T::ONE }
 }
 
-impl<T: Real> From<Euler<T>> for UnitQuat<T> {
-    /// [`Euler::to_unit_quat`] (spinor sign of the elementary product kept).
+impl<T: Real> TryFrom<Euler<T>> for UnitQuat<T> {
+    type Error = Error;
+    /// [`Euler::try_to_unit_quat`] (spinor sign of the elementary product kept).
     #[inline]
-    fn from(e: Euler<T>) -> Self {
-        e.to_unit_quat()
+    fn try_from(e: Euler<T>) -> Result<Self, Error> {
+        e.try_to_unit_quat()
     }
 }
 
-impl<T: Real> From<Euler<T>> for super::Dcm<T> {
-    /// The Euler matrix, through the quaternion.
+impl<T: Real> TryFrom<Euler<T>> for super::Dcm<T> {
+    type Error = Error;
+    /// The Euler matrix, through the quaternion ([`Euler::try_to_unit_quat`]).
     #[inline]
-    fn from(e: Euler<T>) -> Self {
-        super::Dcm::from(e.to_unit_quat())
+    fn try_from(e: Euler<T>) -> Result<Self, Error> {
+        e.try_to_unit_quat().map(super::Dcm::from)
     }
 }

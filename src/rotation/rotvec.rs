@@ -12,7 +12,7 @@ use crate::{Error, Real, UnitQuat, Vec3};
 /// [`RotationVector::to_unit_quat`] (2π gives `−1`). From a quaternion the SO(3) view is returned
 /// (`|φ| ≤ π`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RotationVector<T>(Vec3<T>);
+pub struct RotationVector<T>(pub(crate) Vec3<T>);
 
 impl<T: Real> RotationVector<T> {
     /// The zero rotation.

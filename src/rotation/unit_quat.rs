@@ -242,12 +242,13 @@ impl<T: Real> UnitQuat<T> {
             return Err(Error::NonFinite);
         }
         let n = axis.try_normalize()?;
-        Ok(Self::from_unit_axis_angle(n, angle))
+        Ok(Self::from_axis_angle_unchecked(n, angle))
     }
 
-    /// The rotation by `angle` about a unit `axis` the caller has already normalised (no check).
+    /// The rotation by `angle` about a unit `axis` the caller has already normalised, unchecked:
+    /// [`UnitQuat::try_from_axis_angle`] without the normalisation and the finiteness check.
     #[inline]
-    pub fn from_unit_axis_angle(axis: Vec3<T>, angle: T) -> Self {
+    pub fn from_axis_angle_unchecked(axis: Vec3<T>, angle: T) -> Self {
         let (s, c) = (angle * T::HALF).sin_cos();
         Self(Quat::from_parts(c, axis.scale(s)))
     }

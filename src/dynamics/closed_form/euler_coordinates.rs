@@ -66,10 +66,7 @@ fn finite_angles<T: Real>(e: &Euler<T>) -> Result<(), Error> {
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite angle; [`Error::InvalidArgument`] when the metric
 /// overflows the type (module docs).
-pub fn try_euler_metric<T: Real>(
-    inertia: &Inertia<T>,
-    angles: &Euler<T>,
-) -> Result<Mat3<T>, Error> {
+pub fn euler_metric<T: Real>(inertia: &Inertia<T>, angles: &Euler<T>) -> Result<Mat3<T>, Error> {
     finite_angles(angles)?;
     let e = angles.rates_to_body_matrix();
     let g = e.transpose() * inertia.tensor() * e;
@@ -101,7 +98,7 @@ pub fn try_euler_momenta<T: Real>(
 ///
 /// # Errors
 /// As [`try_euler_momenta`].
-pub fn try_kinetic_energy<T: Real>(
+pub fn kinetic_energy<T: Real>(
     inertia: &Inertia<T>,
     angles: &Euler<T>,
     rates: [T; 3],
@@ -133,7 +130,7 @@ pub fn try_euler_rates_from_momenta<T: Real>(
 ///
 /// # Errors
 /// As [`try_euler_rates_from_momenta`].
-pub fn try_euler_hamiltonian<T: Real>(
+pub fn euler_hamiltonian<T: Real>(
     inertia: &Inertia<T>,
     angles: &Euler<T>,
     momenta: [T; 3],
@@ -192,7 +189,7 @@ impl<T: Real> SymmetricTop<T> {
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite `β` or rate; [`Error::InvalidArgument`] when the
     /// result overflows the type (module docs; likewise for the other methods).
-    pub fn try_lagrangian(&self, beta: T, rates: [T; 3]) -> Result<T, Error> {
+    pub fn lagrangian(&self, beta: T, rates: [T; 3]) -> Result<T, Error> {
         let [ad, bd, gd] = finite3(rates)?.to_array();
         let (sb, cb) = finite_sin_cos(beta)?;
         let axial_rate = ad * cb + gd;
@@ -207,7 +204,7 @@ impl<T: Real> SymmetricTop<T> {
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite `β`.
-    pub fn try_metric(&self, beta: T) -> Result<Mat3<T>, Error> {
+    pub fn metric(&self, beta: T) -> Result<Mat3<T>, Error> {
         let (sb, cb) = finite_sin_cos(beta)?;
         let (it, i3) = (self.transverse, self.axial);
         let z = T::ZERO;
@@ -266,7 +263,7 @@ impl<T: Real> SymmetricTop<T> {
     ///
     /// # Errors
     /// As [`SymmetricTop::try_rates`].
-    pub fn try_hamiltonian(&self, beta: T, momenta: [T; 3]) -> Result<T, Error> {
+    pub fn hamiltonian(&self, beta: T, momenta: [T; 3]) -> Result<T, Error> {
         let [ja, jb, jg] = finite3(momenta)?.to_array();
         let (sb, cb) = self.off_pole(beta)?;
         let a = ja - jg * cb;
@@ -283,7 +280,7 @@ impl<T: Real> SymmetricTop<T> {
     ///
     /// # Errors
     /// As [`SymmetricTop::try_rates`].
-    pub fn try_beta_torque(&self, beta: T, momenta: [T; 3]) -> Result<T, Error> {
+    pub fn beta_torque(&self, beta: T, momenta: [T; 3]) -> Result<T, Error> {
         let [ja, _, jg] = finite3(momenta)?.to_array();
         let (sb, cb) = self.off_pole(beta)?;
         representable1((ja - jg * cb) * (ja * cb - jg) / (self.transverse * sb * sb * sb))
@@ -294,7 +291,7 @@ impl<T: Real> SymmetricTop<T> {
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite input.
-    pub fn try_beta_torque_from_rates(&self, beta: T, rates: [T; 3]) -> Result<T, Error> {
+    pub fn beta_torque_from_rates(&self, beta: T, rates: [T; 3]) -> Result<T, Error> {
         let [ad, _, gd] = finite3(rates)?.to_array();
         let (sb, cb) = finite_sin_cos(beta)?;
         representable1(

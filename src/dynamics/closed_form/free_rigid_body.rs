@@ -189,7 +189,7 @@ enum Motion<T> {
 /// let start = State::new(UnitQuat::IDENTITY, Vec3::new(0.01, 2.0, 0.01));
 /// let body = FreeRigidBody::try_new(&inertia, &start)?;
 /// let half = body.flip_interval().unwrap();
-/// let s = body.state_at(half);
+/// let s = body.try_state_at(half)?;
 /// assert!(s.momentum.y < -1.9); // J has flipped to the other end of the intermediate axis
 /// // The lab momentum is unchanged.
 /// let j_lab = s.attitude.rotate(s.momentum);
@@ -459,8 +459,8 @@ impl<T: Real> FreeRigidBody<T> {
         let e_c2 = e3.scale(s3);
         let (theta0, chi0) = gauge_angles(j0_body.scale(T::ONE / j_norm), e_b, e_c2);
         let g0 = q0
-            * UnitQuat::from_unit_axis_angle(e_b, chi0)
-            * UnitQuat::from_unit_axis_angle(e_c2, theta0);
+            * UnitQuat::from_axis_angle_unchecked(e_b, chi0)
+            * UnitQuat::from_axis_angle_unchecked(e_c2, theta0);
         this.regime = if separatrix {
             Regime::Separatrix
         } else {
@@ -547,7 +547,7 @@ impl<T: Real> FreeRigidBody<T> {
         }
     }
 
-    /// Body angular momentum at time `t` (domain as [`FreeRigidBody::state_at`]).
+    /// Body angular momentum at time `t` (domain as [`FreeRigidBody::state_at_unchecked`]).
     pub fn body_momentum_at(&self, t: T) -> Vec3<T> {
         self.principal_to_body(self.principal_momentum_at(t * self.rate_scale))
     }
@@ -566,7 +566,7 @@ impl<T: Real> FreeRigidBody<T> {
         let j = match &self.motion {
             Motion::Steady { .. } => self.j0,
             Motion::Symmetric { e_s, body_rate, .. } => {
-                UnitQuat::from_unit_axis_angle(*e_s, -*body_rate * t).rotate(self.j0)
+                UnitQuat::from_axis_angle_unchecked(*e_s, -*body_rate * t).rotate(self.j0)
             }
             Motion::Asymmetric(a) => {
                 let (sn, cn, dn) = self.jacobi(a, t);
@@ -598,7 +598,7 @@ impl<T: Real> FreeRigidBody<T> {
     }
 
     /// Body angular velocity `ω = I⁻¹ J` at time `t` (rad/s, body frame; domain as
-    /// [`FreeRigidBody::state_at`]).
+    /// [`FreeRigidBody::state_at_unchecked`]).
     pub fn body_rates_at(&self, t: T) -> Vec3<T> {
         let j = self.principal_momentum_at(t * self.rate_scale);
         self.principal_to_body(Vec3::new(
@@ -608,7 +608,7 @@ impl<T: Real> FreeRigidBody<T> {
         ))
     }
 
-    /// [`FreeRigidBody::state_at`] with a check of `t`.
+    /// [`FreeRigidBody::state_at_unchecked`] with a check of `t`.
     ///
     /// Validity limit: the phases of the motion (the Jacobi argument `λt` and the angle about
     /// the lab momentum) may reach at most [`exact_step_angle_limit`] (`1/ε`): beyond it their
@@ -628,7 +628,7 @@ impl<T: Real> FreeRigidBody<T> {
         if !within {
             return Err(Error::StepTooLong);
         }
-        Ok(self.state_at(t))
+        Ok(self.state_at_unchecked(t))
     }
 
     /// The state at time `t`: attitude (body → lab) and body angular momentum `J`.
@@ -639,7 +639,7 @@ impl<T: Real> FreeRigidBody<T> {
     /// within that limit; outside it the result is unspecified (NaN components for a NaN or
     /// infinite `t` or a phase that overflows), never a panic. Use
     /// [`FreeRigidBody::try_state_at`] to have `t` checked.
-    pub fn state_at(&self, t: T) -> State<T> {
+    pub fn state_at_unchecked(&self, t: T) -> State<T> {
         let (q, j) = self.principal_state_at(t * self.rate_scale);
         let j = j.scale(self.j_scale);
         match self.principal {
@@ -654,7 +654,7 @@ impl<T: Real> FreeRigidBody<T> {
         match &self.motion {
             Motion::Steady { rate } => {
                 let axis = self.j0.scale(T::ONE / self.j0_norm);
-                let q = self.q0 * UnitQuat::from_unit_axis_angle(axis, *rate * t);
+                let q = self.q0 * UnitQuat::from_axis_angle_unchecked(axis, *rate * t);
                 (q, self.j0)
             }
             Motion::Symmetric {
@@ -664,9 +664,9 @@ impl<T: Real> FreeRigidBody<T> {
             } => {
                 let axis = self.j0.scale(T::ONE / self.j0_norm);
                 let q = self.q0
-                    * UnitQuat::from_unit_axis_angle(axis, *lab_rate * t)
-                    * UnitQuat::from_unit_axis_angle(*e_s, *body_rate * t);
-                let j = UnitQuat::from_unit_axis_angle(*e_s, -*body_rate * t).rotate(self.j0);
+                    * UnitQuat::from_axis_angle_unchecked(axis, *lab_rate * t)
+                    * UnitQuat::from_axis_angle_unchecked(*e_s, *body_rate * t);
+                let j = UnitQuat::from_axis_angle_unchecked(*e_s, -*body_rate * t).rotate(self.j0);
                 (q, j)
             }
             Motion::Asymmetric(a) => {
@@ -684,9 +684,9 @@ impl<T: Real> FreeRigidBody<T> {
                 };
                 let (theta, chi) = gauge_angles(j.scale(T::ONE / self.j0_norm), a.e_b, a.e_c2);
                 let q = a.g0
-                    * UnitQuat::from_unit_axis_angle(a.e_b, psi)
-                    * UnitQuat::from_unit_axis_angle(a.e_c2, -theta)
-                    * UnitQuat::from_unit_axis_angle(a.e_b, -chi);
+                    * UnitQuat::from_axis_angle_unchecked(a.e_b, psi)
+                    * UnitQuat::from_axis_angle_unchecked(a.e_c2, -theta)
+                    * UnitQuat::from_axis_angle_unchecked(a.e_b, -chi);
                 (q.renormalize_fast(), j)
             }
         }
