@@ -146,7 +146,7 @@ impl Rep {
             "axis-angle" => Rep::AxisAngle,
             _ => match s.strip_prefix("euler:") {
                 Some(seq) => Rep::Euler(
-                    EulerSequence::parse(seq)
+                    EulerSequence::try_from_str(seq)
                         .map_err(|_| format!("invalid Euler sequence '{seq}'"))?,
                 ),
                 None => return Err(format!("unknown representation '{s}'")),
@@ -368,7 +368,7 @@ fn attitude_of<T: Real>(v: &[T], o: &Opts) -> Result<UnitQuat<T>, String> {
             Dcm::try_from_matrix(m, T::from_f64(INPUT_TOL))
                 .map_err(|_| "matrix is not a rotation (orthonormal, det +1)".to_string())?;
         }
-        Dcm::from_matrix_orthonormalized(m)
+        Dcm::try_from_matrix_orthonormalized(m)
             .map(|d| d.to_unit_quat())
             .map_err(|e| match e {
                 Error::NotRotation if o.normalize => {

@@ -28,9 +28,10 @@ mod firmware {
     use core::hint::black_box;
     use gyrostat::fixed::{IncrementScale, Q30};
     use gyrostat::propagation::coning::{
-        coning2_update, four_sample_terms, one_plus_previous_terms, three_sample_terms,
+        four_sample_terms, one_plus_previous_terms, three_sample_terms,
     };
-    use gyrostat::propagation::exponential::apply_rotation_vector;
+    use gyrostat::propagation::kernels::apply_rotation_vector;
+    use gyrostat::propagation::kernels::coning2_update;
     use gyrostat::propagation::normalization::norm_squared_deviation;
     use gyrostat::propagation::{ConingAccumulator, IncrementIntegrator, Normalization};
     use gyrostat::{Mat3, UnitQuat, Vec3};

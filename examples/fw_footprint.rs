@@ -203,14 +203,14 @@ mod firmware {
         // The cases hold unit quaternions (to f32 rounding).
         let attitude = UnitQuat::new_unchecked(Quat::new(w, x, y, z));
         if links(GYRO2) {
-            use gyrostat::propagation::coning::coning2_update;
+            use gyrostat::propagation::kernels::coning2_update;
             let t1 = black_box(Vec3::new(1.0f32, -2.0, 0.5)).scale(inputs.angle);
             let t2 = black_box(Vec3::new(1.2f32, -1.9, 0.6)).scale(inputs.angle);
             black_box(coning2_update(attitude, t1, t2));
         }
         if links(GYRO2_Q30) {
             use gyrostat::fixed::Q30;
-            use gyrostat::propagation::coning::coning2_update;
+            use gyrostat::propagation::kernels::coning2_update;
             let q =
                 UnitQuat::new_unchecked(Quat::from_array(inputs.attitude_q30.map(Q30::from_bits)));
             let [d1, d2] = black_box(DIRECTIONS_Q30);

@@ -182,14 +182,13 @@ mod firmware {
         ));
         {
             use gyrostat::propagation::coning::{
-                coning2_update, four_sample_terms, one_plus_previous_terms, three_sample_terms,
+                four_sample_terms, one_plus_previous_terms, three_sample_terms,
             };
-            use gyrostat::propagation::exponential::{
-                apply_rotation_vector, step_constant_rate_unchecked,
-            };
-            use gyrostat::propagation::rate_samples::{
-                cf4_step, gauss_rates, magnus4_step, midpoint_rate, rk4_step,
-            };
+            use gyrostat::propagation::kernels;
+            use gyrostat::propagation::kernels::apply_rotation_vector;
+            use gyrostat::propagation::kernels::coning2_update;
+            use gyrostat::propagation::kernels::{cf4_step, magnus4_step, rk4_step};
+            use gyrostat::propagation::rate_samples::{gauss_rates, midpoint_rate};
             use gyrostat::propagation::{
                 CompensatedAttitude, ConingAccumulator, ConingRule, IncrementIntegrator,
                 Normalization, RateIntegrator, RateMethod,
@@ -213,7 +212,7 @@ mod firmware {
                 black_box(t2)
             ));
             count!(table, "prop_exp_step_fast_f32", || fast.apply(
-                step_constant_rate_unchecked(black_box(a), black_box(w), black_box(dt))
+                kernels::step_constant_rate(black_box(a), black_box(w), black_box(dt))
             ));
             count!(table, "prop_coning1_fast_f32", || apply_rotation_vector(
                 black_box(a),
@@ -252,7 +251,7 @@ mod firmware {
             count!(table, "prop_rk4_fast_f32", || {
                 let x = black_box(&win);
                 let m = midpoint_rate(x, 2);
-                fast.apply_quat(rk4_step(
+                fast.apply_quat_unchecked(rk4_step(
                     *black_box(a).as_quat(),
                     x[2],
                     m,
@@ -267,7 +266,7 @@ mod firmware {
             count!(table, "prop_exp_step_fast_compensated_f32", || black_box(
                 ca
             )
-            .rotated(black_box(w).scale(black_box(dt)), fast));
+            .rotated_unchecked(black_box(w).scale(black_box(dt)), fast));
             let inc_plain = IncrementIntegrator::new(a, ConingRule::TwoSample, fast);
             let inc_comp = IncrementIntegrator::new(ca, ConingRule::TwoSample, fast);
             count!(table, "prop_integrator_coning2_f32", || {
@@ -298,8 +297,8 @@ mod firmware {
                 ),
             ] {
                 if let (Ok(mut plain), Ok(mut comp)) = (
-                    RateIntegrator::new(a, method, fast, dt),
-                    RateIntegrator::new(ca, method, fast, dt),
+                    RateIntegrator::try_new(a, method, fast, dt),
+                    RateIntegrator::try_new(ca, method, fast, dt),
                 ) {
                     for v in win {
                         let _ = plain.push(v);
@@ -318,10 +317,9 @@ mod firmware {
         {
             // Fixed point (Q1.30), the same operations and operands as the f32 rows above.
             use gyrostat::fixed::Q30;
-            use gyrostat::propagation::coning::{
-                coning2_update, four_sample_terms, one_plus_previous_terms,
-            };
-            use gyrostat::propagation::exponential::apply_rotation_vector;
+            use gyrostat::propagation::coning::{four_sample_terms, one_plus_previous_terms};
+            use gyrostat::propagation::kernels::apply_rotation_vector;
+            use gyrostat::propagation::kernels::coning2_update;
             use gyrostat::propagation::{ConingAccumulator, Normalization};
             let q = |q: UnitQuat<f32>| UnitQuat::<Q30>::try_from_f32(q).unwrap_or_default();
             let v3 = |v: Vec3<f32>| Vec3::<Q30>::try_from_f32(v).unwrap_or_default();
@@ -373,19 +371,19 @@ mod firmware {
         {
             use gyrostat::rotation::{Euler, EulerSequence, GimbalPolicy};
             let e = [0.3f32, -0.5, 1.2];
-            let qe = Euler::new(EulerSequence::ZYX, e).to_unit_quat();
+            let qe = Euler::new(EulerSequence::ZYX, e).to_unit_quat_unchecked();
             let lock = Euler::new(
                 EulerSequence::ZYX,
                 [0.3f32, core::f32::consts::FRAC_PI_2, 0.1],
             )
-            .to_unit_quat();
+            .to_unit_quat_unchecked();
             let zyx = EulerSequence::ZYX;
             let zyz = EulerSequence::ZYZ;
             count!(table, "rot_euler_to_quat_zyx_f32", || Euler::new(
                 zyx,
                 black_box(e)
             )
-            .to_unit_quat());
+            .to_unit_quat_unchecked());
             count!(table, "rot_quat_to_euler_zyx_f32", || black_box(qe)
                 .to_euler(zyx, GimbalPolicy::ZeroThird));
             count!(table, "rot_quat_to_euler_zyz_f32", || black_box(qe)
@@ -444,7 +442,7 @@ mod firmware {
                 let tau = Vec3::new(0.01f32, 0.0, -0.005);
                 let cmd = WheelCommand::Torque([0.001f32, -0.002, 0.0005, 0.0]);
                 if let Ok(gs) =
-                    g.state_from_omega(UnitQuat::IDENTITY, Vec3::new(0.1, 0.5, 0.2), [0.0; 4])
+                    g.try_state_from_omega(UnitQuat::IDENTITY, Vec3::new(0.1, 0.5, 0.2), [0.0; 4])
                 {
                     count!(
                         table,
@@ -478,7 +476,7 @@ mod firmware {
                     || full_body.step(Integrator::Strang, black_box(&cs), black_box(h))
                 );
                 if let Ok(gs) =
-                    g.state_from_omega(UnitQuat::IDENTITY, Vec3::new(0.1, 0.5, 0.2), [0.0; 4])
+                    g.try_state_from_omega(UnitQuat::IDENTITY, Vec3::new(0.1, 0.5, 0.2), [0.0; 4])
                 {
                     let gc = CompensatedState::new(gs);
                     count!(
@@ -495,7 +493,7 @@ mod firmware {
                 }
                 if let Ok(exact) = FreeRigidBody::try_new(&principal, &s) {
                     count!(table, "dyn_exact_free_body_state_at_f32", heavy, || exact
-                        .state_at(black_box(7.5f32)));
+                        .state_at_unchecked(black_box(7.5f32)));
                 }
             }
         }

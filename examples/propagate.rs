@@ -450,7 +450,7 @@ where
     let dt = T::from_f64(args_dt);
     // The step's rounding remainder in T (zero when --dt is exact in T).
     let dt_lo = T::from_f64(args_dt - dt.to_f64());
-    let mut integ = RateIntegrator::new(A::from(q0), method, Normalization::Exact, dt)
+    let mut integ = RateIntegrator::try_new(A::from(q0), method, Normalization::Exact, dt)
         .map_err(|e| Failure::Usage(format!("--dt: {e}")))?
         .with_step_remainder(dt_lo);
     let mut reached: u64 = 0; // the next sample index whose attitude is due

@@ -677,7 +677,7 @@ struct Model<T> {
 fn build<T: Real>(cfg: &Config) -> Result<Model<T>, String> {
     if let Some((kind, [m, wv, r0])) = cfg.semi_rigid {
         let rotor =
-            SemiRigidRotor::symmetric(kind, T::from_f64(m), T::from_f64(wv), T::from_f64(r0))
+            SemiRigidRotor::try_symmetric(kind, T::from_f64(m), T::from_f64(wv), T::from_f64(r0))
                 .map_err(|e| format!("--semi-rigid: {e}"))?;
         let basis = kind.natural_basis();
         let hamiltonian =
@@ -811,7 +811,7 @@ fn setup<T: Real, const N: usize>(cfg: &Config) -> Result<Sim<T, N>, String> {
     let speeds: [T; N] = core::array::from_fn(|i| T::from_f64(cfg.wheels[i].speed0));
     let start = match cfg.initial {
         Initial::Omega(w) => body
-            .state_from_omega(q0, v3(w), speeds)
+            .try_state_from_omega(q0, v3(w), speeds)
             .map_err(|e| match e {
                 Error::NotConverged => {
                     "--omega with --quartic: Newton's method did not converge; give --momentum"
@@ -849,7 +849,7 @@ fn setup<T: Real, const N: usize>(cfg: &Config) -> Result<Sim<T, N>, String> {
 
 /// The momentum whose full semi-rigid body rate `∇H(J) + 4t|J|²J` is `omega`, by Newton's method
 /// from `start` (the solution without the isotropic term), with the Hessian
-/// `∇²H(J) + 4t(|J|²·1 + 2JJᵀ)`; stopped as [`BodyHamiltonian::momentum_from_omega`] is.
+/// `∇²H(J) + 4t(|J|²·1 + 2JJᵀ)`; stopped as [`BodyHamiltonian::try_momentum_from_omega`] is.
 fn momentum_with_isotropic<T: Real, const N: usize>(
     body: &Gyrostat<T, N>,
     semi: &Semi<T>,
@@ -1035,7 +1035,7 @@ impl<T: Real + Display, const N: usize> Sim<T, N> {
         let fail = |e: Error| format!("step {k}: {e} (the step is too long for these rates?)");
         let integ = match (cfg.method, &self.exact) {
             (Method::Exact, Some(x)) => {
-                let s = x.state_at(T::from_f64(k as f64 * cfg.dt));
+                let s = x.state_at_unchecked(T::from_f64(k as f64 * cfg.dt));
                 return Ok(State {
                     attitude: s.attitude,
                     momentum: s.momentum,
@@ -1419,7 +1419,7 @@ fn csv_figure<const N: usize>(cfg: &Config, o: &Outcome) -> Result<Figure, Strin
                 "attitude error vs the closed form (exact free rigid body)".to_string(),
                 vec![Series::new(
                     if cfg.f32 { "f32" } else { "f64" },
-                    degrees(&tr.attitude, &|i| x.state_at(tr.t[i]).attitude),
+                    degrees(&tr.attitude, &|i| x.state_at_unchecked(tr.t[i]).attitude),
                 )],
             )),
             Err(_) => None,
@@ -1515,7 +1515,7 @@ fn simulate_default<T: Real>(integ: Integrator, dt: f64, steps: usize, every: us
     let inertia = Inertia::try_from_principal(v3::<T>(moments)).expect("physical");
     let body = Gyrostat::rigid(inertia);
     let mut s = body
-        .state_from_omega(UnitQuat::IDENTITY, v3(DEFAULT_OMEGA0), [])
+        .try_state_from_omega(UnitQuat::IDENTITY, v3(DEFAULT_OMEGA0), [])
         .expect("finite");
     let mut monitor = DriftMonitor::new(body.invariants(&s));
     let mut flips = Vec::new();
@@ -1583,12 +1583,12 @@ fn default_scenario(plot_path: Option<PathBuf>) -> Result<(), String> {
     let moments = [6.0, 4.0, 3.0];
     let inertia = Inertia::try_from_principal(v3::<f64>(moments)).map_err(|e| e.to_string())?;
     let start = Gyrostat::rigid(inertia)
-        .state_from_omega(UnitQuat::IDENTITY, v3(DEFAULT_OMEGA0), [])
+        .try_state_from_omega(UnitQuat::IDENTITY, v3(DEFAULT_OMEGA0), [])
         .map_err(|e| e.to_string())?;
     let exact = FreeRigidBody::try_new(&inertia, &start).map_err(|e| e.to_string())?;
     let closed = exact.flip_interval();
     let exact_attitudes: Vec<UnitQuat<f64>> = (1..=steps / every)
-        .map(|k| exact.state_at((k * every) as f64 * dt).attitude)
+        .map(|k| exact.state_at_unchecked((k * every) as f64 * dt).attitude)
         .collect();
     let err_vs_exact = |r: &Run| max_angle_deg(&r.attitudes, &exact_attitudes);
     let f32_vs_f64 = max_angle_deg(&r32.attitudes, &r64.attitudes);

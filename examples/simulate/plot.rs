@@ -12,7 +12,7 @@ use std::path::Path;
 
 use gyrostat::Vec3;
 use gyrostat::dynamics::Inertia;
-use gyrostat::dynamics::analysis::separatrix_angle;
+use gyrostat::dynamics::closed_form::analysis::separatrix_angle;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

@@ -638,7 +638,7 @@ impl<T: Tolerance> Gen<T> {
         let a = self.uniform(-pi, pi);
         let c = self.uniform(-pi, pi);
         let e = Euler::new(seq, [a, Self::t(pole + off), c]);
-        (e.to_unit_quat(), seq)
+        (e.to_unit_quat_unchecked(), seq)
     }
 
     /// Euler angles: ordinary, at or near a pole, multiples of π/2, huge, or any scalar.

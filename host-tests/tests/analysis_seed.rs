@@ -1,8 +1,8 @@
-//! The seed's closed forms (`gyrostat::dynamics::analysis`) against the seed's worked values and
+//! The seed's closed forms (`gyrostat::dynamics::closed_form::analysis`) against the seed's worked values and
 //! independent computations (direct sums, RK4 integration of Euler's equations).
 
 use gyrostat::dynamics::Inertia;
-use gyrostat::dynamics::analysis::{
+use gyrostat::dynamics::closed_form::analysis::{
     SmallMotionKind, constant_energy_radius, direction, gyro_multipoles, rotational_energy,
     separatrix_angle, small_motion, symmetric_top_rates,
 };

@@ -60,7 +60,7 @@ fn err<T: Real>(s: &State<T>, body: &Gyrostat<T>, r: &M3, w: [f64; 3]) -> f64 {
 fn run_torqued<T: Real>(integ: Integrator, dt: f64, t_end: f64) -> (State<T>, Gyrostat<T>) {
     let body = Gyrostat::rigid(inertia::<T>());
     let mut s = body
-        .state_from_omega(UnitQuat::IDENTITY, vec3(W0), [])
+        .try_state_from_omega(UnitQuat::IDENTITY, vec3(W0), [])
         .unwrap();
     let n = (t_end / dt).round() as usize;
     for k in 0..n {
@@ -182,7 +182,7 @@ host_tests::per_type! {
             let g = Gyrostat::new(body, wheels::<T>());
             let speeds0 = [10.0, -5.0, 0.0, 20.0].map(T::from_f64);
             let mut s = g
-                .state_from_omega(UnitQuat::IDENTITY, vec3(W0), speeds0)
+                .try_state_from_omega(UnitQuat::IDENTITY, vec3(W0), speeds0)
                 .unwrap();
             let l0 = lab_momentum(s.attitude, s.momentum);
             let u = [0.002, -0.001, 0.003, -0.0015];
@@ -262,7 +262,7 @@ fn wheel_speed_command_is_reached() {
     let body = BodyHamiltonian::rigid(inertia::<f64>());
     let g = Gyrostat::new(body, wheels::<f64>());
     let s0: State<f64, 4> = g
-        .state_from_omega(UnitQuat::IDENTITY, Vec3::ZERO, [0.0; 4])
+        .try_state_from_omega(UnitQuat::IDENTITY, Vec3::ZERO, [0.0; 4])
         .unwrap();
     let target = [100.0, -50.0, 25.0, 10.0];
     let held = g.control(&s0, 0.01, Vec3::ZERO, &WheelCommand::Speed(target));

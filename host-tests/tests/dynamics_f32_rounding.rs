@@ -369,7 +369,7 @@ fn compensated_kicks_beat_plain_rk4_in_f32() {
     let body = Gyrostat::new(model, wheels);
     let omega0 = [0.6, 0.1, -0.05];
     let s0 = body
-        .state_from_omega(UnitQuat::IDENTITY, vec3(omega0), om0.map(|w| w as f32))
+        .try_state_from_omega(UnitQuat::IDENTITY, vec3(omega0), om0.map(|w| w as f32))
         .unwrap();
     // The reference starts from the rate the f32 state holds.
     let w_start = body.omega(&s0).to_array().map(f64::from);
@@ -842,7 +842,7 @@ fn replica_reproduces_library() {
     }
 }
 
-/// The experiment behind `gyrostat::dynamics::compensated` (numbers in BENCHMARKS.md): every
+/// The experiment behind `gyrostat::dynamics::integrators` (numbers in BENCHMARKS.md): every
 /// case at `dt = 0.004`, the replica with one switch changed at a time, errors as multiples of
 /// the plain f32 RK4's; and the mean signed rounding of a constant kick. "Stochastic rounding"
 /// replaces round-to-nearest in the plain step's updates by an unbiased rounding of the same

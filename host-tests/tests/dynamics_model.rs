@@ -23,7 +23,7 @@ const MODELS: [RefModel; 4] = [
 const RATES: [[f64; 3]; 3] = [[0.5, 1.0, 0.3], [-0.2, 0.05, 0.4], [0.0, 0.0, 0.7]];
 
 host_tests::per_type! {
-    /// `momentum_from_omega` returns the J whose reference gradient is the given rate: the
+    /// `try_momentum_from_omega` returns the J whose reference gradient is the given rate: the
     /// residual |∇H_ref(J) − ω|/|ω| stays within f64 1e-13 (Newton converges to rounding;
     /// measured 2.0e-16) and f32 2e-6 (the f32 J carries a relative rounding of ~ε = 6e-8
     /// amplified by the condition of the Hessian, ≈ 6; measured 6.8e-8).
@@ -34,14 +34,14 @@ host_tests::per_type! {
         for m in &MODELS {
             let h = body_hamiltonian::<T>(m);
             for w in RATES {
-                let j = h.momentum_from_omega(vec3(w)).unwrap();
+                let j = h.try_momentum_from_omega(vec3(w)).unwrap();
                 let w_ref = m.gradient(v64(j));
                 let e = norm([0, 1, 2].map(|k| w_ref[k] - vec3::<T>(w).to_array()[k].to_f64()))
                     / norm(w);
                 worst = worst.max(e);
             }
         }
-        println!("{}: momentum_from_omega residual {worst:.2e}", T::NAME);
+        println!("{}: try_momentum_from_omega residual {worst:.2e}", T::NAME);
         assert!(worst <= tol, "{worst}");
     }
 
@@ -88,7 +88,7 @@ host_tests::per_type! {
             let g = Gyrostat::new(body_hamiltonian::<T>(m), wheels);
             for w in RATES {
                 let speeds = [T::from_f64(10.0), T::from_f64(-20.0)];
-                let s = g.state_from_omega(UnitQuat::IDENTITY, vec3(w), speeds).unwrap();
+                let s = g.try_state_from_omega(UnitQuat::IDENTITY, vec3(w), speeds).unwrap();
                 assert_eq!(s.wheel_speeds, speeds);
                 let e = (g.omega(&s) - vec3(w)).norm().to_f64() / norm(w);
                 assert!(e <= tol, "{m:?} {w:?}: {e}");
@@ -144,7 +144,7 @@ host_tests::per_type! {
         let i = Inertia::try_from_principal(vec3::<T>([6.0, 4.0, 3.0])).unwrap();
         let h = BodyHamiltonian::try_new(i, Vec3::ZERO, Quartic::Cubic(T::from_f64(0.05))).unwrap();
         let omega = vec3([0.5, 1.0, 0.3]);
-        match h.momentum_from_omega(omega) {
+        match h.try_momentum_from_omega(omega) {
             Err(Error::NotConverged) => {}
             Ok(j) => {
                 let r = (h.omega(j) - omega).norm().to_f64();
@@ -153,12 +153,12 @@ host_tests::per_type! {
             other => panic!("{other:?}"),
         }
         assert_eq!(
-            h.momentum_from_omega(vec3([f64::NAN, 1.0, 0.3])),
+            h.try_momentum_from_omega(vec3([f64::NAN, 1.0, 0.3])),
             Err(Error::NonFinite)
         );
         let rigid = BodyHamiltonian::rigid(i);
         assert_eq!(
-            rigid.momentum_from_omega(vec3([0.5, 1.0, f64::INFINITY])),
+            rigid.try_momentum_from_omega(vec3([0.5, 1.0, f64::INFINITY])),
             Err(Error::NonFinite)
         );
     }

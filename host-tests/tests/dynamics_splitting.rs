@@ -229,7 +229,7 @@ host_tests::per_type! {
             }
             prev = y;
             if k % 500 == 0 {
-                let qe = exact.state_at(k as f64 * dt).attitude;
+                let qe = exact.state_at_unchecked(k as f64 * dt).attitude;
                 let d: f64 = (0..4)
                     .map(|i| s.attitude.to_array()[i].to_f64() * qe.to_array()[i])
                     .sum();

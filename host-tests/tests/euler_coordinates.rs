@@ -1,5 +1,5 @@
 //! Euler momenta (`Euler::*euler_momenta*`, (6.7.6)–(6.7.16)) and the rigid rotor in Euler
-//! coordinates (`gyrostat::dynamics::euler_coordinates`, (6.7.31)–(6.7.44)).
+//! coordinates (`gyrostat::dynamics::closed_form::euler_coordinates`, (6.7.31)–(6.7.44)).
 //!
 //! References, none of which calls the library's rate or momentum maps:
 //! - the angular velocity of the reference Euler matrices moved along each angle (central
@@ -10,10 +10,10 @@
 //!   integration of the free symmetric top.
 #![allow(clippy::needless_range_loop)] // 3×3 index loops read like the formulas
 
-use gyrostat::dynamics::analysis::symmetric_top_rates;
-use gyrostat::dynamics::euler_coordinates::{
-    SymmetricTop, try_euler_hamiltonian, try_euler_metric, try_euler_momenta,
-    try_euler_rates_from_momenta, try_kinetic_energy,
+use gyrostat::dynamics::closed_form::analysis::symmetric_top_rates;
+use gyrostat::dynamics::closed_form::euler_coordinates::{
+    SymmetricTop, euler_hamiltonian, euler_metric, kinetic_energy, try_euler_momenta,
+    try_euler_rates_from_momenta,
 };
 use gyrostat::dynamics::inertia::Inertia;
 use gyrostat::rotation::{Euler, EulerSequence, euler_rate_min_det};
@@ -76,7 +76,7 @@ host_tests::per_type! {
         let h = 1e-5;
         let inertia = Inertia::try_from_tensor(mat3::<T>(&TENSOR)).unwrap();
         for seq_s in all_sequences() {
-            let seq = EulerSequence::parse(&seq_s).unwrap();
+            let seq = EulerSequence::try_from_str(&seq_s).unwrap();
             let b = if is_proper(&seq_s) { 0.9 } else { 0.4 };
             let ang = [0.7, b, -1.3];
             let rates = [0.3, -0.8, 1.1];
@@ -130,13 +130,13 @@ host_tests::per_type! {
             assert!((t_euler - 0.5 * dot(j_body, omega)).abs() < 1e-9);
             assert!((t_euler - 0.5 * dot(j_lab, omega_lab)).abs() < 1e-9);
             let rt = rates.map(T::from_f64);
-            let t_lib = try_kinetic_energy(&inertia, &e, rt).unwrap().to_f64();
+            let t_lib = kinetic_energy(&inertia, &e, rt).unwrap().to_f64();
             assert!(
                 (t_lib - t_euler).abs() < tol * scale,
                 "{seq_s} T: {t_lib} vs {t_euler}"
             );
             // The metric g = ∂²L/∂θ̇² and p = g θ̇.
-            let g = m64(&try_euler_metric(&inertia, &e).unwrap());
+            let g = m64(&euler_metric(&inertia, &e).unwrap());
             for k in 0..3 {
                 assert!(vec_dist(&g[k], &metric[k]) < tol * scale, "{seq_s} metric");
             }
@@ -152,7 +152,7 @@ host_tests::per_type! {
                 vec_dist(&back, &rates) < 10.0 * tol * scale,
                 "{seq_s} θ̇ = g⁻¹p"
             );
-            let hm = try_euler_hamiltonian(&inertia, &e, pt).unwrap().to_f64();
+            let hm = euler_hamiltonian(&inertia, &e, pt).unwrap().to_f64();
             assert!(
                 (hm - t_euler).abs() < 10.0 * tol * scale,
                 "{seq_s} H: {hm} vs {t_euler}"
@@ -171,7 +171,7 @@ host_tests::per_type! {
         ))
         .unwrap();
         for seq_s in all_sequences() {
-            let seq = EulerSequence::parse(&seq_s).unwrap();
+            let seq = EulerSequence::try_from_str(&seq_s).unwrap();
             for pole in poles(&seq_s) {
                 for d in [0.0, 0.5 * thr, -0.5 * thr] {
                     let e = Euler::new(seq, [0.3, pole + d, -0.2].map(T::from_f64));
@@ -191,7 +191,7 @@ host_tests::per_type! {
                         try_euler_rates_from_momenta(&inertia, &e, p),
                         Err(Error::Singular)
                     );
-                    assert_eq!(try_euler_hamiltonian(&inertia, &e, p), Err(Error::Singular));
+                    assert_eq!(euler_hamiltonian(&inertia, &e, p), Err(Error::Singular));
                     // The maps into the Euler momenta are defined at the pole.
                     assert!(e.try_euler_momenta_from_body(Vec3::X).is_ok());
                 }
@@ -229,14 +229,14 @@ host_tests::per_type! {
         let (bt, rt) = (T::from_f64(beta), rates.map(T::from_f64));
         let (sb, cb) = beta.sin_cos();
         // (6.7.31)–(6.7.32a): L from the Cartesian body rates.
-        let l = top.try_lagrangian(bt, rt).unwrap().to_f64();
+        let l = top.lagrangian(bt, rt).unwrap().to_f64();
         assert!((l - lagrangian_ref(beta, rates)).abs() < tol, "(6.7.32a)");
         // (6.7.32b): the spherical top.
         let sph = SymmetricTop::try_new(T::from_f64(2.0), T::from_f64(2.0)).unwrap();
         let [ad, bd, gd] = rates;
         let l_sph = 0.5 * 2.0 * (ad * ad + bd * bd + 2.0 * ad * gd * cb + gd * gd);
         assert!(
-            (sph.try_lagrangian(bt, rt).unwrap().to_f64() - l_sph).abs() < tol,
+            (sph.lagrangian(bt, rt).unwrap().to_f64() - l_sph).abs() < tol,
             "(6.7.32b)"
         );
         // (6.7.33): the metric, against g = Eᵀ I E from (6.7.5d) and the general library form.
@@ -250,7 +250,7 @@ host_tests::per_type! {
         };
         let i_diag = [[I_T, 0.0, 0.0], [0.0, I_T, 0.0], [0.0, 0.0, I_3]];
         let g_ref = mat_mul(&mat_mul(&transpose(&e), &i_diag), &e);
-        let g = m64(&top.try_metric(bt).unwrap());
+        let g = m64(&top.metric(bt).unwrap());
         let inertia = Inertia::try_from_principal(Vec3::new(
             T::from_f64(I_T),
             T::from_f64(I_T),
@@ -258,7 +258,7 @@ host_tests::per_type! {
         ))
         .unwrap();
         let euler = Euler::new(EulerSequence::ZYZ, [0.2, beta, 0.37].map(T::from_f64));
-        let g_gen = m64(&try_euler_metric(&inertia, &euler).unwrap());
+        let g_gen = m64(&euler_metric(&inertia, &euler).unwrap());
         for i in 0..3 {
             assert!(vec_dist(&g[i], &g_ref[i]) < tol, "(6.7.33)");
             assert!(vec_dist(&g_gen[i], &g_ref[i]) < tol, "(6.7.33) general");
@@ -273,7 +273,7 @@ host_tests::per_type! {
         assert!(vec_dist(&p_gen, &p_ref) < tol);
         let pt = p_ref.map(T::from_f64);
         // (6.7.35b): H in Euler momenta is the Cartesian ½ΣJᵢ²/Iᵢ, and equals L at these momenta.
-        let hm = top.try_hamiltonian(bt, pt).unwrap().to_f64();
+        let hm = top.hamiltonian(bt, pt).unwrap().to_f64();
         assert!((hm - hamiltonian_ref(beta, p_ref)).abs() < tol, "(6.7.35b)");
         assert!((hm - l).abs() < tol);
         // (6.7.35a): θ̇ = ∂H/∂p, by central differences of the Cartesian H, and = g⁻¹p.
@@ -291,8 +291,8 @@ host_tests::per_type! {
             );
         }
         // (6.7.36): J̇_β = −∂H/∂β at fixed p = ∂L/∂β at fixed θ̇.
-        let torque_h = top.try_beta_torque(bt, pt).unwrap().to_f64();
-        let torque_l = top.try_beta_torque_from_rates(bt, rt).unwrap().to_f64();
+        let torque_h = top.beta_torque(bt, pt).unwrap().to_f64();
+        let torque_l = top.beta_torque_from_rates(bt, rt).unwrap().to_f64();
         let fd_h =
             -(hamiltonian_ref(beta + h, p_ref) - hamiltonian_ref(beta - h, p_ref)) / (2.0 * h);
         let fd_l = (lagrangian_ref(beta + h, rates) - lagrangian_ref(beta - h, rates)) / (2.0 * h);
@@ -362,12 +362,12 @@ host_tests::per_type! {
         // Gimbal lock and bad input.
         assert_eq!(top.try_rates(T::ZERO, pt), Err(Error::Singular));
         assert_eq!(
-            top.try_hamiltonian(T::from_f64(core::f64::consts::PI), pt),
+            top.hamiltonian(T::from_f64(core::f64::consts::PI), pt),
             Err(Error::Singular)
         );
-        assert_eq!(top.try_beta_torque(T::ZERO, pt), Err(Error::Singular));
+        assert_eq!(top.beta_torque(T::ZERO, pt), Err(Error::Singular));
         assert!(
-            top.try_beta_torque_from_rates(T::ZERO, rt)
+            top.beta_torque_from_rates(T::ZERO, rt)
                 .unwrap()
                 .to_f64()
                 .abs()
@@ -465,7 +465,7 @@ fn seed_6_7_10_zyz_matrices_and_6_7_15_factorisations() {
 #[test]
 fn rotation_factorises_through_euler_coordinates_all_conventions() {
     for seq_s in all_sequences() {
-        let seq = EulerSequence::parse(&seq_s).unwrap();
+        let seq = EulerSequence::try_from_str(&seq_s).unwrap();
         let b = if is_proper(&seq_s) { 0.9 } else { 0.4 };
         let ang = [0.7, b, -1.3];
         let e = Euler::new(seq, ang);
@@ -525,9 +525,9 @@ fn symmetric_top_motion_6_7_35_and_6_7_36() {
         );
         // (6.7.36): dJ_β/dt.
         let torque_fd = (pp[1] - pm[1]) / (2.0 * h);
-        let torque = top.try_beta_torque(a[1], p).unwrap();
+        let torque = top.beta_torque(a[1], p).unwrap();
         assert!((torque - torque_fd).abs() < 1e-5, "{torque} vs {torque_fd}");
-        let torque_l = top.try_beta_torque_from_rates(a[1], rates).unwrap();
+        let torque_l = top.beta_torque_from_rates(a[1], rates).unwrap();
         assert!((torque - torque_l).abs() < 1e-12);
     }
 }

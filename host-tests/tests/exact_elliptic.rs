@@ -1,4 +1,4 @@
-//! Elliptic integrals and Jacobi functions (`gyrostat::dynamics::elliptic`) against identities,
+//! Elliptic integrals and Jacobi functions (`gyrostat::dynamics::closed_form::elliptic`) against identities,
 //! known values and the independent quadrature reference of `host_tests::ref_exact`.
 //!
 //! Per-type tolerances: f32 results carry the f32 rounding of the argument reduction
@@ -10,7 +10,7 @@
 #![allow(clippy::excessive_precision)]
 
 use gyrostat::Error;
-use gyrostat::dynamics::elliptic::{
+use gyrostat::dynamics::closed_form::elliptic::{
     amplitude, carlson_rf, carlson_rj, complete_k, incomplete_f, incomplete_pi, sn_cn_dn,
 };
 use host_tests::ref_exact;

@@ -1,4 +1,4 @@
-//! The exact free rigid body (`gyrostat::dynamics::free_rigid_body`) against an independent
+//! The exact free rigid body (`gyrostat::dynamics::closed_form::free_rigid_body`) against an independent
 //! tiny-step RK4 integration of Euler's equations and the attitude kinematics
 //! (`host_tests::ref_exact`), for f32 and f64.
 //!
@@ -10,7 +10,7 @@
 //! passes close to the saddle (`1 − m < 1e-3`), where ψ is a small multiple of a difference of
 //! Π values of order 10⁴.
 
-use gyrostat::dynamics::free_rigid_body::{FreeRigidBody, Regime};
+use gyrostat::dynamics::closed_form::free_rigid_body::{FreeRigidBody, Regime};
 use gyrostat::dynamics::{Inertia, State};
 use gyrostat::{Axis, Error, Mat3, Quat, Real, UnitQuat, Vec3};
 use host_tests::cast::vec3;
@@ -166,7 +166,7 @@ host_tests::per_type! {
             let refs = ref_exact::integrate_rigid(inertia, s0, &times, 5e-4);
             let (mut ej, mut eq): (f64, f64) = (0.0, 0.0);
             for (t, r) in times.iter().zip(refs.iter()) {
-                let (q, j) = parts(body.state_at(T::from_f64(*t)));
+                let (q, j) = parts(body.state_at_unchecked(T::from_f64(*t)));
                 let j = [j.x.to_f64(), j.y.to_f64(), j.z.to_f64()];
                 let q = [
                     q.w().to_f64(),
@@ -276,7 +276,7 @@ host_tests::per_type! {
                 &|_, _, _| [0.0; 3],
                 &|_| ([0.0; 3], [0.0; 3]),
             );
-            let s = body.state_at(T::from_f64(t_end));
+            let s = body.state_at_unchecked(T::from_f64(t_end));
             let q = s.attitude.to_array().map(|c| c.to_f64());
             let w = body.body_rates_at(T::from_f64(t_end)).to_array();
             let dw = (0..3)
@@ -334,12 +334,12 @@ fn separatrix_is_typed_and_finite() {
     let jn = j0.norm();
     for k in 0..200 {
         let t = k as f64 * 0.5;
-        let (q, j) = parts(body.state_at(t));
+        let (q, j) = parts(body.state_at_unchecked(t));
         assert!(j.is_finite() && q.as_quat().is_finite());
         assert!((j.norm() - jn).abs() < 1e-13);
     }
     // J tends to the intermediate axis (sign of J₂ for t → +∞ fixed by the branch).
-    let (_, j_late) = parts(body.state_at(100.0));
+    let (_, j_late) = parts(body.state_at_unchecked(100.0));
     assert!((j_late.y.abs() - jn).abs() < 1e-10, "{j_late:?}");
     // Against the reference over a moderate span (before rounding departs from the separatrix).
     let times: Vec<f64> = (1..=10).map(|k| k as f64).collect();
@@ -349,7 +349,7 @@ fn separatrix_is_typed_and_finite() {
     };
     let refs = ref_exact::integrate_rigid([1.0, 2.0, 3.0], s0, &times, 5e-4);
     for (t, r) in times.iter().zip(refs.iter()) {
-        let (q, j) = parts(body.state_at(*t));
+        let (q, j) = parts(body.state_at_unchecked(*t));
         let e = ((j.x - r.j[0]).abs())
             .max((j.y - r.j[1]).abs())
             .max((j.z - r.j[2]).abs());
@@ -364,7 +364,7 @@ fn separatrix_is_typed_and_finite() {
     )
     .unwrap();
     for k in 0..100 {
-        let (q, j) = parts(b32.state_at(k as f32));
+        let (q, j) = parts(b32.state_at_unchecked(k as f32));
         assert!(j.is_finite() && q.as_quat().is_finite());
     }
 }
@@ -377,7 +377,7 @@ fn conserved_quantities() {
     let e0 = body.energy();
     for k in 0..2000 {
         let t = k as f64 * 0.37;
-        let (q, j) = parts(body.state_at(t));
+        let (q, j) = parts(body.state_at_unchecked(t));
         let w = body.body_rates_at(t);
         assert!((q.rotate(j) - l0).norm() < 1e-10 * l0.norm(), "t={t}");
         assert!((0.5 * j.dot(w) - e0).abs() < 1e-13 * e0);
@@ -442,7 +442,7 @@ mod properties {
             prop_assume!(j0.norm() > 1e-3);
             let q0 = UnitQuat::try_from_axis_angle(Vec3::new(0.3, -0.2, 0.9), 1.1).unwrap();
             let body = free_body(Vec3::new(a, b, c), j0, q0).unwrap();
-            let (q, j) = parts(body.state_at(t));
+            let (q, j) = parts(body.state_at_unchecked(t));
             prop_assert!(j.is_finite() && q.as_quat().is_finite());
             let jn = j0.norm();
             prop_assert!((j.norm() - jn).abs() <= 1e-12 * jn);
@@ -457,7 +457,7 @@ mod properties {
                 UnitQuat::IDENTITY,
             );
             if let Ok(b32) = b32 {
-                let (q32, j32) = parts(b32.state_at(t as f32));
+                let (q32, j32) = parts(b32.state_at_unchecked(t as f32));
                 prop_assert!(j32.is_finite() && q32.as_quat().is_finite());
                 prop_assert!((j32.norm() as f64 - jn).abs() <= 2e-6 * jn);
             }

@@ -31,7 +31,7 @@ use std::io::Write;
 use std::process::{Command, Stdio};
 
 use gyrostat::fixed::Q30;
-use gyrostat::propagation::coning::coning2_update;
+use gyrostat::propagation::kernels::coning2_update;
 use gyrostat::{Quat, UnitQuat, Vec3};
 use host_tests::cast::{self, vec3};
 use host_tests::examples::{build_example, firmware_output};

@@ -153,7 +153,7 @@ fn run_rates<T: Real, A: PropagatedAttitude<T>>(
     n: usize,
     rate: &(dyn Fn(usize) -> Vec3<T> + Sync),
 ) -> Q {
-    let mut integ = RateIntegrator::new(q0, method, Normalization::Exact, dt)
+    let mut integ = RateIntegrator::try_new(q0, method, Normalization::Exact, dt)
         .unwrap()
         .with_step_remainder(dt_lo);
     for k in 0..=n {

@@ -9,8 +9,8 @@
 //! see the assertion bounds and BENCHMARKS.md ("Propagation").
 
 use gyrostat::propagation::Normalization;
-use gyrostat::propagation::coning::coning2_update;
-use gyrostat::propagation::exponential::step_constant_rate_unchecked;
+use gyrostat::propagation::kernels::coning2_update;
+use gyrostat::propagation::kernels::step_constant_rate;
 use gyrostat::propagation::normalization::norm_deviation;
 use gyrostat::{UnitQuat, Vec3};
 use host_tests::reference::quat_angle;
@@ -38,7 +38,7 @@ fn run(norm: Normalization, two_sample: bool) -> (f64, Vec<(usize, f64)>) {
             q = coning2_update(q, d, d);
             k += 2;
         } else {
-            q = norm.apply(step_constant_rate_unchecked(q, w, dt));
+            q = norm.apply(step_constant_rate(q, w, dt));
             k += 1;
         }
         worst_norm = worst_norm.max(f64::from(norm_deviation(q).abs()));

@@ -7,17 +7,17 @@
 //! table; `GYROSTAT_CAMPAIGN_N=1000000 GYROSTAT_CAMPAIGN_WRITE=1` is the long setting that
 //! writes it into `ROBUSTNESS.md`.
 
-use gyrostat::dynamics::analysis::{
+use gyrostat::dynamics::closed_form::analysis::{
     constant_energy_radius, direction, gyro_multipoles, momentum_ellipsoid_radii,
     rotational_energy, separatrix_angle, small_motion, symmetric_top_rates,
     velocity_ellipsoid_radii,
 };
-use gyrostat::dynamics::elliptic::{
+use gyrostat::dynamics::closed_form::elliptic::{
     amplitude, carlson_rf, carlson_rj, complete_k, incomplete_f, incomplete_pi, sn_cn_dn,
 };
-use gyrostat::dynamics::euler_coordinates::{
-    SymmetricTop, try_euler_hamiltonian, try_euler_metric, try_euler_momenta,
-    try_euler_rates_from_momenta, try_kinetic_energy,
+use gyrostat::dynamics::closed_form::euler_coordinates::{
+    SymmetricTop, euler_hamiltonian, euler_metric, kinetic_energy, try_euler_momenta,
+    try_euler_rates_from_momenta,
 };
 use gyrostat::dynamics::inertia::symmetric_eigen;
 use gyrostat::dynamics::mass::{
@@ -31,8 +31,8 @@ use gyrostat::dynamics::{
     BodyHamiltonian, Control, Drift, DriftMonitor, FreeRigidBody, Gyrostat, Inertia, Integrator,
     Quartic, State, Wheel, WheelCommand, angular_acceleration, lab_momentum, momentum_norm,
 };
-use gyrostat::propagation::MAX_STEP_ANGLE;
 use gyrostat::rotation::Euler;
+use gyrostat::step_limit::MAX_STEP_ANGLE;
 use gyrostat::{Axis, Mat3, Real, Vec3};
 use host_tests::campaign::*;
 use host_tests::family;
@@ -245,7 +245,7 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
             })
         }),
         family!(
-            "BodyHamiltonian::try_new, energy, omega, hessian, momentum_from_omega",
+            "BodyHamiltonian::try_new, energy, omega, hessian, try_momentum_from_omega",
             |g| {
                 let i = if g.rng.chance(0.5) {
                     g.diagonal_inertia()
@@ -262,7 +262,7 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                 let j = g.momentum(&i);
                 probe(&(i, spin, q, w, j), || {
                     let h = BodyHamiltonian::try_new(i, spin, q)?;
-                    let jj = h.momentum_from_omega(w)?;
+                    let jj = h.try_momentum_from_omega(w)?;
                     finite_vec(jj)?;
                     if j.is_finite() && in_rate_domain(&h, j, h.spin()) {
                         // The infallible maps on their documented domain.
@@ -384,7 +384,7 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
             }
         ),
         family!(
-            "Gyrostat: state_from_omega, omega, energy, invariants, rotor_momentum; angular_acceleration",
+            "Gyrostat: try_state_from_omega, omega, energy, invariants, rotor_momentum; angular_acceleration",
             |g| {
                 let body = Gyrostat::from(model(g));
                 let (q, w) = (g.unit_quat(), g.vec());
@@ -404,7 +404,7 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                     }
                     let wdot = angular_acceleration(&i, w.try_finite()?, h, hd, tau);
                     let _ = wdot; // arithmetic on the caller's magnitudes (domain: see the docs)
-                    let s = body.state_from_omega(q, w, [])?;
+                    let s = body.try_state_from_omega(q, w, [])?;
                     state_ok(&s)
                 })
             }
@@ -608,11 +608,11 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                     [g.scalar(), g.scalar(), g.scalar()],
                 );
                 probe(&(i, e, rates, p), || {
-                    finite_mat(&try_euler_metric(&i, &e)?)?;
+                    finite_mat(&euler_metric(&i, &e)?)?;
                     finite_all(&try_euler_momenta(&i, &e, rates)?)?;
-                    finite(try_kinetic_energy(&i, &e, rates)?)?;
+                    finite(kinetic_energy(&i, &e, rates)?)?;
                     finite_all(&try_euler_rates_from_momenta(&i, &e, p)?)?;
-                    finite(try_euler_hamiltonian(&i, &e, p)?)
+                    finite(euler_hamiltonian(&i, &e, p)?)
                 })
             }
         ),
@@ -629,13 +629,13 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
             );
             probe(&(it, ia, beta, rates, p), || {
                 let top = SymmetricTop::try_new(it, ia)?;
-                finite(top.try_lagrangian(beta, rates)?)?;
-                finite_mat(&top.try_metric(beta)?)?;
+                finite(top.lagrangian(beta, rates)?)?;
+                finite_mat(&top.metric(beta)?)?;
                 finite_all(&top.try_momenta(beta, rates)?)?;
-                finite(top.try_beta_torque_from_rates(beta, rates)?)?;
+                finite(top.beta_torque_from_rates(beta, rates)?)?;
                 finite_all(&top.try_rates(beta, p)?)?;
-                finite(top.try_hamiltonian(beta, p)?)?;
-                finite(top.try_beta_torque(beta, p)?)
+                finite(top.hamiltonian(beta, p)?)?;
+                finite(top.beta_torque(beta, p)?)
             })
         }),
         family!("semi_rigid: StretchMode, SpringRotor", |g| {
@@ -665,7 +665,7 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
             })
         }),
         family!(
-            "semi_rigid: SemiRigidRotor (symmetric, from_radial_springs), radial_stretches",
+            "semi_rigid: SemiRigidRotor (try_symmetric, try_from_radial_springs), radial_stretches",
             |g| {
                 let arr = *g.rng.pick(&[
                     Arrangement::Octahedral,
@@ -684,13 +684,13 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                     if radial_stretches(&pts, wv, j, &mut out).is_ok() {
                         finite_all(&out[..n])?;
                     }
-                    if let Ok(r) = SemiRigidRotor::from_radial_springs(&pts, wv) {
+                    if let Ok(r) = SemiRigidRotor::try_from_radial_springs(&pts, wv) {
                         inertia_ok(&r.rest_inertia())?;
                     }
-                    let r = SemiRigidRotor::symmetric(arr, m, wv, r0)?;
+                    let r = SemiRigidRotor::try_symmetric(arr, m, wv, r0)?;
                     inertia_ok(&r.rest_inertia())?;
                     finite_all(&[r.t4(), r.isotropic(basis)])?;
-                    let _ = r.body_hamiltonian(basis)?;
+                    let _ = r.try_body_hamiltonian(basis)?;
                     finite(r.energy(j)?)?;
                     unit(r.isotropic_turn(basis, j, elapsed)?)
                 })

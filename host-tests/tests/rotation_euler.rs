@@ -40,13 +40,13 @@ fn distances() -> Vec<f64> {
 fn sweep<T: Tolerance>() -> f64 {
     let mut worst: f64 = 0.0;
     for seq_s in all_sequences() {
-        let seq = EulerSequence::parse(&seq_s).unwrap();
+        let seq = EulerSequence::try_from_str(&seq_s).unwrap();
         for pole in poles(&seq_s) {
             for d in distances() {
                 for &(a, c) in &OUTER {
                     let angles = [a, pole + d, c];
                     // Input quaternion: f64 product of elementary rotations, rounded to T.
-                    let q = Euler::new(seq, angles).to_unit_quat();
+                    let q = Euler::new(seq, angles).to_unit_quat_unchecked();
                     let q = UnitQuat::<T>::new_unchecked(Quat::new(
                         T::from_f64(q.w()),
                         T::from_f64(q.x()),
@@ -130,10 +130,10 @@ host_tests::per_type! {
     #[test]
     fn exact_pole_is_flagged() {
         for seq_s in all_sequences() {
-            let seq = EulerSequence::parse(&seq_s).unwrap();
+            let seq = EulerSequence::try_from_str(&seq_s).unwrap();
             for pole in poles(&seq_s) {
                 for &(a, c) in &OUTER {
-                    let q = Euler::new(seq, [a, pole, c].map(T::from_f64)).to_unit_quat();
+                    let q = Euler::new(seq, [a, pole, c].map(T::from_f64)).to_unit_quat_unchecked();
                     let sol = q.to_euler(seq, GimbalPolicy::ZeroThird);
                     assert!(
                         sol.singularity.is_some(),
@@ -162,12 +162,12 @@ host_tests::per_type! {
             core::f64::consts::PI,
         ];
         for seq_s in all_sequences() {
-            let seq = EulerSequence::parse(&seq_s).unwrap();
+            let seq = EulerSequence::try_from_str(&seq_s).unwrap();
             for &a in &vals {
                 for &b in &vals {
                     for &c in &vals {
                         let ang = [a, b, c].map(T::from_f64);
-                        let q = Euler::new(seq, ang).to_unit_quat();
+                        let q = Euler::new(seq, ang).to_unit_quat_unchecked();
                         let r_ref = euler_matrix(&seq_s, ang.map(|x| x.to_f64()));
                         let err = rot_dist(&r_ref, &quat_matrix(q64(q)));
                         assert!(err <= T::CONTRACT, "{seq_s} {a} {b} {c}: {err:e}");
@@ -185,10 +185,10 @@ host_tests::per_type! {
 #[test]
 fn angles_round_trip_off_pole() {
     for seq_s in all_sequences() {
-        let seq = EulerSequence::parse(&seq_s).unwrap();
+        let seq = EulerSequence::try_from_str(&seq_s).unwrap();
         let b = if is_proper(&seq_s) { 1.1 } else { -0.6 };
         let input: [f64; 3] = [2.3, b, -0.4];
-        let q = Euler::new(seq, input).to_unit_quat();
+        let q = Euler::new(seq, input).to_unit_quat_unchecked();
         let out = q.to_euler_angles(seq);
         for k in 0..3 {
             assert!((out[k] - input[k]).abs() < 1e-14, "{seq_s}: {out:?}");
@@ -206,16 +206,19 @@ fn angles_round_trip_off_pole() {
 
 #[test]
 fn sequence_parsing_matches_scipy_notation() {
-    assert_eq!(EulerSequence::parse("ZYX").unwrap(), EulerSequence::ZYX);
     assert_eq!(
-        EulerSequence::parse("zyx").unwrap().frame(),
+        EulerSequence::try_from_str("ZYX").unwrap(),
+        EulerSequence::ZYX
+    );
+    assert_eq!(
+        EulerSequence::try_from_str("zyx").unwrap().frame(),
         Frame::Extrinsic
     );
     for bad in ["", "ZY", "ZYXZ", "Zyx", "ZZX", "XYY", "abc", "zy1"] {
-        assert!(EulerSequence::parse(bad).is_err(), "{bad}");
+        assert!(EulerSequence::try_from_str(bad).is_err(), "{bad}");
     }
     for s in all_sequences() {
-        assert_eq!(EulerSequence::parse(&s).unwrap().to_string(), s);
+        assert_eq!(EulerSequence::try_from_str(&s).unwrap().to_string(), s);
     }
     assert_eq!(EulerSequence::ALL.len(), 24);
     let mut names: Vec<String> = EulerSequence::ALL.iter().map(|s| s.to_string()).collect();
@@ -228,8 +231,10 @@ fn sequence_parsing_matches_scipy_notation() {
 /// Intrinsic "ABC" with (a, b, c) is extrinsic "cba" with (c, b, a) (scipy's identity).
 #[test]
 fn intrinsic_is_reversed_extrinsic() {
-    let q1 = Euler::new(EulerSequence::parse("XYZ").unwrap(), [0.1, 0.2, 0.3]).to_unit_quat();
-    let q2 = Euler::new(EulerSequence::parse("zyx").unwrap(), [0.3, 0.2, 0.1]).to_unit_quat();
+    let q1 = Euler::new(EulerSequence::try_from_str("XYZ").unwrap(), [0.1, 0.2, 0.3])
+        .to_unit_quat_unchecked();
+    let q2 = Euler::new(EulerSequence::try_from_str("zyx").unwrap(), [0.3, 0.2, 0.1])
+        .to_unit_quat_unchecked();
     assert!(q1.angle_to(q2) < 1e-15);
 }
 
@@ -239,8 +244,9 @@ const DEG: f64 = core::f64::consts::PI / 180.0;
 /// exact values are φ = 80°, ϑ = 33.69°, Θ = 128.68°).
 #[test]
 fn seed_6_6_6a_euler_to_axis_angles() {
-    let q = Euler::new(EulerSequence::ZYZ, [50.0 * DEG, 60.0 * DEG, 70.0 * DEG]).to_unit_quat();
-    let p = PolarAxisAngle::from_spinor(q);
+    let q = Euler::new(EulerSequence::ZYZ, [50.0 * DEG, 60.0 * DEG, 70.0 * DEG])
+        .to_unit_quat_unchecked();
+    let p = PolarAxisAngle::from_unit_quat(q);
     assert!((p.phi / DEG - 80.0).abs() < 0.5, "{}", p.phi / DEG);
     assert!((p.theta / DEG - 34.0).abs() < 0.5, "{}", p.theta / DEG);
     assert!((p.angle / DEG - 129.0).abs() < 0.5, "{}", p.angle / DEG);
@@ -263,23 +269,26 @@ fn seed_6_6_6a_euler_to_axis_angles() {
 /// spinor is also −1), and Θ = 129° + 360° is the spinor of |230°, −60°, 250°⟩ = −R(50°, 60°, 70°).
 #[test]
 fn seed_6_6_6cd_four_pi_sequence() {
-    let q0 = Euler::new(EulerSequence::ZYZ, [50.0 * DEG, 60.0 * DEG, 70.0 * DEG]).to_unit_quat();
-    let p = PolarAxisAngle::from_spinor(q0);
+    let q0 = Euler::new(EulerSequence::ZYZ, [50.0 * DEG, 60.0 * DEG, 70.0 * DEG])
+        .to_unit_quat_unchecked();
+    let p = PolarAxisAngle::from_unit_quat(q0);
     // (6.6.6b): Θ = 0 is the origin |φ − 90°, 0, 90° − φ⟩ = |−10°, 0, 10°⟩, spinor +1.
-    let origin = Euler::new(EulerSequence::ZYZ, [-10.0 * DEG, 0.0, 10.0 * DEG]).to_unit_quat();
+    let origin =
+        Euler::new(EulerSequence::ZYZ, [-10.0 * DEG, 0.0, 10.0 * DEG]).to_unit_quat_unchecked();
     assert!((origin.w() - 1.0).abs() < 1e-15);
     // (6.6.6c)
     let full = PolarAxisAngle::new(p.phi, p.theta, 2.0 * core::f64::consts::PI)
         .try_to_unit_quat()
         .unwrap();
     let second_origin =
-        Euler::new(EulerSequence::ZYZ, [170.0 * DEG, 0.0, 190.0 * DEG]).to_unit_quat();
+        Euler::new(EulerSequence::ZYZ, [170.0 * DEG, 0.0, 190.0 * DEG]).to_unit_quat_unchecked();
     assert!((full.w() + 1.0).abs() < 1e-15 && (second_origin.w() + 1.0).abs() < 1e-15);
     // (6.6.6d): same spinor, sign included.
     let q489 = PolarAxisAngle::new(p.phi, p.theta, p.angle + 2.0 * core::f64::consts::PI)
         .try_to_unit_quat()
         .unwrap();
-    let e = Euler::new(EulerSequence::ZYZ, [230.0 * DEG, -60.0 * DEG, 250.0 * DEG]).to_unit_quat();
+    let e = Euler::new(EulerSequence::ZYZ, [230.0 * DEG, -60.0 * DEG, 250.0 * DEG])
+        .to_unit_quat_unchecked();
     let d = (q489.into_quat() - e.into_quat()).norm();
     assert!(d < 1e-14, "{q489:?} vs {e:?}");
     assert!((q489.into_quat() + q0.into_quat()).norm() < 1e-14);
@@ -295,9 +304,10 @@ fn seed_6_6_6cd_four_pi_sequence() {
 #[test]
 fn seed_gimbal_equivalence() {
     let (alpha, gamma): (f64, f64) = (0.7, -0.2);
-    let q = Euler::new(EulerSequence::ZYZ, [alpha, 0.0, gamma]).to_unit_quat();
+    let q = Euler::new(EulerSequence::ZYZ, [alpha, 0.0, gamma]).to_unit_quat_unchecked();
     for phi in [-2.0, -0.3, 0.0, 0.5, 3.0] {
-        let q2 = Euler::new(EulerSequence::ZYZ, [alpha - phi, 0.0, gamma + phi]).to_unit_quat();
+        let q2 = Euler::new(EulerSequence::ZYZ, [alpha - phi, 0.0, gamma + phi])
+            .to_unit_quat_unchecked();
         assert!(q.angle_to(q2) < 1e-15);
     }
     let sol = q.to_euler(EulerSequence::ZYZ, GimbalPolicy::ZeroFirst);
@@ -318,7 +328,8 @@ fn seed_gimbal_equivalence() {
         "{a} {c}"
     );
     // Upper pole β = π: only α − γ is determined.
-    let q = Euler::new(EulerSequence::ZYZ, [alpha, core::f64::consts::PI, gamma]).to_unit_quat();
+    let q = Euler::new(EulerSequence::ZYZ, [alpha, core::f64::consts::PI, gamma])
+        .to_unit_quat_unchecked();
     let sol = q.to_euler(EulerSequence::ZYZ, GimbalPolicy::ZeroThird);
     let lock = sol.singularity.unwrap();
     assert_eq!((lock.pole, lock.sign), (Pole::Upper, -1.0));
@@ -334,7 +345,7 @@ fn closest_to_is_continuous_through_the_pole() {
     for k in 0..=40 {
         let pitch = 1.2 + (core::f64::consts::FRAC_PI_2 - 1.2) * (k as f64 / 20.0);
         let pitch = pitch.min(core::f64::consts::FRAC_PI_2);
-        let q = Euler::new(seq, [0.4, pitch, -0.3]).to_unit_quat();
+        let q = Euler::new(seq, [0.4, pitch, -0.3]).to_unit_quat_unchecked();
         let sol = q.to_euler(seq, GimbalPolicy::ClosestTo(prev));
         let a = sol.euler.angles;
         assert!(

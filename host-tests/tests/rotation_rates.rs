@@ -19,7 +19,7 @@ host_tests::per_type! {
         let tol = T::per_type(2e-6, 1e-9);
         let h = 1e-5;
         for seq_s in all_sequences() {
-            let seq = EulerSequence::parse(&seq_s).unwrap();
+            let seq = EulerSequence::try_from_str(&seq_s).unwrap();
             let b = if is_proper(&seq_s) { 0.9 } else { 0.4 };
             let ang = [0.7, b, -1.3];
             let rates = [0.3, -0.8, 1.1];
@@ -61,7 +61,7 @@ host_tests::per_type! {
     fn inverse_rates_are_singular_at_gimbal_lock() {
         let thr = euler_rate_min_det::<T>().to_f64();
         for seq_s in all_sequences() {
-            let seq = EulerSequence::parse(&seq_s).unwrap();
+            let seq = EulerSequence::try_from_str(&seq_s).unwrap();
             for p in poles(&seq_s) {
                 for d in [0.0, 0.5 * thr, -0.5 * thr] {
                     let e = Euler::new(seq, [0.3, p + d, -0.2].map(T::from_f64));

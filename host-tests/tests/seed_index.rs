@@ -513,7 +513,7 @@ fn parser_self_checks() {
     assert!(check_item("dynamics::mass::no_such_fn", &repo().join("src")).is_err());
     assert!(
         check_item(
-            "dynamics::analysis::inertia_from_point_masses",
+            "dynamics::closed_form::analysis::inertia_from_point_masses",
             &repo().join("src")
         )
         .is_err()

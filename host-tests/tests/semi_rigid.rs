@@ -265,8 +265,8 @@ fn symmetric_rotors_match_direct_minimisation_6_8_16_to_6_8_20() {
         ),
     ];
     for (arr, i0, kappa, octa) in cases {
-        let rotor = SemiRigidRotor::symmetric(arr, M, W, R0).unwrap();
-        let general = SemiRigidRotor::from_radial_springs(&positions(arr), W).unwrap();
+        let rotor = SemiRigidRotor::try_symmetric(arr, M, W, R0).unwrap();
+        let general = SemiRigidRotor::try_from_radial_springs(&positions(arr), W).unwrap();
         assert_eq!(rotor, general);
         let m = v64(rotor.rest_inertia().principal_moments());
         assert!(
@@ -316,7 +316,7 @@ fn symmetric_rotors_match_direct_minimisation_6_8_16_to_6_8_20() {
                 );
                 // Each body basis gives the same energy through BodyHamiltonian + t|J|⁴.
                 for b in [QuarticBasis::Octahedral, QuarticBasis::Cubic] {
-                    let h = rotor.body_hamiltonian(b).unwrap();
+                    let h = rotor.try_body_hamiltonian(b).unwrap();
                     let e_b = h.energy(Vec3::from_array(j)) + rotor.isotropic(b) * j2 * j2;
                     assert!((e_b - e).abs() < 1e-15 * e, "{arr:?} {b:?}");
                 }
@@ -375,7 +375,7 @@ fn f32_coefficients_match_closed_forms() {
         (Arrangement::Cubic, 9.0 * c / 4096.0),
         (Arrangement::Tetrahedral, 9.0 * c / 512.0),
     ] {
-        let r = SemiRigidRotor::symmetric(arr, M as f32, W as f32, R0 as f32).unwrap();
+        let r = SemiRigidRotor::try_symmetric(arr, M as f32, W as f32, R0 as f32).unwrap();
         let iso = r.isotropic(arr.natural_basis()) as f64;
         // f32: the inputs' rounding (≤ 6e-8 each, raised to the 6th power of r₀) and ~20 roundings.
         assert!(
@@ -389,11 +389,11 @@ fn f32_coefficients_match_closed_forms() {
 #[test]
 fn semi_rigid_errors_are_typed() {
     let mut pts = positions(Arrangement::Octahedral);
-    assert!(SemiRigidRotor::from_radial_springs(&pts, W).is_ok());
+    assert!(SemiRigidRotor::try_from_radial_springs(&pts, W).is_ok());
     // One mass moved by 1e-3 of its radius along its rod: no longer cubic.
     pts[0].1 = pts[0].1.scale(1.001);
     assert_eq!(
-        SemiRigidRotor::from_radial_springs(&pts, W),
+        SemiRigidRotor::try_from_radial_springs(&pts, W),
         Err(Error::InvalidArgument)
     );
     // A cube rotated off the body axes: cubic, but not about these axes.
@@ -403,25 +403,25 @@ fn semi_rigid_errors_are_typed() {
         .map(|(m, r)| (*m, q.rotate(*r)))
         .collect();
     assert_eq!(
-        SemiRigidRotor::from_radial_springs(&rotated, W),
+        SemiRigidRotor::try_from_radial_springs(&rotated, W),
         Err(Error::InvalidArgument)
     );
     let mut at_origin = positions(Arrangement::Octahedral);
     at_origin.push((M, Vec3::ZERO));
     assert_eq!(
-        SemiRigidRotor::from_radial_springs(&at_origin, W),
+        SemiRigidRotor::try_from_radial_springs(&at_origin, W),
         Err(Error::ZeroNorm)
     );
     assert_eq!(
-        SemiRigidRotor::<f64>::from_radial_springs(&[], W),
+        SemiRigidRotor::<f64>::try_from_radial_springs(&[], W),
         Err(Error::InvalidArgument)
     );
     assert_eq!(
-        SemiRigidRotor::symmetric(Arrangement::Cubic, M, 0.0, R0),
+        SemiRigidRotor::try_symmetric(Arrangement::Cubic, M, 0.0, R0),
         Err(Error::InvalidArgument)
     );
     assert_eq!(
-        SemiRigidRotor::symmetric(Arrangement::Cubic, M, W, f64::NAN),
+        SemiRigidRotor::try_symmetric(Arrangement::Cubic, M, W, f64::NAN),
         Err(Error::NonFinite)
     );
     let pts = positions(Arrangement::Tetrahedral);
@@ -430,7 +430,7 @@ fn semi_rigid_errors_are_typed() {
         radial_stretches(&pts, W, Vec3::X, &mut short),
         Err(Error::InvalidArgument)
     );
-    let rotor = SemiRigidRotor::symmetric(Arrangement::Tetrahedral, M, W, R0).unwrap();
+    let rotor = SemiRigidRotor::try_symmetric(Arrangement::Tetrahedral, M, W, R0).unwrap();
     assert_eq!(
         rotor.energy(Vec3::new(f64::NAN, 0.0, 0.0)),
         Err(Error::NonFinite)
@@ -488,7 +488,7 @@ host_tests::per_type! {
     fn isotropic_term_is_a_casimir_turn() {
         let (tol_q, tol_j) = (T::per_type(3e-4, 1e-8), T::per_type(3e-4, 1e-8));
         let rotor =
-            SemiRigidRotor::symmetric(Arrangement::Octahedral, T::ONE, T::ONE, T::ONE).unwrap();
+            SemiRigidRotor::try_symmetric(Arrangement::Octahedral, T::ONE, T::ONE, T::ONE).unwrap();
         let j0 = [0.9, 0.7, 0.35];
         let q0 = [0.9, 0.1, -0.3, 0.2];
         let n = (q0.iter().map(|c| c * c).sum::<f64>()).sqrt();
@@ -505,7 +505,7 @@ host_tests::per_type! {
         };
         let (r_ref, j_ref) = lie_poisson_rk4(&model, &quat_matrix(q0), j0, t_end, 40_000);
         for basis in [QuarticBasis::Octahedral, QuarticBasis::Cubic] {
-            let body = Gyrostat::from(rotor.body_hamiltonian(basis).unwrap());
+            let body = Gyrostat::from(rotor.try_body_hamiltonian(basis).unwrap());
             let mut s = State::new(unit_quat::<T>(q0), vec3(j0));
             let steps = 2000;
             let dt = T::from_f64(t_end / steps as f64);

@@ -101,7 +101,7 @@
 //!
 //! ```
 //! use gyrostat::fixed::{IncrementScale, Q30};
-//! use gyrostat::propagation::coning::coning2_update;
+//! use gyrostat::propagation::kernels::coning2_update;
 //! use gyrostat::UnitQuat;
 //!
 //! // A gyro delivering increments of 2^-20 rad per LSB.

@@ -83,7 +83,7 @@ use crate::{Quat, Real, UnitQuat, Vec3};
 ///     integ.push(d)?;
 /// }
 /// // 100 s: the exact answer is exp(10⁵·d), here in f64.
-/// let exact = UnitQuat::exp(Vec3::from_array(d.to_array().map(|c| 1e5 * f64::from(c))))?;
+/// let exact = UnitQuat::try_exp(Vec3::from_array(d.to_array().map(|c| 1e5 * f64::from(c))))?;
 /// let q = UnitQuat::new_unchecked(Quat::from_array(integ.attitude().to_array().map(f64::from)));
 /// assert!((exact.inverse() * q).angle() < 1e-6);
 /// # Ok::<(), gyrostat::Error>(())

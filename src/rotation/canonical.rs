@@ -79,8 +79,8 @@ impl<T: Real> UnitQuat<T> {
     ///
     /// ```
     /// use gyrostat::{UnitQuat, Vec3};
-    /// let a = UnitQuat::exp(Vec3::new(0.0f32, 0.0, 0.0))?;
-    /// let b = UnitQuat::exp(Vec3::new(0.0f32, 0.0, 1e-6))?;
+    /// let a = UnitQuat::try_exp(Vec3::new(0.0f32, 0.0, 0.0))?;
+    /// let b = UnitQuat::try_exp(Vec3::new(0.0f32, 0.0, 1e-6))?;
     /// let m = a.slerp(b, 0.5);
     /// assert!((m.angle_to(a) - 5e-7).abs() < 1e-12);
     /// # Ok::<(), gyrostat::Error>(())

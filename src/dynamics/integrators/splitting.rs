@@ -305,7 +305,7 @@ impl<T: Real, const N: usize> Flows<T, N> for State<T, N> {
     fn general_axis_flow(x: &mut Plain<T>, n: Vec3<T>, rate: T, h: T) {
         let (s2, c2, v, sn) = rotation_terms(rate, h);
         let nj = n.cross(x.j);
-        x.j = x.j + (n.cross(nj) * v - nj * sn);
+        x.j += n.cross(nj) * v - nj * sn;
         // `n` is a unit column of a rotation matrix: the factor is a unit quaternion to rounding.
         x.q = x.q * UnitQuat::new_unchecked(Quat::from_parts(c2, n * s2));
     }
