@@ -10,7 +10,140 @@
 //! The physics follows W. G. Harter, *Unit 6: rigid and semi-rigid body rotation*; doc comments
 //! cite its equation numbers, like `(6.6.4)`.
 //!
-//! ## Conventions (fixed for the whole crate)
+//! # Tasks
+//! The jobs a user comes for, each with the API that does it and the shortest correct example
+//! (every block below is compiled and run as a test).
+//!
+//! | job | API |
+//! |---|---|
+//! | [strapdown attitude from gyro increments, in f32](#strapdown-attitude-from-gyro-increments-in-f32) | [`propagation::IncrementIntegrator`], [`propagation::ConingRule`], [`propagation::CompensatedAttitude`] |
+//! | [attitude from rate samples](#attitude-from-rate-samples) | [`propagation::RateIntegrator`], [`propagation::RateMethod`] |
+//! | [fixed point on a Cortex-M0](#fixed-point-on-a-cortex-m0) | [`fixed::Q30`], [`fixed::IncrementScale`], [`propagation::kernels::coning2_update`] |
+//! | [Euler angles, with gimbal lock](#euler-angles-with-gimbal-lock) | [`UnitQuat::to_euler`], [`rotation::EulerSequence`], [`rotation::GimbalPolicy`] |
+//! | [a gyrostat with a reaction wheel](#a-gyrostat-with-a-reaction-wheel) | [`dynamics::Gyrostat::with_wheels`], [`dynamics::Gyrostat::step_with`], [`dynamics::Control`] |
+//! | [converting an attitude log](#converting-an-attitude-log) | [`Quat::try_normalize`], [`UnitQuat::to_euler_angles`], [`RotationVector`], [`Dcm`] |
+//!
+//! ## Strapdown attitude from gyro increments, in f32
+//! A rate-integrating gyro delivers increments `Δθ` (rad, body frame). An
+//! [`IncrementIntegrator`](propagation::IncrementIntegrator) checks each one and updates the
+//! attitude with a coning rule; started from a
+//! [`CompensatedAttitude`](propagation::CompensatedAttitude) it carries the f32 rounding errors,
+//! so the attitude does not drift from rounding over hours (start it from a plain `UnitQuat` for
+//! short runs).
+//! ```
+//! use gyrostat::propagation::{CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization};
+//! use gyrostat::{UnitQuat, Vec3};
+//!
+//! let start = CompensatedAttitude::new(UnitQuat::<f32>::IDENTITY);
+//! let mut imu = IncrementIntegrator::new(start, ConingRule::TwoSample, Normalization::Fast);
+//! for _ in 0..1000 {
+//!     imu.push(Vec3::new(0.0, 0.0, 1e-3))?; // 1 mrad about body z per sample
+//! }
+//! let q = imu.attitude(); // 1 rad about z
+//! assert!((q.rotate(Vec3::X) - Vec3::new(1.0f32.cos(), 1.0f32.sin(), 0.0)).norm() < 1e-6);
+//! # Ok::<(), gyrostat::Error>(())
+//! ```
+//!
+//! ## Attitude from rate samples
+//! A MEMS gyro's FIFO delivers rates `ω(k·dt)` (rad/s, body frame). A
+//! [`RateIntegrator`](propagation::RateIntegrator) integrates them to fourth order (Magnus-4, CF4
+//! or RK4 between the samples' cubic interpolant) and returns the attitude at each sample time.
+//! ```
+//! use gyrostat::propagation::{Normalization, RateIntegrator, RateMethod};
+//! use gyrostat::{UnitQuat, Vec3};
+//!
+//! let dt = 1e-3; // 1 kHz
+//! let mut imu = RateIntegrator::try_new(UnitQuat::IDENTITY, RateMethod::Magnus4, Normalization::Fast, dt)?;
+//! for _ in 0..=1000 {
+//!     for _q in imu.push(Vec3::new(0.5f64, 0.0, 0.0))? {} // the attitudes newly reached
+//! }
+//! // 1000 intervals of 1 ms at 0.5 rad/s about x: 0.5 rad.
+//! assert!((imu.attitude().angle() - 0.5).abs() < 1e-12);
+//! # Ok::<(), gyrostat::Error>(())
+//! ```
+//!
+//! ## Fixed point on a Cortex-M0
+//! With no FPU, run the update in Q1.30 ([`fixed`]): the same generic functions take
+//! [`fixed::Q30`] instead of `f32`, in integer arithmetic only and with the same bits on every
+//! target. Raw sensor registers become Q1.30 increments through a scale checked once; the kernels
+//! of [`propagation::kernels`] are the unchecked hot path.
+//! ```
+//! use gyrostat::fixed::{IncrementScale, Q30};
+//! use gyrostat::propagation::kernels::coning2_update;
+//! use gyrostat::UnitQuat;
+//!
+//! let scale = IncrementScale::try_new(1.0653e-6)?; // the gyro's rad per LSB, checked once
+//! let mut q = UnitQuat::<Q30>::IDENTITY;
+//! let (r1, r2) = ([120i16, -40, 7], [118i16, -43, 9]); // two raw increment readings
+//! q = coning2_update(q, scale.increment(r1), scale.increment(r2));
+//! let _bits = q.to_bits(); // log these: a ground tool reproduces them exactly
+//! assert!(q.to_f64().angle() < 3e-4);
+//! # Ok::<(), gyrostat::Error>(())
+//! ```
+//!
+//! ## Euler angles, with gimbal lock
+//! [`UnitQuat::to_euler`] extracts the angles of any of the 24 conventions (uppercase intrinsic,
+//! lowercase extrinsic, as scipy) and reports a gimbal lock instead of hiding it: there only a
+//! combination of the outer angles is determined, and a [`rotation::GimbalPolicy`] chooses the
+//! split.
+//! ```
+//! use gyrostat::rotation::{EulerSequence, GimbalPolicy};
+//! use gyrostat::{UnitQuat, Vec3};
+//! use core::f64::consts::FRAC_PI_2;
+//!
+//! let pitched_up = UnitQuat::try_from_axis_angle(Vec3::Y, FRAC_PI_2)?;
+//! let sol = pitched_up.to_euler(EulerSequence::ZYX, GimbalPolicy::ZeroThird);
+//! let [yaw, pitch, roll] = sol.euler.angles;
+//! assert!((pitch - FRAC_PI_2).abs() < 1e-15 && roll == 0.0);
+//! let lock = sol.singularity.expect("pitch ±90° is the ZYX gimbal lock");
+//! assert!((lock.combined_angle - yaw).abs() < 1e-15); // yaw − roll is all that is determined
+//! # Ok::<(), gyrostat::Error>(())
+//! ```
+//!
+//! ## A gyrostat with a reaction wheel
+//! A body with wheels is a [`Gyrostat`](dynamics::Gyrostat); its [`State`](dynamics::State)
+//! holds the attitude, the total body momentum `J` and the wheel speeds. A wheel torque is
+//! internal: it trades momentum between wheel and body and leaves `|J|` unchanged.
+//! ```
+//! use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, Wheel};
+//! use gyrostat::{UnitQuat, Vec3};
+//!
+//! let inertia = Inertia::try_from_principal(Vec3::new(6.0, 4.0, 3.0))?; // wheels locked
+//! let body = Gyrostat::with_wheels(inertia, [Wheel::try_new(Vec3::Y, 0.05)?]);
+//! let mut s = body.try_state_from_omega(UnitQuat::IDENTITY, Vec3::new(0.05, 1.0, 0.01), [60.0])?;
+//! let spin_down = Control { torque: Vec3::ZERO, wheel_torques: [-0.015] }; // held, N·m
+//! let j0 = s.momentum.norm();
+//! for k in 0..1000 {
+//!     s = body.step_with(Integrator::Yoshida4, &s, k as f64 * 0.01, 0.01, spin_down)?;
+//! }
+//! assert!((s.wheel_speeds[0] - 57.0).abs() < 1e-9); // 60 − 0.015/0.05 · 10 s
+//! assert!((s.momentum.norm() - j0).abs() < 1e-12);
+//! # Ok::<(), gyrostat::Error>(())
+//! ```
+//!
+//! ## Converting an attitude log
+//! Every representation converts to and from [`UnitQuat`] (`From`, or `TryFrom` and a `try_`
+//! method where the conversion can fail). A bad row becomes an [`Error`], never a NaN. (The
+//! `convert` command-line tool does this for CSV files.)
+//! ```
+//! use gyrostat::rotation::EulerSequence;
+//! use gyrostat::{Dcm, Quat, RotationVector};
+//!
+//! // Rows in scipy's order x, y, z, w (gyrostat is scalar-first).
+//! let log = [[0.0, 0.0, 0.382_683_432, 0.923_879_533], [0.0, 0.0, 0.0, 0.0]];
+//! for [x, y, z, w] in log {
+//!     let Ok(q) = Quat::new(w, x, y, z).try_normalize() else {
+//!         continue; // the zero row: Error::ZeroNorm
+//!     };
+//!     let [yaw, _pitch, _roll] = q.to_euler_angles(EulerSequence::ZYX).map(f64::to_degrees);
+//!     let phi = RotationVector::from(q).vector(); // rad
+//!     let r = Dcm::from(q).into_matrix(); // body axes as columns
+//!     assert!((yaw - 45.0).abs() < 1e-6 && (phi.z - core::f64::consts::FRAC_PI_4).abs() < 1e-8);
+//!     assert!((r.col(0).y - yaw.to_radians().sin()).abs() < 1e-8);
+//! }
+//! ```
+//!
+//! # Conventions (fixed for the whole crate)
 //! - **Quaternion**: Hamilton convention (`i·j = k`); fields and all I/O are scalar-first
 //!   `w, x, y, z`.
 //! - **Attitude**: the attitude quaternion `q` maps body-frame vectors to the lab (inertial)
@@ -32,38 +165,69 @@
 //!   with `ω = ∂H/∂J` (6.8.5, 6.9.2).
 //! - Angles in radians, SI units, unless a name or type says otherwise.
 //!
-//! ## Data path
+//! # Names
+//! One rule throughout the crate:
+//! - **`try_`**: a constructor or conversion that can fail returns `Result<_, Error>` and is
+//!   named `try_…`: [`UnitQuat::try_new`], [`UnitQuat::try_exp`],
+//!   [`Dcm::try_from_matrix_orthonormalized`], [`rotation::EulerSequence::try_new`],
+//!   [`propagation::RateIntegrator::try_new`], [`Gibbs::try_from_unit_quat`],
+//!   [`Euler::try_to_unit_quat`]. Infallible ones carry no prefix ([`Gibbs::to_unit_quat`],
+//!   [`propagation::IncrementIntegrator::new`]).
+//! - **`_unchecked`**, or a **`kernels`** module: a function that skips validation, for a hot
+//!   loop whose input was checked upstream, says so: [`UnitQuat::new_unchecked`],
+//!   [`UnitQuat::exp_unchecked`], [`UnitQuat::mul_exp_unchecked`],
+//!   [`Euler::to_unit_quat_unchecked`], and every function of [`propagation::kernels`]
+//!   ([`coning2_update`](propagation::kernels::coning2_update),
+//!   [`magnus4_step`](propagation::kernels::magnus4_step),
+//!   [`rk4_step`](propagation::kernels::rk4_step), ...). Where both exist, the checked one is
+//!   the `try_` name or the checked entry point (a `push`, a `step`).
+//! - **Computations and steps** that can fail (a step, a `push`, a special function, a closed
+//!   form) return `Result` under the name of what they compute ([`dynamics::Gyrostat::step`],
+//!   [`propagation::IncrementIntegrator::push`],
+//!   [`dynamics::closed_form::elliptic::complete_k`]); their `# Errors` section says when.
+//! - **One name per conversion**: `X::from_unit_quat` and `X::to_unit_quat` (with `try_` where
+//!   they can fail) beside the `From`/`TryFrom` impls; one type per quantity
+//!   ([`rotation::AxisAngle::to_rotation_vector`] returns a [`RotationVector`]).
+//! - Fixed point and the compensated f32 attitude use the float path's names
+//!   ([`fixed::Fixed`] is a [`Ring`]; [`propagation::CompensatedAttitude`] is given to the same
+//!   integrators as a `UnitQuat`).
+//!
+//! # Layers
+//! Every module depends only on the modules below it:
+//!
+//! | layer | modules | depends on |
+//! |---|---|---|
+//! | scalars | [`real`]: [`Ring`], [`Real`], their f32/f64 implementations and the fixed-point number [`fixed::Fixed`] | nothing |
+//! | linear algebra | [`linalg`]: [`Vec3`], [`Mat3`], [`Complex`], [`Axis`] | scalars |
+//! | rotations | [`rotation`]: [`Quat`], [`UnitQuat`] and every representation; the exponential map and its per-scalar kernels ([`ExpMap`], fixed point's in [`fixed`]) | linear algebra |
+//! | step limits | [`step_limit`]: the validity limit of a step, shared by the two layers above it | linear algebra |
+//! | propagation | [`propagation`]: rules and interpolation, then the [`propagation::kernels`] and the compensated updates, the attitude trait, the integrators | rotations, step limits |
+//! | dynamics | [`dynamics`]: the body (inertia, Hamiltonian, gyrostat, state), the [`dynamics::integrators`] and the [`dynamics::closed_form`] on it, the step on the integrators | rotations, step limits |
+//! | at the edges | [`fixed`] (the fixed-point formats, conversions and sensor scale), the optional integrations (features below) | rotations |
+//!
+//! # Data path
 //! sensor samples or torques → a step function → [`UnitQuat`] (and body momentum) → conversions.
 //! Every step is a small pure function over plain-data state, callable from an interrupt handler.
 //!
-//! ## Errors
+//! # Errors
 //! Bad input gets a typed [`Error`]: non-finite numbers, zero-norm quaternions or axes, matrices
-//! that are not rotations, singular configurations. Functions documented as infallible cannot
-//! fail for any input that satisfies their type's invariant.
+//! that are not rotations, singular configurations, steps beyond their method's validity.
+//! Functions documented as infallible cannot fail for any input that satisfies their type's
+//! invariant.
 //!
-//! ## Features
+//! # Features
 //! | feature     | what it adds |
 //! |-------------|--------------|
 //! | *(none)*    | everything; math from `libm`, except f32 `sin`/`cos` from gyrostat's own f32 kernel ([`real`]) |
 //! | `micromath` | micromath's fast f32 `sin`/`cos`/`atan2`/`sqrt` instead of libm (see [`real`] for the measured errors) |
-//! | `defmt`     | `defmt::Format` for the foundation types, [`Error`], the propagation types and the fixed-point types ([`interop`] lists them) |
+//! | `defmt`     | `defmt::Format` for the foundation types ([`Vec3`], [`Mat3`], [`Complex`], [`Quat`], [`UnitQuat`], [`Su2`]), [`Error`], the propagation types ([`propagation::ConingRule`], [`propagation::Normalization`], [`propagation::RateMethod`], [`propagation::IncrementIntegrator`], [`propagation::ConingAccumulator`], [`propagation::RateIntegrator`]) and the fixed-point types ([`fixed::Fixed`], [`fixed::IncrementScale`]); not the other rotation representations nor the dynamics types |
 //! | `nalgebra`  | `From`/`Into` nalgebra's `UnitQuaternion`, `Quaternion`, `Vector3`, `Matrix3` (no std) |
 //! | `mint`      | `From`/`Into` mint's types, so glam, cgmath and others convert for free |
 //!
-//! Fixed point ([`fixed`]) needs no feature: it is plain integer code.
-//!
-//! ## Example
-//! ```
-//! use gyrostat::{UnitQuat, Vec3};
-//! use core::f32::consts::FRAC_PI_2;
-//!
-//! // The body is yawed by 90° about the lab z axis.
-//! let q = UnitQuat::try_from_axis_angle(Vec3::Z, FRAC_PI_2)?;
-//! // Its body x axis points along lab y.
-//! let x_body_in_lab = q.rotate(Vec3::X);
-//! assert!((x_body_in_lab - Vec3::Y).norm() < 1e-6);
-//! # Ok::<(), gyrostat::Error>(())
-//! ```
+//! Each integration is one file (`src/interop/`) and keeps the conventions above: quaternions are
+//! Hamilton in every library, the scalar part is `w`, and a unit quaternion means the same
+//! rotation on both sides (nalgebra's `UnitQuaternion` is also Hamilton and active). Fixed point
+//! ([`fixed`]) needs no feature: it is plain integer code.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -72,7 +236,7 @@ mod compensated;
 pub mod dynamics;
 mod error;
 pub mod fixed;
-pub mod interop;
+mod interop;
 pub mod linalg;
 pub mod propagation;
 pub mod real;
@@ -80,15 +244,14 @@ pub mod rotation;
 pub mod step_limit;
 
 pub use error::Error;
+pub use linalg::{Axis, Complex, Mat3, Vec3};
+pub use real::{Real, Ring};
+pub use rotation::{
+    AxisAngle, Dcm, Euler, EulerSequence, ExpMap, Gibbs, GimbalPolicy, Mrp, PolarAxisAngle, Quat,
+    RotationVector, Su2, UnitQuat,
+};
 
 /// The README's Rust examples, compiled and run as doctests so that they stay true.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
-pub use linalg::{Axis, Complex, Mat3, Vec3};
-pub use real::{Real, Ring};
-pub use rotation::ExpMap;
-pub use rotation::{
-    AxisAngle, Dcm, Euler, EulerSequence, Gibbs, GimbalPolicy, Mrp, PolarAxisAngle, RotationVector,
-};
-pub use rotation::{Quat, Su2, UnitQuat};

@@ -1,7 +1,6 @@
 //! Attitude representations and the algebra of rotations.
 //!
-//! All types follow the crate-level conventions: Hamilton quaternions stored scalar-first,
-//! attitude `q` maps body vectors to the lab frame, `R(q)` has the body axes as columns.
+//! All types follow the [crate's conventions](crate#conventions-fixed-for-the-whole-crate).
 //!
 //! | type | what | seed |
 //! |------|------|------|
