@@ -74,7 +74,7 @@
 //! # Cost
 //! The Cortex-M0 has no 32×32 → 64-bit multiply; an `i64` product there is a call of
 //! `__aeabi_lmul`. gyrostat forms the exact product from four 16×16-bit `muls` instead (see
-//! `wide.rs`); the other targets use their widening multiply (`smull`/`smlal` on the M3, M4F
+//! `real/wide.rs`); the other targets use their widening multiply (`smull`/`smlal` on the M3, M4F
 //! and M33, `mul`/`mulh` on RV32IMAC). Products are exact on every target, so the bits are the
 //! same everywhere (checked in CI: `examples/fw_fixed.rs` on the five QEMU boards, Cortex-M0,
 //! M3, M4F, M33 and RV32IMAC, against the host). Plain `i32`/`i64` was chosen over the `fixed` crate (1.31) by counting

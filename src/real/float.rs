@@ -216,7 +216,7 @@ const SINCOS_F32_LIMIT: f32 = 6000.0;
 ///   below an f32 ulp, so the result's error is the f32 evaluation's rounding;
 /// - the quadrant `k mod 4` swaps and negates the pair (on the bits, no branch).
 ///
-/// Measured against f64 (`real::tests`, the figures of the module docs): sin ≤ 8.5e-8 and
+/// Measured against f64 (`real::float::tests`, the figures of the module docs): sin ≤ 8.5e-8 and
 /// cos ≤ 9.2e-8 absolute on [−10, 10], both ≤ 1.2e-7 up to 6000 rad. Non-finite input gives NaN
 /// (as libm).
 #[cfg(not(feature = "micromath"))]
