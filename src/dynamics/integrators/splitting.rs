@@ -182,14 +182,13 @@ fn piece<T: Real, const N: usize, S: Flows<T, N>>(
     h: T,
 ) {
     let inertia = model.inertia();
-    let j = S::momentum(x);
     if inertia.is_diagonal() {
-        let rate = axis_rate(model, axis, j[axis], s[axis]);
+        let rate = axis_rate(model, axis, S::momentum(x)[axis], s[axis]);
         S::principal_axis_flow(x, axis, rate, h);
     } else {
         let n = inertia.principal_axes().col(axis.index());
         // The piece `Aᵢ (n·(J − s))²`: rate `ωᵢ = 2Aᵢ n·(J − s)`.
-        let rate = T::TWO * model.half_inverse()[axis] * n.dot(j - s);
+        let rate = T::TWO * model.half_inverse()[axis] * n.dot(S::momentum(x) - s);
         S::general_axis_flow(x, n, rate, h);
     }
 }
