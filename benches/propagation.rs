@@ -11,10 +11,9 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use gyrostat::propagation::coning::{four_sample, one_plus_previous, three_sample};
-use gyrostat::propagation::kernels;
-use gyrostat::propagation::kernels::apply_rotation_vector;
-use gyrostat::propagation::kernels::coning2_update;
-use gyrostat::propagation::kernels::{cf4_step, magnus4_step, rk4_step};
+use gyrostat::propagation::kernels::{
+    self, apply_rotation_vector, cf4_step, coning2_update, magnus4_step, rk4_step,
+};
 use gyrostat::propagation::rate_samples::{gauss_rates, midpoint_rate};
 use gyrostat::propagation::{ConingAccumulator, Normalization};
 use gyrostat::{UnitQuat, Vec3};

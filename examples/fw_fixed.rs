@@ -30,8 +30,7 @@ mod firmware {
     use gyrostat::propagation::coning::{
         four_sample_terms, one_plus_previous_terms, three_sample_terms,
     };
-    use gyrostat::propagation::kernels::apply_rotation_vector;
-    use gyrostat::propagation::kernels::coning2_update;
+    use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
     use gyrostat::propagation::normalization::norm_squared_deviation;
     use gyrostat::propagation::{ConingAccumulator, IncrementIntegrator, Normalization};
     use gyrostat::{Mat3, UnitQuat, Vec3};

@@ -184,10 +184,9 @@ mod firmware {
             use gyrostat::propagation::coning::{
                 four_sample_terms, one_plus_previous_terms, three_sample_terms,
             };
-            use gyrostat::propagation::kernels;
-            use gyrostat::propagation::kernels::apply_rotation_vector;
-            use gyrostat::propagation::kernels::coning2_update;
-            use gyrostat::propagation::kernels::{cf4_step, magnus4_step, rk4_step};
+            use gyrostat::propagation::kernels::{
+                self, apply_rotation_vector, cf4_step, coning2_update, magnus4_step, rk4_step,
+            };
             use gyrostat::propagation::rate_samples::{gauss_rates, midpoint_rate};
             use gyrostat::propagation::{
                 CompensatedAttitude, ConingAccumulator, ConingRule, IncrementIntegrator,
@@ -318,8 +317,7 @@ mod firmware {
             // Fixed point (Q1.30), the same operations and operands as the f32 rows above.
             use gyrostat::fixed::Q30;
             use gyrostat::propagation::coning::{four_sample_terms, one_plus_previous_terms};
-            use gyrostat::propagation::kernels::apply_rotation_vector;
-            use gyrostat::propagation::kernels::coning2_update;
+            use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
             use gyrostat::propagation::{ConingAccumulator, Normalization};
             let q = |q: UnitQuat<f32>| UnitQuat::<Q30>::try_from_f32(q).unwrap_or_default();
             let v3 = |v: Vec3<f32>| Vec3::<Q30>::try_from_f32(v).unwrap_or_default();

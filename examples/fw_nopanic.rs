@@ -87,8 +87,7 @@ mod firmware {
         {
             use gyrostat::propagation::coning::rotation_vector_for;
             use gyrostat::propagation::exponential::step_constant_rate;
-            use gyrostat::propagation::kernels::apply_rotation_vector;
-            use gyrostat::propagation::kernels::coning2_update;
+            use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
             use gyrostat::propagation::kinematics::{
                 body_rate_between, lab_rate_between, quat_rate_body,
             };
@@ -218,8 +217,7 @@ mod firmware {
             use gyrostat::Ring;
             use gyrostat::fixed::{IncrementScale, Q24, Q30, increment_from_rate};
             use gyrostat::propagation::coning::rotation_vector_for;
-            use gyrostat::propagation::kernels::apply_rotation_vector;
-            use gyrostat::propagation::kernels::coning2_update;
+            use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
             use gyrostat::propagation::normalization::norm_squared_deviation;
             use gyrostat::propagation::{ConingAccumulator, Normalization};
             let norm = black_box(Normalization::Fast);

@@ -62,8 +62,7 @@ fn run_scenario(
     out: &mut dyn FnMut(core::fmt::Arguments<'_>),
 ) -> Result<(), gyrostat::Error> {
     use gyrostat::fixed::Q30;
-    use gyrostat::propagation::kernels::coning2_update;
-    use gyrostat::propagation::kernels::apply_rotation_vector;
+    use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
     use gyrostat::propagation::normalization::norm_squared_deviation;
     use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
     use gyrostat::{Quat, Ring, UnitQuat, Vec3};

@@ -9,8 +9,7 @@
 //! except where a test says otherwise.
 
 use gyrostat::fixed::Q30;
-use gyrostat::propagation::kernels::apply_rotation_vector;
-use gyrostat::propagation::kernels::coning2_update;
+use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
 use gyrostat::propagation::normalization::norm_squared_deviation;
 use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
 use gyrostat::{Error, Quat, Ring, UnitQuat, Vec3};

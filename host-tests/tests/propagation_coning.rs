@@ -13,8 +13,7 @@
 //! the `α²` leading term, and Ωh (or ΩT) small enough that the next term in the expansion in
 //! Ωh stays below ~2%; both are stated per test.
 
-use gyrostat::propagation::kernels::apply_rotation_vector;
-use gyrostat::propagation::kernels::coning2_update;
+use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
 use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
 use gyrostat::{Quat, UnitQuat, Vec3};
 use host_tests::cast::{q64, unit_quat, vec3};

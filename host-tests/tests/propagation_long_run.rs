@@ -9,8 +9,7 @@
 //! see the assertion bounds and BENCHMARKS.md ("Propagation").
 
 use gyrostat::propagation::Normalization;
-use gyrostat::propagation::kernels::coning2_update;
-use gyrostat::propagation::kernels::step_constant_rate;
+use gyrostat::propagation::kernels::{coning2_update, step_constant_rate};
 use gyrostat::propagation::normalization::norm_deviation;
 use gyrostat::{UnitQuat, Vec3};
 use host_tests::reference::quat_angle;

@@ -15,8 +15,7 @@
 
 use gyrostat::fixed::{Fixed, IncrementScale, Q24, Q30, increment_from_rate};
 use gyrostat::propagation::coning::{four_sample, one_plus_previous, three_sample, two_sample};
-use gyrostat::propagation::kernels::apply_rotation_vector;
-use gyrostat::propagation::kernels::coning2_update;
+use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
 use gyrostat::propagation::normalization::norm_squared_deviation;
 use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
 use gyrostat::{Error, Quat, Ring, UnitQuat, Vec3};

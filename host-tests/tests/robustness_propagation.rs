@@ -12,10 +12,9 @@ use gyrostat::propagation::coning::{
     four_sample, one_plus_previous, rotation_vector_for, three_sample, two_sample,
 };
 use gyrostat::propagation::exponential::step_constant_rate;
-use gyrostat::propagation::kernels;
-use gyrostat::propagation::kernels::apply_rotation_vector;
-use gyrostat::propagation::kernels::coning2_update;
-use gyrostat::propagation::kernels::{cf4_step, magnus4_step, rk4_step};
+use gyrostat::propagation::kernels::{
+    self, apply_rotation_vector, cf4_step, coning2_update, magnus4_step, rk4_step,
+};
 use gyrostat::propagation::kinematics::{
     body_rate_between, body_rate_from_quat_rate, lab_rate_between, quat_rate_body, quat_rate_lab,
 };
