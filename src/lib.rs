@@ -71,6 +71,7 @@
 mod compensated;
 pub mod dynamics;
 mod error;
+pub mod estimation;
 pub mod fixed;
 pub mod interop;
 pub mod linalg;

@@ -21,6 +21,7 @@
 //!   tables); [`family!`] declares one API family.
 
 pub mod campaign;
+pub mod broad;
 pub mod cast;
 pub mod cli;
 pub mod examples;
