@@ -274,6 +274,7 @@ pub fn convert_params(p: &Params<f64>) -> Params<f32> {
             },
         },
         gyro_noise_density: c(p.gyro_noise_density),
+        gyro_scale_noise: c(p.gyro_scale_noise),
         gyro_bias_initial: c(p.gyro_bias_initial),
         gyro_bias_stability: c(p.gyro_bias_stability),
         gyro_bias_time: c(p.gyro_bias_time),
@@ -287,6 +288,8 @@ pub fn convert_params(p: &Params<f64>) -> Params<f32> {
         mag_heading_noise: c(p.mag_heading_noise),
         mag_correlation_time: c(p.mag_correlation_time),
         mag_timing: c(p.mag_timing),
+        mag_delay: c(p.mag_delay),
+        mag_disturbance_weight: c(p.mag_disturbance_weight),
         field: FieldThresholds {
             norm: c(p.field.norm),
             dip: c(p.field.dip),
@@ -509,6 +512,7 @@ pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), Str
             return Ok(());
         }
         "gyro_noise_density" => &mut p.gyro_noise_density,
+        "gyro_scale_noise" => &mut p.gyro_scale_noise,
         "gyro_bias_initial" => &mut p.gyro_bias_initial,
         "gyro_bias_stability" => &mut p.gyro_bias_stability,
         "gyro_bias_time" => &mut p.gyro_bias_time,
@@ -522,6 +526,8 @@ pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), Str
         "mag_heading_noise" => &mut p.mag_heading_noise,
         "mag_correlation_time" => &mut p.mag_correlation_time,
         "mag_timing" => &mut p.mag_timing,
+        "mag_delay" => &mut p.mag_delay,
+        "mag_disturbance_weight" => &mut p.mag_disturbance_weight,
         "field.norm" => &mut p.field.norm,
         "field.dip" => &mut p.field.dip,
         "field.reference_time_constant" => &mut p.field.reference_time_constant,

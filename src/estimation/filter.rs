@@ -43,6 +43,10 @@ pub struct Params<T> {
     pub gains: Gains<T>,
     /// Gyroscope white noise, rad/s/√Hz (angle random walk).
     pub gyro_noise_density: T,
+    /// Rate-proportional gyroscope error, 1/√Hz: scale-factor and axis-misalignment errors
+    /// (and timing) turn the estimate by an error proportional to the rate, modelled as white
+    /// noise of density `s·|ω|` added to [`Params::gyro_noise_density`].
+    pub gyro_scale_noise: T,
     /// Standard deviation of the gyroscope bias at start, rad/s.
     pub gyro_bias_initial: T,
     /// How far the bias wanders (rad/s) within [`Params::gyro_bias_time`]: the random walk of
@@ -72,6 +76,13 @@ pub struct Params<T> {
     /// Timing uncertainty (s) between the magnetometer and the gyroscope: adds `|ω|·t` to the
     /// heading error, amplified by `|B|/|B_horizontal|`.
     pub mag_timing: T,
+    /// Delay (s) of the magnetometer behind the gyroscope: its sample is compared with the
+    /// attitude that long ago (up to [`MAG_HISTORY`] samples).
+    pub mag_delay: T,
+    /// Weight of a disturbed field's heading error: 0 rejects a disturbed field outright; a
+    /// positive `g` uses it with the heading variance increased by `(g·ε·|B|/|B_h|)²`, where
+    /// `ε = ||B| − |B|_ref|/|B|_ref + |δ − δ_ref|` bounds the relative size of the disturbance.
+    pub mag_disturbance_weight: T,
     /// The magnetic disturbance monitor.
     pub field: FieldThresholds<T>,
     /// The rest detector.
@@ -88,6 +99,7 @@ impl<T: Real> Default for Params<T> {
             frame: EarthFrame::Enu,
             gains: Gains::Kalman,
             gyro_noise_density: deg(0.01),
+            gyro_scale_noise: v(0.0),
             gyro_bias_initial: deg(0.5),
             gyro_bias_stability: deg(0.1),
             gyro_bias_time: v(100.0),
@@ -101,6 +113,8 @@ impl<T: Real> Default for Params<T> {
             mag_heading_noise: deg(2.0),
             mag_correlation_time: v(5.0),
             mag_timing: v(0.0),
+            mag_disturbance_weight: v(0.0),
+            mag_delay: v(0.0),
             field: FieldThresholds {
                 norm: v(0.1),
                 dip: deg(10.0),
@@ -173,7 +187,12 @@ pub struct Estimator<T> {
     field: FieldMonitor<T>,
     field_started: bool,
     last: Outcome,
+    history: [UnitQuat<T>; MAG_HISTORY],
+    head: usize,
 }
+
+/// The number of past attitudes kept for [`Params::mag_delay`].
+pub const MAG_HISTORY: usize = 8;
 
 /// The earth's gravity used for the accelerometer gate, m/s².
 const GRAVITY: f64 = 9.81;
@@ -188,6 +207,7 @@ impl<T: Real> Estimator<T> {
         let p = &params;
         let finite = [
             p.gyro_noise_density,
+            p.gyro_scale_noise,
             p.gyro_bias_initial,
             p.gyro_bias_stability,
             p.gyro_bias_time,
@@ -199,6 +219,8 @@ impl<T: Real> Estimator<T> {
             p.mag_heading_noise,
             p.mag_correlation_time,
             p.mag_timing,
+            p.mag_disturbance_weight,
+            p.mag_delay,
             p.field.norm,
             p.field.dip,
             p.field.reference_time_constant,
@@ -248,6 +270,8 @@ impl<T: Real> Estimator<T> {
             field: FieldMonitor::default(),
             field_started: false,
             last: Outcome::default(),
+            history: [UnitQuat::IDENTITY; MAG_HISTORY],
+            head: 0,
         })
     }
 
@@ -416,7 +440,8 @@ impl<T: Real> Estimator<T> {
         let r = self.attitude_enu().to_rotation_matrix();
         let f = r.scale(-dt);
         let pr = &self.params;
-        let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * dt;
+        let sw = pr.gyro_scale_noise * w.norm();
+        let q_theta = (pr.gyro_noise_density * pr.gyro_noise_density + sw * sw) * dt;
         let q_bias =
             pr.gyro_bias_stability * pr.gyro_bias_stability * dt / pr.gyro_bias_time;
         self.p.predict(f, q_theta, q_bias);
@@ -489,14 +514,28 @@ impl<T: Real> Estimator<T> {
 
     fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
         let pr = self.params;
-        let m = self.attitude_enu().rotate(mag);
+        let now = self.attitude_enu();
+        self.head = (self.head + 1) % MAG_HISTORY;
+        if let Some(slot) = self.history.get_mut(self.head) {
+            *slot = now;
+        }
+        let lag = (pr.mag_delay / dt + T::HALF).floor();
+        let mut back = 0usize;
+        while back + 1 < MAG_HISTORY && T::from_f64(back as f64 + 0.5) < lag {
+            back += 1;
+        }
+        let idx = (self.head + MAG_HISTORY - back) % MAG_HISTORY;
+        let then = self.history.get(idx).copied().unwrap_or(now);
+        let m = then.rotate(mag);
         let (norm, dip) = norm_dip(m);
         if !self.field_started {
             self.field = FieldMonitor::new(norm, dip);
             self.field_started = true;
         }
         let rate = (gyro - self.bias).norm();
-        if self.field.update(norm, dip, dt, rate, &pr.field) {
+        let disturbed = self.field.update(norm, dip, dt, rate, &pr.field);
+        let g = pr.mag_disturbance_weight;
+        if disturbed && g <= T::ZERO {
             return SensorUse::Disturbed;
         }
         let h = m.x.hypot(m.y);
@@ -504,9 +543,16 @@ impl<T: Real> Estimator<T> {
             return SensorUse::Disturbed;
         }
         let psi = m.x.atan2(m.y);
+        let (rn, rd) = self.field.reference();
+        let eps = if disturbed {
+            g * ((norm - rn).abs() / rn + (dip - rd).abs()) * norm / h
+        } else {
+            T::ZERO
+        };
         let s = pr.mag_heading_noise;
         let timing = rate * pr.mag_timing * norm / h;
-        let r = s * s * (pr.mag_correlation_time / dt).max(T::ONE) + timing * timing;
+        let var = s * s + eps * eps + timing * timing;
+        let r = var * (pr.mag_correlation_time / dt).max(T::ONE);
         let k = match pr.gains {
             Gains::Kalman => {
                 let pzz = self.p.attitude.m[2][2];
@@ -514,14 +560,18 @@ impl<T: Real> Estimator<T> {
             }
             Gains::Fixed {
                 heading_time_constant,
-            } => dt / (heading_time_constant + dt),
+            } => dt / (heading_time_constant + dt) * (s * s / var),
         };
         self.p.update_attitude_axis_only(2, k, r);
         // The heading correction: a turn about the earth vertical only.
         let (sn, cs) = (k * psi * T::HALF).sin_cos();
         let turn = UnitQuat::new_unchecked(Quat::new(cs, T::ZERO, T::ZERO, sn));
         self.q_corr = (turn * self.q_corr).renormalize_fast();
-        SensorUse::Used
+        if disturbed {
+            SensorUse::Disturbed
+        } else {
+            SensorUse::Used
+        }
     }
 
     /// A sequential scalar Kalman update of error-state component `i` with measurement `z`:
