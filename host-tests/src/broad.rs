@@ -287,7 +287,6 @@ pub fn convert_params(p: &Params<f64>) -> Params<f32> {
         accel_reject: c(p.accel_reject),
         mag_heading_noise: c(p.mag_heading_noise),
         mag_correlation_time: c(p.mag_correlation_time),
-        mag_timing: c(p.mag_timing),
         mag_delay: c(p.mag_delay),
         mag_disturbance_weight: c(p.mag_disturbance_weight),
         field: FieldThresholds {
@@ -525,7 +524,6 @@ pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), Str
         "accel_reject" => &mut p.accel_reject,
         "mag_heading_noise" => &mut p.mag_heading_noise,
         "mag_correlation_time" => &mut p.mag_correlation_time,
-        "mag_timing" => &mut p.mag_timing,
         "mag_delay" => &mut p.mag_delay,
         "mag_disturbance_weight" => &mut p.mag_disturbance_weight,
         "field.norm" => &mut p.field.norm,

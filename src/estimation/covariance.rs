@@ -88,6 +88,31 @@ impl<T: Real> Covariance<T> {
         self.attitude.m[i][i] = s * s * pii + k * k * r;
     }
 
+    /// The heading update with the tilt coupling: the measurement `ψ = δθ_z + c·δθ_y + noise`
+    /// (`c = tan(dip)`: a tilt error about the earth's north axis turns the field's vertical
+    /// part into the horizontal plane), with a gain on `δθ_z` only. The gain minimising the
+    /// heading variance is `k = uᵢ/s`, `u = P h`, `s = hᵀ P h + r`, `h = (0, c, 1, 0, 0, 0)`;
+    /// then `P ← P − k(e_z uᵀ + u e_zᵀ) + k² s e_z e_zᵀ` (Joseph form for that gain). Returns
+    /// `k`.
+    pub fn update_heading(&mut self, c: T, r: T) -> T {
+        let py = self.row(1);
+        let pz = self.row(2);
+        let u: [T; 6] = core::array::from_fn(|j| c * py[j] + pz[j]);
+        let s = c * u[1] + u[2] + r;
+        let k = u[2] / s;
+        for (j, &uj) in u.iter().enumerate() {
+            // Row z and column z, each once (the diagonal below).
+            if j != 2 {
+                self.sub_at(2, j, k * uj);
+                if j < 3 {
+                    self.sub_at(j, 2, k * uj);
+                }
+            }
+        }
+        self.attitude.m[2][2] = self.attitude.m[2][2] - (k * u[2]).twice() + k * k * s;
+        k
+    }
+
     /// Adds `v` to the attitude variance of every axis (an unmodelled extra rotation, such as a
     /// saturated gyroscope sample).
     pub fn inflate_attitude(&mut self, v: T) {

@@ -73,9 +73,6 @@ pub struct Params<T> {
     pub mag_heading_noise: T,
     /// Correlation time (s) of that error.
     pub mag_correlation_time: T,
-    /// Timing uncertainty (s) between the magnetometer and the gyroscope: adds `|ω|·t` to the
-    /// heading error, amplified by `|B|/|B_horizontal|`.
-    pub mag_timing: T,
     /// Delay (s) of the magnetometer behind the gyroscope: its sample is compared with the
     /// attitude that long ago (up to [`MAG_HISTORY`] samples).
     pub mag_delay: T,
@@ -99,7 +96,7 @@ impl<T: Real> Default for Params<T> {
             frame: EarthFrame::Enu,
             gains: Gains::Kalman,
             gyro_noise_density: deg(0.01),
-            gyro_scale_noise: v(0.0),
+            gyro_scale_noise: v(0.002),
             gyro_bias_initial: deg(0.5),
             gyro_bias_stability: deg(0.1),
             gyro_bias_time: v(100.0),
@@ -107,13 +104,12 @@ impl<T: Real> Default for Params<T> {
             gyro_range: v(f64::INFINITY),
             accel_range: v(f64::INFINITY),
             accel_time_constant: v(3.0),
-            accel_tilt_noise: deg(1.0),
+            accel_tilt_noise: deg(0.3),
             accel_correlation_time: v(1.0),
-            accel_reject: v(0.5),
+            accel_reject: v(0.2),
             mag_heading_noise: deg(2.0),
             mag_correlation_time: v(5.0),
-            mag_timing: v(0.0),
-            mag_disturbance_weight: v(0.0),
+            mag_disturbance_weight: v(0.3),
             mag_delay: v(0.0),
             field: FieldThresholds {
                 norm: v(0.1),
@@ -218,7 +214,6 @@ impl<T: Real> Estimator<T> {
             p.accel_reject,
             p.mag_heading_noise,
             p.mag_correlation_time,
-            p.mag_timing,
             p.mag_disturbance_weight,
             p.mag_delay,
             p.field.norm,
@@ -473,9 +468,10 @@ impl<T: Real> Estimator<T> {
         } else {
             a_gyro
         };
-        let n = accel.norm();
+        // What the low-pass filter left of non-gravitational acceleration shows in its norm.
         let g = T::from_f64(GRAVITY);
-        if (n - g).abs() > pr.accel_reject * g {
+        let residual = (v.norm() - g).abs() / g;
+        if residual > pr.accel_reject {
             return SensorUse::Disturbed;
         }
         let v = self.q_corr.rotate(v);
@@ -550,19 +546,18 @@ impl<T: Real> Estimator<T> {
             T::ZERO
         };
         let s = pr.mag_heading_noise;
-        let timing = rate * pr.mag_timing * norm / h;
-        let var = s * s + eps * eps + timing * timing;
+        let var = s * s + eps * eps;
         let r = var * (pr.mag_correlation_time / dt).max(T::ONE);
         let k = match pr.gains {
-            Gains::Kalman => {
-                let pzz = self.p.attitude.m[2][2];
-                pzz / (pzz + r)
-            }
+            Gains::Kalman => self.p.update_heading(-m.z / h, r),
             Gains::Fixed {
                 heading_time_constant,
-            } => dt / (heading_time_constant + dt) * (s * s / var),
+            } => {
+                let k = dt / (heading_time_constant + dt) * (s * s / var);
+                self.p.update_attitude_axis_only(2, k, r);
+                k
+            }
         };
-        self.p.update_attitude_axis_only(2, k, r);
         // The heading correction: a turn about the earth vertical only.
         let (sn, cs) = (k * psi * T::HALF).sin_cos();
         let turn = UnitQuat::new_unchecked(Quat::new(cs, T::ZERO, T::ZERO, sn));
