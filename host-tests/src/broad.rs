@@ -177,11 +177,20 @@ pub fn read_log(reader: impl BufRead, units: Units) -> Result<Log, ReadError> {
         };
         let num = |i: usize| -> Result<f64, ReadError> {
             let s = get(i)?;
-            s.parse::<f64>()
-                .map_err(|_| err(format!("column {} ({}): not a number: {s:?}", i + 1, head[i])))
+            s.parse::<f64>().map_err(|_| {
+                err(format!(
+                    "column {} ({}): not a number: {s:?}",
+                    i + 1,
+                    head[i]
+                ))
+            })
         };
         let vec3 = |idx: [usize; 3], scale: f64| -> Result<[f64; 3], ReadError> {
-            Ok([num(idx[0])? * scale, num(idx[1])? * scale, num(idx[2])? * scale])
+            Ok([
+                num(idx[0])? * scale,
+                num(idx[1])? * scale,
+                num(idx[2])? * scale,
+            ])
         };
         let truth = match iq {
             Some(iq) if !get(iq[0])?.is_empty() => {
@@ -216,7 +225,10 @@ pub fn open_log(path: &Path, units: Units) -> Result<Log, ReadError> {
         message: format!("{}: {e}", path.display()),
     })?;
     if path.extension().is_some_and(|e| e == "gz") {
-        read_log(BufReader::new(flate2::read::MultiGzDecoder::new(file)), units)
+        read_log(
+            BufReader::new(flate2::read::MultiGzDecoder::new(file)),
+            units,
+        )
     } else {
         read_log(BufReader::new(file), units)
     }
@@ -251,7 +263,11 @@ pub struct Mode {
 /// Runs the estimator over `log` and returns one row per input row. The step `dt` of each row
 /// is the difference of its time stamp and the previous row's (the first row initialises the
 /// attitude, its `dt` is not used: the median step of the log is passed).
-pub fn estimate(log: &Log, params: &Params<f64>, mode: Mode) -> Result<Vec<EstimateRow>, gyrostat::Error> {
+pub fn estimate(
+    log: &Log,
+    params: &Params<f64>,
+    mode: Mode,
+) -> Result<Vec<EstimateRow>, gyrostat::Error> {
     if mode.f32 {
         run::<f32>(log, &convert_params(params), mode)
     } else {
@@ -322,7 +338,11 @@ fn median_step(log: &Log) -> f64 {
     d[d.len() / 2]
 }
 
-fn run<T: Real>(log: &Log, params: &Params<T>, mode: Mode) -> Result<Vec<EstimateRow>, gyrostat::Error> {
+fn run<T: Real>(
+    log: &Log,
+    params: &Params<T>,
+    mode: Mode,
+) -> Result<Vec<EstimateRow>, gyrostat::Error> {
     let mut f = Estimator::try_new(*params)?;
     let v = |a: [f64; 3]| Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]));
     let first_dt = median_step(log);
@@ -395,7 +415,12 @@ pub fn score(log: &Log, estimate: &[(f64, [f64; 4])]) -> Score {
             continue;
         };
         let qe = match est.get(&key(row.t)) {
-            Some(q) if q.iter().all(|v| v.is_finite()) && q.iter().map(|v| v * v).sum::<f64>() != 0.0 => *q,
+            Some(q)
+                if q.iter().all(|v| v.is_finite())
+                    && q.iter().map(|v| v * v).sum::<f64>() != 0.0 =>
+            {
+                *q
+            }
             _ => {
                 missing += 1;
                 continue;
@@ -409,11 +434,22 @@ pub fn score(log: &Log, estimate: &[(f64, [f64; 4])]) -> Score {
         let w = w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2;
         let z = w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2;
         se += (2.0 * w.abs().min(1.0).acos()).powi(2);
-        sh += (if w != 0.0 { 2.0 * (z / w).abs().atan() } else { core::f64::consts::PI }).powi(2);
+        sh += (if w != 0.0 {
+            2.0 * (z / w).abs().atan()
+        } else {
+            core::f64::consts::PI
+        })
+        .powi(2);
         si += (2.0 * (w * w + z * z).sqrt().min(1.0).acos()).powi(2);
         n += 1;
     }
-    let d = |s: f64| if n > 0 { (s / n as f64).sqrt().to_degrees() } else { f64::NAN };
+    let d = |s: f64| {
+        if n > 0 {
+            (s / n as f64).sqrt().to_degrees()
+        } else {
+            f64::NAN
+        }
+    };
     Score {
         total: d(se),
         heading: d(sh),

@@ -20,8 +20,8 @@
 //! - [`campaign`]: the adversarial input campaign (generators, checks, runner, `ROBUSTNESS.md`
 //!   tables); [`family!`] declares one API family.
 
-pub mod campaign;
 pub mod broad;
+pub mod campaign;
 pub mod cast;
 pub mod cli;
 pub mod examples;

@@ -190,6 +190,10 @@ pub struct Estimator<T> {
 /// The number of past attitudes kept for [`Params::mag_delay`].
 pub const MAG_HISTORY: usize = 8;
 
+/// The longest step [`Estimator::update`] takes, s: a longer gap is an error (restart the
+/// estimator after it).
+pub const MAX_STEP: f64 = 1000.0;
+
 /// The earth's gravity used for the accelerometer gate, m/s².
 const GRAVITY: f64 = 9.81;
 
@@ -323,9 +327,10 @@ impl<T: Real> Estimator<T> {
     /// magnetometer too, when given: [`super::init`]); `dt` of that sample is not used.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] for a `dt` that is not finite and positive;
-    /// [`Error::NonFinite`] for a non-finite gyroscope component. The sample is then ignored
-    /// and the state is unchanged. A bad accelerometer or magnetometer sample is not an error:
+    /// [`Error::InvalidArgument`] for a `dt` that is not finite and positive or longer than
+    /// [`MAX_STEP`]; [`Error::NonFinite`] for a non-finite gyroscope component;
+    /// [`Error::StepTooLong`] when the (clipped) rate turns by more than half a turn in `dt`.
+    /// The sample is then ignored and the state is unchanged. A bad accelerometer or magnetometer sample is not an error:
     /// the propagation goes on and the [`Outcome`] says why the correction was skipped.
     pub fn update(
         &mut self,
@@ -334,7 +339,7 @@ impl<T: Real> Estimator<T> {
         mag: Option<Vec3<T>>,
         dt: T,
     ) -> Result<Outcome, Error> {
-        if !(dt.is_finite() && dt > T::ZERO) {
+        if !(dt.is_finite() && dt > T::ZERO && dt <= T::from_f64(MAX_STEP)) {
             return Err(Error::InvalidArgument);
         }
         let gyro = gyro.try_finite()?;
@@ -347,6 +352,12 @@ impl<T: Real> Estimator<T> {
         } else {
             gyro
         };
+        // More than half a turn in one step: no step of any method is valid there
+        // (`propagation::MAX_STEP_ANGLE`); an overflowing square fails too.
+        let turn = gyro.scale(dt);
+        if !(turn.norm_squared() <= T::PI * T::PI) {
+            return Err(Error::StepTooLong);
+        }
         let accel_use = self.check(accel, self.params.accel_range);
         let mag_use = match mag {
             Some(m) => self.check(m, T::from_f64(f64::INFINITY)),
@@ -393,7 +404,7 @@ impl<T: Real> Estimator<T> {
     fn check(&self, v: Vec3<T>, range: T) -> SensorUse {
         if !v.is_finite() {
             SensorUse::NonFinite
-        } else if v.max_abs() >= range {
+        } else if v.max_abs() >= range || !v.norm_squared().is_finite() {
             SensorUse::Saturated
         } else if v.norm_squared() == T::ZERO {
             SensorUse::Zero
@@ -404,8 +415,9 @@ impl<T: Real> Estimator<T> {
 
     fn initialize(&mut self, gyro: Vec3<T>, accel: Vec3<T>, mag: Option<Vec3<T>>) {
         let q = match mag {
-            Some(m) => attitude_from_gravity_and_field(accel, m)
-                .or_else(|_| attitude_from_gravity(accel)),
+            Some(m) => {
+                attitude_from_gravity_and_field(accel, m).or_else(|_| attitude_from_gravity(accel))
+            }
             None => attitude_from_gravity(accel),
         };
         let q = q.unwrap_or(UnitQuat::IDENTITY);
@@ -437,8 +449,7 @@ impl<T: Real> Estimator<T> {
         let pr = &self.params;
         let sw = pr.gyro_scale_noise * w.norm();
         let q_theta = (pr.gyro_noise_density * pr.gyro_noise_density + sw * sw) * dt;
-        let q_bias =
-            pr.gyro_bias_stability * pr.gyro_bias_stability * dt / pr.gyro_bias_time;
+        let q_bias = pr.gyro_bias_stability * pr.gyro_bias_stability * dt / pr.gyro_bias_time;
         self.p.predict(f, q_theta, q_bias);
         if saturated {
             // The true rate is somewhere beyond the range: up to a range's worth of rotation

@@ -115,7 +115,10 @@ fn main() -> ExitCode {
             broad::write_estimate(std::io::BufWriter::new(f), &rows).map_err(|e| e.to_string())?;
         }
         let other = if both {
-            let m = Mode { f32: !mode.f32, ..mode };
+            let m = Mode {
+                f32: !mode.f32,
+                ..mode
+            };
             let r2 = estimate(&log, &params, m).map_err(|e| e.to_string())?;
             Some(score_rows(&log, &r2))
         } else {
@@ -133,7 +136,10 @@ fn main() -> ExitCode {
             .into_iter()
             .map(|c| s.spawn(move || c.into_iter().map(|j| (j, run_one(j))).collect::<Vec<_>>()))
             .collect();
-        let mut all: Vec<_> = handles.into_iter().flat_map(|h| h.join().unwrap_or_default()).collect();
+        let mut all: Vec<_> = handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap_or_default())
+            .collect();
         all.sort_by(|a, b| a.0.name.cmp(&b.0.name));
         all
     });
@@ -142,8 +148,14 @@ fn main() -> ExitCode {
     let mut groups: [(f64, f64, f64, usize); 3] = [(0.0, 0.0, 0.0, 0); 3];
     let mut worst_diff = 0.0f64;
     if !quiet {
-        println!("| trial | total ° | heading ° | inclination ° | n | rest | acc rej | mag rej |{}", if both { " f32−f64 total °|" } else { "" });
-        println!("|---|---|---|---|---|---|---|---|{}", if both { "---|" } else { "" });
+        println!(
+            "| trial | total ° | heading ° | inclination ° | n | rest | acc rej | mag rej |{}",
+            if both { " f32−f64 total °|" } else { "" }
+        );
+        println!(
+            "|---|---|---|---|---|---|---|---|{}",
+            if both { "---|" } else { "" }
+        );
     }
     for (job, r) in &results {
         match r {
@@ -155,19 +167,32 @@ fn main() -> ExitCode {
                     groups[g].3 += 1;
                 }
                 let diff = other.map(|o| {
-                    let d = (o.total - s.total).abs().max((o.heading - s.heading).abs()).max((o.inclination - s.inclination).abs());
+                    let d = (o.total - s.total)
+                        .abs()
+                        .max((o.heading - s.heading).abs())
+                        .max((o.inclination - s.inclination).abs());
                     worst_diff = worst_diff.max(d);
                     format!(" {d:.4} |")
                 });
                 if !quiet {
                     println!(
                         "| {} | {:.3} | {:.3} | {:.3} | {} | {} | {} | {} |{}",
-                        job.name, s.total, s.heading, s.inclination, s.n, c.rest, c.accel_disturbed, c.mag_disturbed,
+                        job.name,
+                        s.total,
+                        s.heading,
+                        s.inclination,
+                        s.n,
+                        c.rest,
+                        c.accel_disturbed,
+                        c.mag_disturbed,
                         diff.unwrap_or_default()
                     );
                 }
                 if s.missing > 0 || c.errors > 0 {
-                    eprintln!("{}: {} missing, {} rejected rows", job.name, s.missing, c.errors);
+                    eprintln!(
+                        "{}: {} missing, {} rejected rows",
+                        job.name, s.missing, c.errors
+                    );
                 }
             }
             Err(e) => {
@@ -179,7 +204,13 @@ fn main() -> ExitCode {
     for (label, g) in ["undisturbed", "disturbed", "all"].iter().zip(groups) {
         if g.3 > 0 {
             let n = g.3 as f64;
-            println!("mean {label:<12} total {:.3}  heading {:.3}  inclination {:.3}  ({} trials)", g.0 / n, g.1 / n, g.2 / n, g.3);
+            println!(
+                "mean {label:<12} total {:.3}  heading {:.3}  inclination {:.3}  ({} trials)",
+                g.0 / n,
+                g.1 / n,
+                g.2 / n,
+                g.3
+            );
         }
     }
     if both {
