@@ -3,6 +3,9 @@
 //! a known motion), its behaviour on bad input, the BROAD metric against the dataset's
 //! `score.py`, and a short accuracy regression on two shared BROAD trials.
 
+// Matrix and per-axis code reads best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use gyrostat::estimation::{
     Covariance, Estimator, FieldMonitor, Params, RestDetector, SensorUse, attitude_from_gravity,
     attitude_from_gravity_and_field,

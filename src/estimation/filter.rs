@@ -237,7 +237,11 @@ impl<T: Real> Estimator<T> {
             return Err(Error::NonFinite);
         }
         let ranges = [p.gyro_range, p.accel_range];
-        if ranges.iter().any(|v| *v != *v) {
+        // A range may be +∞ (no saturation) but not NaN: NaN is the one value not ≤ +∞.
+        if ranges
+            .iter()
+            .any(|v| v.partial_cmp(&T::from_f64(f64::INFINITY)).is_none())
+        {
             return Err(Error::NonFinite);
         }
         if finite.iter().chain(ranges.iter()).any(|v| *v < T::ZERO)
@@ -251,10 +255,9 @@ impl<T: Real> Estimator<T> {
         if let Gains::Fixed {
             heading_time_constant,
         } = p.gains
+            && (!heading_time_constant.is_finite() || heading_time_constant < T::ZERO)
         {
-            if !heading_time_constant.is_finite() || heading_time_constant < T::ZERO {
-                return Err(Error::InvalidArgument);
-            }
+            return Err(Error::InvalidArgument);
         }
         let b0 = p.gyro_bias_initial;
         Ok(Self {
@@ -355,7 +358,8 @@ impl<T: Real> Estimator<T> {
         // More than half a turn in one step: no step of any method is valid there
         // (`propagation::MAX_STEP_ANGLE`); an overflowing square fails too.
         let turn = gyro.scale(dt);
-        if !(turn.norm_squared() <= T::PI * T::PI) {
+        let within = turn.norm_squared() <= T::PI * T::PI;
+        if !within {
             return Err(Error::StepTooLong);
         }
         let accel_use = self.check(accel, self.params.accel_range);
