@@ -67,7 +67,11 @@ pub struct Params<T> {
     pub accel_tilt_noise: T,
     /// Correlation time (s) of that error: one independent measurement per this time.
     pub accel_correlation_time: T,
-    /// Largest relative deviation of `|a|` from gravity (9.81 m/s²) for the sample to be used.
+    /// Largest relative deviation of the low-passed specific force's norm from gravity
+    /// (9.81 m/s²) for the inclination update to use it: a larger one is acceleration that
+    /// the low-pass filter could not average out (a sustained push). Every sample still feeds
+    /// the filter: dropping the peaks of a motion would break the cancellation of its
+    /// acceleration (measured on BROAD: 1.75° → 4.1° mean with a gate of 2 g on raw samples).
     pub accel_reject: T,
     /// Standard deviation (rad) of the heading measured from the magnetometer.
     pub mag_heading_noise: T,
