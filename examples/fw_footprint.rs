@@ -21,7 +21,10 @@
 //! - `exact`: the exact free rigid body from principal moments (`Inertia::try_from_principal`,
 //!   `FreeRigidBody::try_new`) and `try_state_at(t)`;
 //! - `gyro2_euler`: `gyro2` and `euler` together (attitude propagation and reporting);
-//! - `all` (the default): the four f32 capabilities together (not `gyro2_q30`). Shared code
+//! - `estimate`: the attitude estimator (`gyrostat::estimation::Estimator`, default
+//!   parameters): `try_new`, the initialising and one full 9D update, `update_9d`, and the
+//!   attitude; its state (about 0.5 KiB in f32) lives on the stack, so the stack column holds it;
+//! - `all` (the default): the four f32 capabilities together (not `gyro2_q30`, not `estimate`). Shared code
 //!   (the f32 `sin`/`cos` kernel, the quaternion product, soft-float routines) is linked once,
 //!   so a combination costs less than the sum of its parts.
 //!
@@ -59,9 +62,10 @@ mod firmware {
     const STRANG: u8 = 4;
     const EXACT: u8 = 8;
     const GYRO2_Q30: u8 = 16;
+    const ESTIMATE: u8 = 32;
 
     /// The capabilities `GYROSTAT_FOOTPRINT` can name, with the parts each links.
-    const CAPABILITIES: [(&str, u8); 8] = [
+    const CAPABILITIES: [(&str, u8); 9] = [
         ("baseline", 0),
         ("gyro2", GYRO2),
         ("gyro2_q30", GYRO2_Q30),
@@ -70,6 +74,7 @@ mod firmware {
         ("strang", STRANG),
         ("exact", EXACT),
         ("all", GYRO2 | EULER | STRANG | EXACT),
+        ("estimate", ESTIMATE),
     ];
 
     /// The entry of `CAPABILITIES` named `name`; an unknown name stops the build.
@@ -82,7 +87,7 @@ mod firmware {
             i += 1;
         }
         panic!(
-            "GYROSTAT_FOOTPRINT must be one of: baseline gyro2 gyro2_q30 euler gyro2_euler strang exact all"
+            "GYROSTAT_FOOTPRINT must be one of: baseline gyro2 gyro2_q30 euler gyro2_euler strang exact all estimate"
         )
     }
 
@@ -229,6 +234,18 @@ mod firmware {
             {
                 let body = Gyrostat::rigid(inertia);
                 let _ = black_box(body.step(Integrator::Strang, &state, inputs.dt));
+            }
+        }
+        if links(ESTIMATE) {
+            use gyrostat::estimation::{Estimator, Params};
+            let inv = attitude.inverse();
+            let acc = inv.rotate(black_box(Vec3::new(0.0f32, 0.0, 9.81)));
+            let mag = inv.rotate(black_box(Vec3::new(0.0f32, 15.8, -40.7)));
+            let gyro = black_box(Vec3::new(1.0f32, -2.0, 0.5)).scale(inputs.angle);
+            if let Ok(mut f) = Estimator::try_new(black_box(Params::<f32>::default())) {
+                let _ = black_box(f.update_9d(gyro, acc, mag, inputs.dt));
+                let _ = black_box(f.update_9d(gyro, acc, mag, inputs.dt));
+                black_box(f.attitude());
             }
         }
         if links(EXACT) {

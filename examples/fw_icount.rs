@@ -107,7 +107,7 @@ mod firmware {
     }
 
     /// Room for this many named counts.
-    const CAP: usize = 64;
+    const CAP: usize = 96;
 
     /// Measures everything first and prints at the end: semihosting I/O between measurements
     /// perturbs QEMU's virtual clock on some boards.
@@ -493,6 +493,56 @@ mod firmware {
                     count!(table, "dyn_exact_free_body_state_at_f32", heavy, || exact
                         .state_at_unchecked(black_box(7.5f32)));
                 }
+            }
+        }
+
+        // The attitude estimator (`gyrostat::estimation`), default parameters, one update on a
+        // BROAD-like sample (285.7 Hz) after 2 s of warm-up: the state carries on from call to
+        // call (a running filter), so each count is a steady-state update in motion.
+        {
+            use core::cell::RefCell;
+            use gyrostat::estimation::{Estimator, Params};
+            fn warm<T: gyrostat::Real>() -> Option<RefCell<Estimator<T>>> {
+                let c = T::from_f64;
+                let mut f = Estimator::try_new(Params::<T>::default()).ok()?;
+                let (g, a, m) = sample::<T>();
+                for _ in 0..570 {
+                    f.update_9d(g, a, m, c(0.0035)).ok()?;
+                }
+                Some(RefCell::new(f))
+            }
+            fn sample<T: gyrostat::Real>() -> (Vec3<T>, Vec3<T>, Vec3<T>) {
+                let c = T::from_f64;
+                (
+                    Vec3::new(c(0.4), c(-0.25), c(0.6)),
+                    Vec3::new(c(0.8), c(-1.1), c(9.6)),
+                    Vec3::new(c(3.2), c(14.9), c(-40.1)),
+                )
+            }
+            if let Some(f) = warm::<f32>() {
+                let (g, a, m) = sample::<f32>();
+                count!(table, "est_update_6d_f32", || f.try_borrow_mut().map(
+                    |mut f| f.update_6d(black_box(g), black_box(a), black_box(0.0035f32))
+                ));
+                count!(table, "est_update_9d_f32", || f.try_borrow_mut().map(
+                    |mut f| f.update_9d(
+                        black_box(g),
+                        black_box(a),
+                        black_box(m),
+                        black_box(0.0035f32)
+                    )
+                ));
+            }
+            if let Some(f) = warm::<f64>() {
+                let (g, a, m) = sample::<f64>();
+                count!(table, "est_update_9d_f64", heavy, || f
+                    .try_borrow_mut()
+                    .map(|mut f| f.update_9d(
+                        black_box(g),
+                        black_box(a),
+                        black_box(m),
+                        black_box(0.0035f64)
+                    )));
             }
         }
 

@@ -235,6 +235,7 @@
 mod compensated;
 pub mod dynamics;
 mod error;
+pub mod estimation;
 pub mod fixed;
 mod interop;
 pub mod linalg;

@@ -20,6 +20,7 @@
 //! - [`campaign`]: the adversarial input campaign (generators, checks, runner, `ROBUSTNESS.md`
 //!   tables); [`family!`] declares one API family.
 
+pub mod broad;
 pub mod campaign;
 pub mod cast;
 pub mod cli;

@@ -1,0 +1,220 @@
+//! Research runner: the attitude estimator on the shared BROAD trials, scored with BROAD's
+//! metric (the computation of the dataset's `score.py`).
+//!
+//! ```text
+//! cargo run --release -p host-tests --bin broad_estimate -- [OPTIONS] [TRIAL...]
+//!   TRIAL            trial numbers (01 07 …) or file paths; default: the 16 shared trials
+//!   --f32            run the filter in f32 (default f64)
+//!   --both           run f64 and f32 and print the largest difference of the scores
+//!   --6d             no magnetometer (inclination is the meaningful score)
+//!   --set NAME=VALUE a parameter (SI units; a value ending in `deg` is converted to rad,
+//!                    `deg/s` too); repeatable. Names: host_tests::broad::set_param
+//!   --out DIR        write each estimate as DIR/NN.csv (t,qw,qx,qy,qz,bx,by,bz)
+//!   --quiet          print only the group means
+//! ```
+//! Prints per trial the total, heading and inclination RMSE (degrees) and the means over the
+//! undisturbed, disturbed and all trials.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use gyrostat::estimation::Params;
+use host_tests::broad::{
+    self, EstimateRow, Log, Mode, Score, TRIALS, Units, estimate, open_log, score_rows,
+};
+
+struct Job {
+    name: String,
+    disturbed: bool,
+    path: PathBuf,
+}
+
+fn parse_value(v: &str) -> String {
+    let deg = core::f64::consts::PI / 180.0;
+    for suffix in ["deg/s", "deg"] {
+        if let Some(x) = v.strip_suffix(suffix).and_then(|x| x.parse::<f64>().ok()) {
+            return format!("{}", x * deg);
+        }
+    }
+    v.to_string()
+}
+
+fn main() -> ExitCode {
+    let mut params = Params::<f64>::default();
+    let mut mode = Mode::default();
+    let mut both = false;
+    let mut quiet = false;
+    let mut out: Option<PathBuf> = None;
+    let mut jobs = Vec::new();
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "--f32" => mode.f32 = true,
+            "--6d" => mode.six_d = true,
+            "--both" => both = true,
+            "--quiet" => quiet = true,
+            "--out" => out = args.next().map(PathBuf::from),
+            "--set" => {
+                let Some(kv) = args.next() else {
+                    eprintln!("error: --set needs NAME=VALUE");
+                    return ExitCode::from(2);
+                };
+                let Some((k, v)) = kv.split_once('=') else {
+                    eprintln!("error: --set needs NAME=VALUE, got {kv:?}");
+                    return ExitCode::from(2);
+                };
+                if let Err(e) = broad::set_param(&mut params, k, &parse_value(v)) {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(2);
+                }
+            }
+            s if s.starts_with("--") => {
+                eprintln!("error: unknown option {s}");
+                return ExitCode::from(2);
+            }
+            s => {
+                if let Some((stem, d)) = TRIALS.iter().find(|(stem, _)| stem.starts_with(s)) {
+                    jobs.push(Job {
+                        name: stem[..2].to_string(),
+                        disturbed: *d,
+                        path: broad::trial_path(stem),
+                    });
+                } else {
+                    jobs.push(Job {
+                        name: s.to_string(),
+                        disturbed: false,
+                        path: PathBuf::from(s),
+                    });
+                }
+            }
+        }
+    }
+    if jobs.is_empty() {
+        jobs = TRIALS
+            .iter()
+            .map(|(stem, d)| Job {
+                name: stem[..2].to_string(),
+                disturbed: *d,
+                path: broad::trial_path(stem),
+            })
+            .collect();
+    }
+    if let Some(dir) = &out
+        && let Err(e) = std::fs::create_dir_all(dir)
+    {
+        eprintln!("error: {}: {e}", dir.display());
+        return ExitCode::from(1);
+    }
+
+    let run_one = |job: &Job| -> Result<(Score, Option<Score>, broad::UseCounts), String> {
+        let log: Log = open_log(&job.path, Units::SI).map_err(|e| e.to_string())?;
+        let rows: Vec<EstimateRow> = estimate(&log, &params, mode).map_err(|e| e.to_string())?;
+        if let Some(dir) = &out {
+            let f = std::fs::File::create(dir.join(format!("{}.csv", job.name)))
+                .map_err(|e| e.to_string())?;
+            broad::write_estimate(std::io::BufWriter::new(f), &rows).map_err(|e| e.to_string())?;
+        }
+        let other = if both {
+            let m = Mode {
+                f32: !mode.f32,
+                ..mode
+            };
+            let r2 = estimate(&log, &params, m).map_err(|e| e.to_string())?;
+            Some(score_rows(&log, &r2))
+        } else {
+            None
+        };
+        Ok((score_rows(&log, &rows), other, broad::use_counts(&rows)))
+    };
+
+    // Two worker threads over the trials.
+    let results: Vec<_> = std::thread::scope(|s| {
+        let chunks: Vec<Vec<&Job>> = (0..2)
+            .map(|w| jobs.iter().skip(w).step_by(2).collect())
+            .collect();
+        let handles: Vec<_> = chunks
+            .into_iter()
+            .map(|c| s.spawn(move || c.into_iter().map(|j| (j, run_one(j))).collect::<Vec<_>>()))
+            .collect();
+        let mut all: Vec<_> = handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap_or_default())
+            .collect();
+        all.sort_by(|a, b| a.0.name.cmp(&b.0.name));
+        all
+    });
+
+    let mut status = ExitCode::SUCCESS;
+    let mut groups: [(f64, f64, f64, usize); 3] = [(0.0, 0.0, 0.0, 0); 3];
+    let mut worst_diff = 0.0f64;
+    if !quiet {
+        println!(
+            "| trial | total ° | heading ° | inclination ° | n | rest | acc rej | mag rej |{}",
+            if both { " f32−f64 total °|" } else { "" }
+        );
+        println!(
+            "|---|---|---|---|---|---|---|---|{}",
+            if both { "---|" } else { "" }
+        );
+    }
+    for (job, r) in &results {
+        match r {
+            Ok((s, other, c)) => {
+                for g in [usize::from(job.disturbed), 2] {
+                    groups[g].0 += s.total;
+                    groups[g].1 += s.heading;
+                    groups[g].2 += s.inclination;
+                    groups[g].3 += 1;
+                }
+                let diff = other.map(|o| {
+                    let d = (o.total - s.total)
+                        .abs()
+                        .max((o.heading - s.heading).abs())
+                        .max((o.inclination - s.inclination).abs());
+                    worst_diff = worst_diff.max(d);
+                    format!(" {d:.4} |")
+                });
+                if !quiet {
+                    println!(
+                        "| {} | {:.3} | {:.3} | {:.3} | {} | {} | {} | {} |{}",
+                        job.name,
+                        s.total,
+                        s.heading,
+                        s.inclination,
+                        s.n,
+                        c.rest,
+                        c.accel_disturbed,
+                        c.mag_disturbed,
+                        diff.unwrap_or_default()
+                    );
+                }
+                if s.missing > 0 || c.errors > 0 {
+                    eprintln!(
+                        "{}: {} missing, {} rejected rows",
+                        job.name, s.missing, c.errors
+                    );
+                }
+            }
+            Err(e) => {
+                eprintln!("error: {}: {e}", job.name);
+                status = ExitCode::from(1);
+            }
+        }
+    }
+    for (label, g) in ["undisturbed", "disturbed", "all"].iter().zip(groups) {
+        if g.3 > 0 {
+            let n = g.3 as f64;
+            println!(
+                "mean {label:<12} total {:.3}  heading {:.3}  inclination {:.3}  ({} trials)",
+                g.0 / n,
+                g.1 / n,
+                g.2 / n,
+                g.3
+            );
+        }
+    }
+    if both {
+        println!("largest |f32 − f64| of a score: {worst_diff:.4}°");
+    }
+    status
+}

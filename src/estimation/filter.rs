@@ -1,0 +1,672 @@
+//! The attitude-and-bias estimator: gyroscope propagation, inclination from the accelerometer,
+//! heading from the magnetometer.
+
+use super::covariance::Covariance;
+use super::field::{FieldMonitor, FieldThresholds};
+use super::init::{attitude_from_gravity, attitude_from_gravity_and_field};
+use super::lowpass::LowPass;
+use super::rest::{RestDetector, RestThresholds};
+use crate::{Error, Quat, Real, UnitQuat, Vec3};
+
+/// The earth frame of the output attitude (sensor → earth).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum EarthFrame {
+    /// x east, y magnetic north, z up (the default; BROAD's frame).
+    #[default]
+    Enu,
+    /// x magnetic north, y east, z down.
+    Ned,
+}
+
+/// How the accelerometer and magnetometer corrections are weighted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Gains<T> {
+    /// Kalman gains from the error covariance (the measurement variances below).
+    Kalman,
+    /// Complementary: the low-passed inclination is applied in full at every sample and the
+    /// heading error with the first-order gain `Δt/(τ + Δt)`; the bias still from the Kalman
+    /// update.
+    Fixed {
+        /// `τ` (s) of the heading correction.
+        heading_time_constant: T,
+    },
+}
+
+/// The estimator's parameters, in SI units (angles in rad). [`Params::default`] holds values
+/// that work on BROAD without tuning per recording (see the module docs for how they were
+/// chosen).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params<T> {
+    /// The earth frame of [`Estimator::attitude`].
+    pub frame: EarthFrame,
+    /// How corrections are weighted.
+    pub gains: Gains<T>,
+    /// Gyroscope white noise, rad/s/√Hz (angle random walk).
+    pub gyro_noise_density: T,
+    /// Rate-proportional gyroscope error, 1/√Hz: scale-factor and axis-misalignment errors
+    /// (and timing) turn the estimate by an error proportional to the rate, modelled as white
+    /// noise of density `s·|ω|` added to [`Params::gyro_noise_density`].
+    pub gyro_scale_noise: T,
+    /// Standard deviation of the gyroscope bias at start, rad/s.
+    pub gyro_bias_initial: T,
+    /// How far the bias wanders (rad/s) within [`Params::gyro_bias_time`]: the random walk of
+    /// variance `σ²·Δt/τ` per step.
+    pub gyro_bias_stability: T,
+    /// The time (s) over which the bias wanders by [`Params::gyro_bias_stability`].
+    pub gyro_bias_time: T,
+    /// The largest bias magnitude per axis, rad/s (estimates are clipped to it).
+    pub gyro_bias_max: T,
+    /// The gyroscope's full scale, rad/s: a component at or beyond it is saturated.
+    pub gyro_range: T,
+    /// The accelerometer's full scale, m/s²: a component at or beyond it is saturated.
+    pub accel_range: T,
+    /// Time constant (s) of the low-pass filter of the specific force in the gyroscope's
+    /// (almost inertial) frame; 0 uses each sample as it is.
+    pub accel_time_constant: T,
+    /// Standard deviation (rad) of the inclination measured from the (filtered) accelerometer.
+    pub accel_tilt_noise: T,
+    /// Correlation time (s) of that error: one independent measurement per this time.
+    pub accel_correlation_time: T,
+    /// Largest relative deviation of the low-passed specific force's norm from gravity
+    /// (9.81 m/s²) for the inclination update to use it: a larger one is acceleration that
+    /// the low-pass filter could not average out (a sustained push). Every sample still feeds
+    /// the filter: dropping the peaks of a motion would break the cancellation of its
+    /// acceleration (measured on BROAD: 1.75° → 4.1° mean with a gate of 2 g on raw samples).
+    pub accel_reject: T,
+    /// Standard deviation (rad) of the heading measured from the magnetometer.
+    pub mag_heading_noise: T,
+    /// Correlation time (s) of that error.
+    pub mag_correlation_time: T,
+    /// Delay (s) of the magnetometer behind the gyroscope: its sample is compared with the
+    /// attitude that long ago (up to [`MAG_HISTORY`] samples).
+    pub mag_delay: T,
+    /// Weight of a disturbed field's heading error: 0 rejects a disturbed field outright; a
+    /// positive `g` uses it with the heading variance increased by `(g·ε·|B|/|B_h|)²`, where
+    /// `ε = ||B| − |B|_ref|/|B|_ref + |δ − δ_ref|` bounds the relative size of the disturbance.
+    pub mag_disturbance_weight: T,
+    /// The magnetic disturbance monitor.
+    pub field: FieldThresholds<T>,
+    /// The rest detector.
+    pub rest: RestThresholds<T>,
+    /// Standard deviation (rad/s) of the mean rate at rest as a bias measurement.
+    pub rest_bias_noise: T,
+}
+
+impl<T: Real> Default for Params<T> {
+    fn default() -> Self {
+        let deg = |x: f64| T::from_f64(x.to_radians());
+        let v = T::from_f64;
+        Self {
+            frame: EarthFrame::Enu,
+            gains: Gains::Kalman,
+            gyro_noise_density: deg(0.01),
+            gyro_scale_noise: v(0.002),
+            gyro_bias_initial: deg(0.5),
+            gyro_bias_stability: deg(0.1),
+            gyro_bias_time: v(100.0),
+            gyro_bias_max: deg(2.0),
+            gyro_range: v(f64::INFINITY),
+            accel_range: v(f64::INFINITY),
+            accel_time_constant: v(3.0),
+            accel_tilt_noise: deg(0.3),
+            accel_correlation_time: v(1.0),
+            accel_reject: v(0.2),
+            mag_heading_noise: deg(2.0),
+            mag_correlation_time: v(5.0),
+            mag_disturbance_weight: v(0.3),
+            mag_delay: v(0.0),
+            field: FieldThresholds {
+                norm: v(0.1),
+                dip: deg(10.0),
+                reference_time_constant: v(20.0),
+                min_undisturbed: v(0.5),
+                new_field_time: v(20.0),
+                new_field_min_rate: deg(20.0),
+            },
+            rest: RestThresholds {
+                time_constant: v(0.5),
+                gyro: deg(2.0),
+                accel: v(0.5),
+                max_bias: deg(2.0),
+                min_duration: v(1.5),
+            },
+            rest_bias_noise: deg(0.03),
+        }
+    }
+}
+
+/// What became of one sensor's sample in an update.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum SensorUse {
+    /// The sample corrected the estimate.
+    Used,
+    /// No sample was given (a 6D update has no magnetometer).
+    #[default]
+    Absent,
+    /// A component was NaN or infinite: the sample was ignored.
+    NonFinite,
+    /// A component was at or beyond the sensor's range: the sample was ignored.
+    Saturated,
+    /// The sample was finite but rejected as disturbed: a specific force far from gravity, or a
+    /// magnetic field whose norm or dip differs from the reference.
+    Disturbed,
+    /// A zero vector: no direction.
+    Zero,
+}
+
+/// The report of one update: what each sensor's sample did. The state is valid whatever it
+/// says.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Outcome {
+    /// `true` when a gyroscope component was at or beyond its range: the attitude was
+    /// propagated with the clipped rate and its uncertainty increased.
+    pub gyro_saturated: bool,
+    /// The accelerometer sample.
+    pub accel: SensorUse,
+    /// The magnetometer sample.
+    pub mag: SensorUse,
+    /// Whether the sensor was at rest.
+    pub at_rest: bool,
+    /// Whether this update initialised the attitude (the first usable accelerometer sample).
+    pub initialized: bool,
+}
+
+/// The attitude and gyroscope-bias estimator (see the module docs for the design).
+#[derive(Clone, Copy, Debug)]
+pub struct Estimator<T> {
+    params: Params<T>,
+    initialized: bool,
+    /// Sensor → gyroscope frame (almost inertial): the bias-corrected strapdown attitude.
+    q_gyro: UnitQuat<T>,
+    /// Gyroscope frame → earth (ENU): the accumulated corrections.
+    q_corr: UnitQuat<T>,
+    bias: Vec3<T>,
+    p: Covariance<T>,
+    accel_lp: LowPass<T>,
+    rest: RestDetector<T>,
+    field: FieldMonitor<T>,
+    field_started: bool,
+    last: Outcome,
+    history: [UnitQuat<T>; MAG_HISTORY],
+    head: usize,
+}
+
+/// The number of past attitudes kept for [`Params::mag_delay`].
+pub const MAG_HISTORY: usize = 8;
+
+/// The longest step [`Estimator::update`] takes, s: a longer gap is an error (restart the
+/// estimator after it).
+pub const MAX_STEP: f64 = 1000.0;
+
+/// The earth's gravity used for the accelerometer gate, m/s².
+const GRAVITY: f64 = 9.81;
+
+impl<T: Real> Estimator<T> {
+    /// An estimator with these parameters, waiting for its first sample.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] when a noise, time or threshold is NaN (infinite ranges are allowed);
+    /// [`Error::InvalidArgument`] when one is negative or a time constant that divides is zero.
+    pub fn try_new(params: Params<T>) -> Result<Self, Error> {
+        let p = &params;
+        let finite = [
+            p.gyro_noise_density,
+            p.gyro_scale_noise,
+            p.gyro_bias_initial,
+            p.gyro_bias_stability,
+            p.gyro_bias_time,
+            p.gyro_bias_max,
+            p.accel_time_constant,
+            p.accel_tilt_noise,
+            p.accel_correlation_time,
+            p.accel_reject,
+            p.mag_heading_noise,
+            p.mag_correlation_time,
+            p.mag_disturbance_weight,
+            p.mag_delay,
+            p.field.norm,
+            p.field.dip,
+            p.field.reference_time_constant,
+            p.field.min_undisturbed,
+            p.field.new_field_time,
+            p.field.new_field_min_rate,
+            p.rest.time_constant,
+            p.rest.gyro,
+            p.rest.accel,
+            p.rest.max_bias,
+            p.rest.min_duration,
+            p.rest_bias_noise,
+        ];
+        if finite.iter().any(|v| !v.is_finite()) {
+            return Err(Error::NonFinite);
+        }
+        let ranges = [p.gyro_range, p.accel_range];
+        // A range may be +∞ (no saturation) but not NaN: NaN is the one value not ≤ +∞.
+        if ranges
+            .iter()
+            .any(|v| v.partial_cmp(&T::from_f64(f64::INFINITY)).is_none())
+        {
+            return Err(Error::NonFinite);
+        }
+        if finite.iter().chain(ranges.iter()).any(|v| *v < T::ZERO)
+            || p.gyro_bias_time <= T::ZERO
+            || p.accel_tilt_noise <= T::ZERO
+            || p.mag_heading_noise <= T::ZERO
+            || p.rest_bias_noise <= T::ZERO
+        {
+            return Err(Error::InvalidArgument);
+        }
+        if let Gains::Fixed {
+            heading_time_constant,
+        } = p.gains
+            && (!heading_time_constant.is_finite() || heading_time_constant < T::ZERO)
+        {
+            return Err(Error::InvalidArgument);
+        }
+        let b0 = p.gyro_bias_initial;
+        Ok(Self {
+            params,
+            initialized: false,
+            q_gyro: UnitQuat::IDENTITY,
+            q_corr: UnitQuat::IDENTITY,
+            bias: Vec3::ZERO,
+            p: Covariance::diagonal(T::ZERO, b0 * b0),
+            accel_lp: LowPass::default(),
+            rest: RestDetector::default(),
+            field: FieldMonitor::default(),
+            field_started: false,
+            last: Outcome::default(),
+            history: [UnitQuat::IDENTITY; MAG_HISTORY],
+            head: 0,
+        })
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &Params<T> {
+        &self.params
+    }
+
+    /// One 6D update (no magnetometer): body rate `gyro` (rad/s, sensor frame), specific force
+    /// `accel` (m/s², sensor frame), `dt` (s) since the previous sample.
+    ///
+    /// # Errors
+    /// See [`Estimator::update`].
+    pub fn update_6d(&mut self, gyro: Vec3<T>, accel: Vec3<T>, dt: T) -> Result<Outcome, Error> {
+        self.update(gyro, accel, None, dt)
+    }
+
+    /// One 9D update: [`Estimator::update_6d`] plus the magnetic field `mag` (any unit, sensor
+    /// frame).
+    ///
+    /// # Errors
+    /// See [`Estimator::update`].
+    pub fn update_9d(
+        &mut self,
+        gyro: Vec3<T>,
+        accel: Vec3<T>,
+        mag: Vec3<T>,
+        dt: T,
+    ) -> Result<Outcome, Error> {
+        self.update(gyro, accel, Some(mag), dt)
+    }
+
+    /// One update from a gyroscope increment `dtheta` (rad, the integral of the body rate over
+    /// the sample interval `dt`) instead of a rate: the rate `dtheta/dt` is used.
+    ///
+    /// # Errors
+    /// See [`Estimator::update`].
+    pub fn update_increment(
+        &mut self,
+        dtheta: Vec3<T>,
+        accel: Vec3<T>,
+        mag: Option<Vec3<T>>,
+        dt: T,
+    ) -> Result<Outcome, Error> {
+        if !(dt.is_finite() && dt > T::ZERO) {
+            return Err(Error::InvalidArgument);
+        }
+        self.update(dtheta.scale(T::ONE / dt), accel, mag, dt)
+    }
+
+    /// One update: propagation by the gyroscope, then the corrections.
+    ///
+    /// The first sample with a usable accelerometer initialises the attitude (from the
+    /// magnetometer too, when given: [`super::init`]); `dt` of that sample is not used.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a `dt` that is not finite and positive or longer than
+    /// [`MAX_STEP`]; [`Error::NonFinite`] for a non-finite gyroscope component;
+    /// [`Error::StepTooLong`] when the (clipped) rate turns by more than half a turn in `dt`.
+    /// The sample is then ignored and the state is unchanged. A bad accelerometer or magnetometer sample is not an error:
+    /// the propagation goes on and the [`Outcome`] says why the correction was skipped.
+    pub fn update(
+        &mut self,
+        gyro: Vec3<T>,
+        accel: Vec3<T>,
+        mag: Option<Vec3<T>>,
+        dt: T,
+    ) -> Result<Outcome, Error> {
+        if !(dt.is_finite() && dt > T::ZERO && dt <= T::from_f64(MAX_STEP)) {
+            return Err(Error::InvalidArgument);
+        }
+        let gyro = gyro.try_finite()?;
+        let mut out = Outcome::default();
+        let range = self.params.gyro_range;
+        let clip = |c: T| c.max(-range).min(range);
+        let gyro = if gyro.max_abs() >= range {
+            out.gyro_saturated = true;
+            Vec3::new(clip(gyro.x), clip(gyro.y), clip(gyro.z))
+        } else {
+            gyro
+        };
+        // More than half a turn in one step: no step of any method is valid there
+        // (`propagation::MAX_STEP_ANGLE`); an overflowing square fails too.
+        let turn = gyro.scale(dt);
+        let within = turn.norm_squared() <= T::PI * T::PI;
+        if !within {
+            return Err(Error::StepTooLong);
+        }
+        let accel_use = self.check(accel, self.params.accel_range);
+        let mag_use = match mag {
+            Some(m) => self.check(m, T::from_f64(f64::INFINITY)),
+            None => SensorUse::Absent,
+        };
+
+        if !self.initialized {
+            if accel_use != SensorUse::Used {
+                out.accel = accel_use;
+                out.mag = mag_use;
+                self.last = out;
+                return Ok(out);
+            }
+            self.initialize(gyro, accel, mag.filter(|_| mag_use == SensorUse::Used));
+            out.initialized = true;
+            out.accel = SensorUse::Used;
+            out.mag = mag_use;
+            self.last = out;
+            return Ok(out);
+        }
+
+        self.predict(gyro, dt, out.gyro_saturated);
+        let mut x = [T::ZERO; 6];
+
+        if accel_use == SensorUse::Used {
+            out.at_rest = self.rest.update(gyro, accel, dt, &self.params.rest);
+            if out.at_rest {
+                self.rest_update(&mut x);
+            }
+            out.accel = self.accel_update(accel, dt, &mut x);
+        } else {
+            out.accel = accel_use;
+        }
+        self.inject(&x);
+
+        out.mag = match (mag, mag_use) {
+            (Some(m), SensorUse::Used) => self.mag_update(m, gyro, dt),
+            (_, u) => u,
+        };
+        self.last = out;
+        Ok(out)
+    }
+
+    fn check(&self, v: Vec3<T>, range: T) -> SensorUse {
+        if !v.is_finite() {
+            SensorUse::NonFinite
+        } else if v.max_abs() >= range || !v.norm_squared().is_finite() {
+            SensorUse::Saturated
+        } else if v.norm_squared() == T::ZERO {
+            SensorUse::Zero
+        } else {
+            SensorUse::Used
+        }
+    }
+
+    fn initialize(&mut self, gyro: Vec3<T>, accel: Vec3<T>, mag: Option<Vec3<T>>) {
+        let q = match mag {
+            Some(m) => {
+                attitude_from_gravity_and_field(accel, m).or_else(|_| attitude_from_gravity(accel))
+            }
+            None => attitude_from_gravity(accel),
+        };
+        let q = q.unwrap_or(UnitQuat::IDENTITY);
+        self.q_gyro = q;
+        self.q_corr = UnitQuat::IDENTITY;
+        self.accel_lp = LowPass::at(q.rotate(accel));
+        self.rest = RestDetector::new(gyro, accel);
+        // The first sample's direction errors: the inclination from one accelerometer sample
+        // and (with a magnetometer) the heading from one field sample.
+        let s_tilt = self.params.accel_tilt_noise;
+        let s_head = self.params.mag_heading_noise;
+        let b0 = self.params.gyro_bias_initial;
+        let mut p = Covariance::diagonal(s_tilt * s_tilt, b0 * b0);
+        p.attitude.m[2][2] = s_head * s_head;
+        self.p = p;
+        if let Some(m) = mag {
+            let (norm, dip) = norm_dip(q.rotate(m));
+            self.field = FieldMonitor::new(norm, dip);
+            self.field_started = true;
+        }
+        self.initialized = true;
+    }
+
+    fn predict(&mut self, gyro: Vec3<T>, dt: T, saturated: bool) {
+        let w = gyro - self.bias;
+        self.q_gyro = self.q_gyro.mul_exp_unchecked(w.scale(dt)).renormalize_fast();
+        let r = self.attitude_enu().to_rotation_matrix();
+        let f = r.scale(-dt);
+        let pr = &self.params;
+        let sw = pr.gyro_scale_noise * w.norm();
+        let q_theta = (pr.gyro_noise_density * pr.gyro_noise_density + sw * sw) * dt;
+        let q_bias = pr.gyro_bias_stability * pr.gyro_bias_stability * dt / pr.gyro_bias_time;
+        self.p.predict(f, q_theta, q_bias);
+        if saturated {
+            // The true rate is somewhere beyond the range: up to a range's worth of rotation
+            // per step is unknown.
+            let a = pr.gyro_range * dt;
+            self.p.inflate_attitude(a * a);
+        }
+    }
+
+    /// At rest, the mean rate measures the bias: `z = ω̄ − b̂ = δb + noise`.
+    fn rest_update(&mut self, x: &mut [T; 6]) {
+        let z = self.rest.mean_rate() - self.bias;
+        let s = self.params.rest_bias_noise;
+        let r = s * s;
+        for (i, zi) in z.to_array().into_iter().enumerate() {
+            self.scalar_update(x, i + 3, zi, r);
+        }
+    }
+
+    fn accel_update(&mut self, accel: Vec3<T>, dt: T, x: &mut [T; 6]) -> SensorUse {
+        let pr = self.params;
+        // Filter in the gyroscope frame, map to the earth frame by the corrections.
+        let a_gyro = self.q_gyro.rotate(accel);
+        let v = if pr.accel_time_constant > T::ZERO {
+            let k = LowPass::gain(pr.accel_time_constant, dt);
+            self.accel_lp.update(a_gyro, k)
+        } else {
+            a_gyro
+        };
+        // What the low-pass filter left of non-gravitational acceleration shows in its norm.
+        let g = T::from_f64(GRAVITY);
+        let residual = (v.norm() - g).abs() / g;
+        if residual > pr.accel_reject {
+            return SensorUse::Disturbed;
+        }
+        let v = self.q_corr.rotate(v);
+        // The rotation taking v to +z: about (v_y, −v_x, 0) by the angle between v and z.
+        let h = v.x.hypot(v.y);
+        let angle = h.atan2(v.z);
+        let (ex, ey) = if h > T::ZERO {
+            (v.y * angle / h, -v.x * angle / h)
+        } else {
+            (T::ZERO, T::ZERO)
+        };
+        match pr.gains {
+            Gains::Kalman => {
+                let r = self.tilt_variance(dt);
+                self.scalar_update(x, 0, ex, r);
+                self.scalar_update(x, 1, ey, r);
+            }
+            Gains::Fixed { .. } => {
+                // The bias from the Kalman update, the attitude in full.
+                let r = self.tilt_variance(dt);
+                let x0 = *x;
+                self.scalar_update(x, 0, ex, r);
+                self.scalar_update(x, 1, ey, r);
+                x[0] = x0[0] + ex;
+                x[1] = x0[1] + ey;
+            }
+        }
+        SensorUse::Used
+    }
+
+    fn tilt_variance(&self, dt: T) -> T {
+        let pr = &self.params;
+        let s = pr.accel_tilt_noise;
+        s * s * (pr.accel_correlation_time / dt).max(T::ONE)
+    }
+
+    fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
+        let pr = self.params;
+        let now = self.attitude_enu();
+        self.head = (self.head + 1) % MAG_HISTORY;
+        if let Some(slot) = self.history.get_mut(self.head) {
+            *slot = now;
+        }
+        let lag = (pr.mag_delay / dt + T::HALF).floor();
+        let mut back = 0usize;
+        while back + 1 < MAG_HISTORY && T::from_f64(back as f64 + 0.5) < lag {
+            back += 1;
+        }
+        let idx = (self.head + MAG_HISTORY - back) % MAG_HISTORY;
+        let then = self.history.get(idx).copied().unwrap_or(now);
+        let m = then.rotate(mag);
+        let (norm, dip) = norm_dip(m);
+        if !self.field_started {
+            self.field = FieldMonitor::new(norm, dip);
+            self.field_started = true;
+        }
+        let rate = (gyro - self.bias).norm();
+        let disturbed = self.field.update(norm, dip, dt, rate, &pr.field);
+        let g = pr.mag_disturbance_weight;
+        if disturbed && g <= T::ZERO {
+            return SensorUse::Disturbed;
+        }
+        let h = m.x.hypot(m.y);
+        if h <= T::ZERO {
+            return SensorUse::Disturbed;
+        }
+        let psi = m.x.atan2(m.y);
+        let (rn, rd) = self.field.reference();
+        let eps = if disturbed {
+            g * ((norm - rn).abs() / rn + (dip - rd).abs()) * norm / h
+        } else {
+            T::ZERO
+        };
+        let s = pr.mag_heading_noise;
+        let var = s * s + eps * eps;
+        let r = var * (pr.mag_correlation_time / dt).max(T::ONE);
+        let k = match pr.gains {
+            Gains::Kalman => self.p.update_heading(-m.z / h, r),
+            Gains::Fixed {
+                heading_time_constant,
+            } => {
+                let k = dt / (heading_time_constant + dt) * (s * s / var);
+                self.p.update_attitude_axis_only(2, k, r);
+                k
+            }
+        };
+        // The heading correction: a turn about the earth vertical only.
+        let (sn, cs) = (k * psi * T::HALF).sin_cos();
+        let turn = UnitQuat::new_unchecked(Quat::new(cs, T::ZERO, T::ZERO, sn));
+        self.q_corr = (turn * self.q_corr).renormalize_fast();
+        if disturbed {
+            SensorUse::Disturbed
+        } else {
+            SensorUse::Used
+        }
+    }
+
+    /// A sequential scalar Kalman update of error-state component `i` with measurement `z`:
+    /// the innovation is `z − xᵢ` (the state already accumulated in this update).
+    fn scalar_update(&mut self, x: &mut [T; 6], i: usize, z: T, r: T) {
+        let i = i.min(5);
+        let innovation = z - x[i];
+        let k = self.p.update_component(i, r);
+        for (xj, kj) in x.iter_mut().zip(k) {
+            *xj += kj * innovation;
+        }
+    }
+
+    /// Moves the accumulated error state into the attitude and bias, and resets it.
+    fn inject(&mut self, x: &[T; 6]) {
+        let dtheta = Vec3::new(x[0], x[1], x[2]);
+        if dtheta.norm_squared() > T::ZERO {
+            self.q_corr = (UnitQuat::exp_unchecked(dtheta) * self.q_corr).renormalize_fast();
+        }
+        let m = self.params.gyro_bias_max;
+        let clip = |c: T| c.max(-m).min(m);
+        let b = self.bias + Vec3::new(x[3], x[4], x[5]);
+        self.bias = Vec3::new(clip(b.x), clip(b.y), clip(b.z));
+    }
+
+    fn attitude_enu(&self) -> UnitQuat<T> {
+        self.q_corr * self.q_gyro
+    }
+
+    /// The attitude, sensor → earth, in the frame of [`Params::frame`]. The identity before the
+    /// first usable sample.
+    pub fn attitude(&self) -> UnitQuat<T> {
+        let q = self.attitude_enu();
+        match self.params.frame {
+            EarthFrame::Enu => q,
+            EarthFrame::Ned => {
+                // ENU → NED: the half turn about (x + y)/√2.
+                let s = T::from_f64(core::f64::consts::FRAC_1_SQRT_2);
+                let t = UnitQuat::new_unchecked(Quat::new(T::ZERO, s, s, T::ZERO));
+                (t * q).renormalize_fast()
+            }
+        }
+    }
+
+    /// The estimated gyroscope bias, rad/s, sensor frame (subtract it from the rate).
+    pub fn bias(&self) -> Vec3<T> {
+        self.bias
+    }
+
+    /// The error covariance: attitude (earth frame, ENU axes, rad²), bias (rad²/s²).
+    pub fn covariance(&self) -> &Covariance<T> {
+        &self.p
+    }
+
+    /// The standard deviations (rad) of the heading error (about the earth vertical) and of the
+    /// inclination error (the root sum of the two horizontal axes' variances).
+    pub fn attitude_std(&self) -> (T, T) {
+        let a = &self.p.attitude.m;
+        let h = a[2][2].max(T::ZERO).sqrt();
+        let i = (a[0][0] + a[1][1]).max(T::ZERO).sqrt();
+        (h, i)
+    }
+
+    /// Whether the attitude has been initialised.
+    pub fn is_initialized(&self) -> bool {
+        self.initialized
+    }
+
+    /// The last update's report.
+    pub fn last_outcome(&self) -> Outcome {
+        self.last
+    }
+
+    /// The magnetic reference (norm in input units, dip in rad), once a field was seen.
+    pub fn field_reference(&self) -> Option<(T, T)> {
+        self.field_started.then(|| self.field.reference())
+    }
+}
+
+/// The norm and dip angle (rad, positive below the horizontal) of an earth-frame (ENU) field.
+fn norm_dip<T: Real>(m: Vec3<T>) -> (T, T) {
+    let h = m.x.hypot(m.y);
+    (m.norm(), (-m.z).atan2(h))
+}

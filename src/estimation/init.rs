@@ -1,0 +1,63 @@
+//! The initial attitude from one accelerometer (and magnetometer) sample: gravity and north.
+//!
+//! At rest an accelerometer measures the specific force `f = −g`, which points *up* in the earth
+//! frame; a magnetometer measures the local field, whose horizontal part points to magnetic
+//! north. In the sensor frame, with `u = f/|f|` (up), the east axis is `e = (m × u)/|m × u|`
+//! and north `n = u × e`; the attitude `R` (sensor → earth, ENU: x east, y north, z up) is the
+//! matrix whose rows are `e`, `n`, `u` (the TRIAD construction with gravity as the exact
+//! direction and the magnetometer only fixing the heading). Without a magnetometer the heading
+//! is free: the shortest rotation taking `u` to the earth's `z` axis is taken (zero yaw).
+
+use crate::rotation::Dcm;
+use crate::{Error, Mat3, Quat, Real, UnitQuat, Vec3};
+
+/// The attitude (sensor → earth, ENU) whose earth `z` axis is the measured specific force `acc`
+/// and whose heading is the shortest rotation from the sensor frame (no yaw about the vertical).
+///
+/// `q = (1 + u_z, u_y, −u_x, 0)/|…|` with `u = acc/|acc|`: the rotation about the horizontal
+/// axis `u × ẑ` by the angle between `u` and `ẑ`. At `u = −ẑ` (the sensor upside down) that axis
+/// is undefined; the half turn about the sensor's `x` axis is taken there.
+///
+/// # Errors
+/// [`Error::NonFinite`] for a non-finite component, [`Error::ZeroNorm`] for a zero vector.
+pub fn attitude_from_gravity<T: Real>(acc: Vec3<T>) -> Result<UnitQuat<T>, Error> {
+    let u = acc.try_finite()?.try_normalize()?;
+    // |(1 + u_z, u_y, −u_x, 0)|² = 2(1 + u_z): below 1e-12 (u within 1e-6 rad of −ẑ in f64) the
+    // axis is lost in rounding; the half turn about x is within that angle of the answer.
+    let w = T::ONE + u.z;
+    if w <= T::from_f64(1e-12) {
+        return Ok(UnitQuat::new_unchecked(Quat::new(
+            T::ZERO,
+            T::ONE,
+            T::ZERO,
+            T::ZERO,
+        )));
+    }
+    Quat::new(w, u.y, -u.x, T::ZERO).try_normalize()
+}
+
+/// The attitude (sensor → earth, ENU) from gravity and the magnetic field (TRIAD, see the module
+/// docs): the earth `z` axis along `acc`, the earth `y` axis along the part of `mag`
+/// perpendicular to it.
+///
+/// # Errors
+/// [`Error::NonFinite`] for a non-finite component; [`Error::ZeroNorm`] for a zero vector or a
+/// magnetic field parallel to gravity (no horizontal part: the heading is undefined).
+pub fn attitude_from_gravity_and_field<T: Real>(
+    acc: Vec3<T>,
+    mag: Vec3<T>,
+) -> Result<UnitQuat<T>, Error> {
+    let u = acc.try_finite()?.try_normalize()?;
+    let m = mag.try_finite()?.try_normalize()?;
+    let east = m.cross(u);
+    // The horizontal part is |m × u| = sin(angle between field and vertical) of a unit field:
+    // below 1e-6 (a field within 0.06 mdeg of the vertical, only at a magnetic pole) there is
+    // no usable heading.
+    if east.norm_squared() <= T::from_f64(1e-12) {
+        return Err(Error::ZeroNorm);
+    }
+    let e = east.try_normalize()?;
+    let n = u.cross(e);
+    let r = Mat3::from_rows(e.to_array(), n.to_array(), u.to_array());
+    Ok(Dcm::from_matrix_unchecked(r).to_unit_quat())
+}
