@@ -451,7 +451,10 @@ impl<T: Real> Estimator<T> {
 
     fn predict(&mut self, gyro: Vec3<T>, dt: T, saturated: bool) {
         let w = gyro - self.bias;
-        self.q_gyro = self.q_gyro.mul_exp_unchecked(w.scale(dt)).renormalize_fast();
+        self.q_gyro = self
+            .q_gyro
+            .mul_exp_unchecked(w.scale(dt))
+            .renormalize_fast();
         let r = self.attitude_enu().to_rotation_matrix();
         let f = r.scale(-dt);
         let pr = &self.params;
