@@ -158,6 +158,8 @@ type Runner = fn(&Trial, UnitQuaternion<f64>, Duration) -> Vec<UnitQuaternion<f6
 
 struct Filter {
     label: &'static str,
+    /// How the filter is run, for the score table.
+    about: &'static str,
     slug: &'static str,
     nine: bool,
     run: Runner,
@@ -251,42 +253,49 @@ fn crate_vqf(tr: &Trial, _q0: UnitQuaternion<f64>, dt: Duration) -> Vec<UnitQuat
 const FILTERS: [Filter; 7] = [
     Filter {
         label: "uf-ahrs VQF 9D",
+        about: "uf-ahrs 0.2.2 Vqf::new defaults, Ahrs::update, NWU mapped",
         slug: "uf-ahrs-vqf-9d",
         nine: true,
         run: |t, q, d| uf_vqf(t, q, d, true),
     },
     Filter {
         label: "uf-ahrs VQF 6D",
+        about: "uf-ahrs 0.2.2 Vqf::new defaults, update2 + orientation()",
         slug: "uf-ahrs-vqf-6d",
         nine: false,
         run: |t, q, d| uf_vqf(t, q, d, false),
     },
     Filter {
         label: "uf-ahrs Madgwick 9D",
+        about: "uf-ahrs 0.2.2 Madgwick beta 0.12, new_with_orientation(q0), NWU mapped",
         slug: "uf-ahrs-madgwick-9d",
         nine: true,
         run: |t, q, d| madgwick(t, q, d, true),
     },
     Filter {
         label: "uf-ahrs Madgwick 6D",
+        about: "uf-ahrs 0.2.2 Madgwick beta 0.12, new_with_orientation(q0), update_imu",
         slug: "uf-ahrs-madgwick-6d",
         nine: false,
         run: |t, q, d| madgwick(t, q, d, false),
     },
     Filter {
         label: "uf-ahrs Mahony 9D",
+        about: "uf-ahrs 0.2.2 Mahony defaults kp 0.74 ki 0.0012, new_with_orientation(q0), NWU mapped",
         slug: "uf-ahrs-mahony-9d",
         nine: true,
         run: |t, q, d| mahony(t, q, d, true),
     },
     Filter {
         label: "uf-ahrs Mahony 6D",
+        about: "uf-ahrs 0.2.2 Mahony defaults kp 0.74 ki 0.0012, new_with_orientation(q0), update_imu",
         slug: "uf-ahrs-mahony-6d",
         nine: false,
         run: |t, q, d| mahony(t, q, d, false),
     },
     Filter {
         label: "vqf crate 6D",
+        about: "vqf 0.4.1 Vqf::new defaults, update + orientation()",
         slug: "vqf-crate-6d",
         nine: false,
         run: crate_vqf,
@@ -352,7 +361,7 @@ fn main() -> io::Result<()> {
     for f in &FILTERS {
         let dir = out.join(f.slug);
         fs::create_dir_all(&dir)?;
-        fs::write(dir.join("label.txt"), format!("{}\n", f.label))?;
+        fs::write(dir.join("label.txt"), format!("{}\n{}\n", f.label, f.about))?;
     }
     let dt = Duration::from_micros(3500);
     let mut seconds = [0.0f64; FILTERS.len()];

@@ -535,11 +535,15 @@ def main():
         cmd = ["cargo", "bench", "-q", "--bench", "broad_peers", "--", "--data", str(data)]
         print("$ " + " ".join(cmd), file=sys.stderr, flush=True)
         subprocess.run(cmd, cwd=ROOT, check=True)
+    about = {}  # label -> how it was run, for the estimates written by other programs
     rust_dir = CACHE / "rust"
     if rust_dir.is_dir():
         for d in sorted(p for p in rust_dir.iterdir() if p.is_dir()):
             manifest = d / "label.txt"
-            label = manifest.read_text().strip() if manifest.exists() else d.name
+            lines = manifest.read_text().splitlines() if manifest.exists() else []
+            label = lines[0].strip() if lines else d.name
+            if len(lines) > 1:
+                about[label] = lines[1].strip()
             args.estimates.append(f"{label}={d}")
 
     commands = []
@@ -560,9 +564,8 @@ def main():
             if p.returncode != 0:
                 sys.exit(f"error: `{c}` exited with {p.returncode}")
         timing[label] = (time.time() - t0, False)
+        about[label] = f"`{cmd}`"
         args.estimates.append(f"{label}={out_dir}")
-        if not nine:
-            pass
 
     for spec in args.estimates:
         label, _, directory = spec.partition("=")
@@ -574,7 +577,9 @@ def main():
                 res[tr.stem] = None
                 continue
             res[tr.stem] = score_file(score, tr, p)
-        columns.append((label, nine, str(directory), res))
+        where = Path(directory).resolve()
+        where = where.relative_to(ROOT) if where.is_relative_to(ROOT) else where
+        columns.append((label, nine, about.get(label, f"estimates in {where}"), res))
 
     # Frame check: the initial rest phase must agree with the optical reference.
     print("## Rest-phase check (frames and initialisation)\n")
@@ -598,17 +603,38 @@ def main():
         rows.append([label, f"{worst:.2f}" if worst >= 0 else "—", where.split("_")[0], mark])
     print(md_table(["estimator", "worst rest RMSE (deg)", "trial", ""], rows))
 
-    print("\n## Per trial: total / heading / inclination RMSE (deg) over the movement phase\n")
-    head = ["trial"] + [c[0] for c in columns]
-    rows = [[s] + [fmt(c[3].get(s), c[1]) for c in columns] for s in stems]
-    print(md_table(head, rows))
+    # gyrostat first, then the peers in the order they were run.
+    columns.sort(key=lambda c: not c[0].startswith("gyrostat"))
+    nine_cols = [c for c in columns if c[1]]
+    six_cols = [c for c in columns if not c[1]]
+    group_head = [f"{g} ({sum(1 for s in stems if f(s))})" for g, f in GROUPS]
 
-    print("\n## Group means: total / heading / inclination RMSE (deg)\n")
-    head = ["estimator"] + [f"{g} ({sum(1 for s in stems if f(s))})" for g, f in GROUPS]
-    rows = []
-    for label, nine, desc, res in columns:
-        rows.append([label] + [group_mean(res, [s for s in stems if f(s)], nine) for g, f in GROUPS])
-    print(md_table(head, rows))
+    def incl(r):
+        if r is None:
+            return "—"
+        m = r["main"]
+        return f"MISSING {m['missing']}" if m["missing"] else f"{m['inclination']:.2f}"
+
+    def incl_mean(res, group):
+        vals = [res.get(s) for s in group]
+        if not group or any(v is None or v["main"]["missing"] for v in vals):
+            return "—"
+        return f"{sum(v['main']['inclination'] for v in vals) / len(vals):.2f}"
+
+    short = {s: s.split("_", 1)[0] + " " + s.split("_", 1)[1].replace("undisturbed_", "").replace("disturbed_", "")
+             for s in stems}
+    print("\n## 9D: group means of total / heading / inclination RMSE (deg), movement phase\n")
+    rows = [[c[0]] + [group_mean(c[3], [s for s in stems if f(s)], True) for g, f in GROUPS] for c in nine_cols]
+    print(md_table(["estimator"] + group_head, rows))
+    print("\n## 6D: group means of inclination RMSE (deg), movement phase\n")
+    rows = [[c[0]] + [incl_mean(c[3], [s for s in stems if f(s)]) for g, f in GROUPS] for c in six_cols]
+    print(md_table(["estimator"] + group_head, rows))
+    print("\n## 9D per trial: total / heading / inclination RMSE (deg)\n")
+    rows = [[short[s]] + [fmt(c[3].get(s), True) for c in nine_cols] for s in stems]
+    print(md_table(["trial"] + [c[0] for c in nine_cols], rows))
+    print("\n## 6D per trial: inclination RMSE (deg)\n")
+    rows = [[short[s]] + [incl(c[3].get(s)) for c in six_cols] for s in stems]
+    print(md_table(["trial"] + [c[0] for c in six_cols], rows))
 
     print("\n## Runs\n")
     for label, nine, desc, res in columns:
