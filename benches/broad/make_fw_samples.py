@@ -6,7 +6,7 @@ counted on the same realistic, non-repeating input.
     python3 benches/broad/make_fw_samples.py            # regenerates the committed file
 
 Window: trial 07 (undisturbed, fast rotation), 256 rows from row 15573 (0.91 s of the movement
-phase, rates up to about 970 deg/s), gyroscope (rad/s), accelerometer (m/s^2) and magnetometer
+phase, rates up to 974 deg/s), gyroscope (rad/s), accelerometer (m/s^2) and magnetometer
 (uT) as f32, exactly as in the shared CSV. Also the window's initial attitude by BROAD's rule
 (first accelerometer and magnetometer sample; sensor -> ENU with y towards magnetic north, and
 the same attitude in NWU for the filters that use that frame). Standard library only.
