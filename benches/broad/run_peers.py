@@ -57,6 +57,9 @@ trial's name) and score the CSV (header, then t_s or t, qw, qx, qy, qz; extra co
 in "6D" is scored as 6D. `--rust` first runs `cargo bench --bench broad_peers`, which writes the
 Rust peers' estimates to target/broad-peers/rust/; estimates found there are always included.
 
+Exit status: 0; 1 if an estimator fails the rest-phase check; 2 if a trial has no estimate file
+or a scored row has no finite estimate (score.py's MISSING).
+
 BROAD: D. Laidig, M. Caruso, A. Cereatti, T. Seel, "BROAD - A Benchmark for Robust Inertial
 Orientation Estimation", Data 6(7):72, 2021, doi:10.3390/data6070072 (CC BY 4.0).
 """
@@ -66,7 +69,6 @@ import gzip
 import importlib.util
 import json
 import math
-import os
 import pickle
 import re
 import subprocess
@@ -641,10 +643,13 @@ def main():
         t = timing.get(label)
         when = "" if t is None else (" (cached)" if t[1] else f" ({t[0]:.0f} s)")
         print(f"- {label}: {desc}{when}")
+    incomplete = [c[0] for c in columns if any(r is None or r["main"]["missing"] for r in c[3].values())]
     if flagged:
         print(f"\nerror: rest-phase check failed for: {', '.join(flagged)}", file=sys.stderr)
-        return 1
-    return 0
+    if incomplete:
+        # As score.py: a scored row without a finite estimate (or a trial without a file) fails.
+        print(f"\nerror: missing estimates for: {', '.join(incomplete)}", file=sys.stderr)
+    return 1 if flagged else 2 if incomplete else 0
 
 
 if __name__ == "__main__":
