@@ -47,8 +47,8 @@ error exceeds 20 deg is flagged (a wrong frame is off by 90 or 180 deg).
 
 Outputs are cached under target/broad-peers/ (keyed by a description of the run: change a setting
 and it reruns); the pure-Python ahrs filters take about 3 minutes per configuration, everything
-else seconds. `--export DIR` writes every estimate as CSV (t_s,qw,qx,qy,qz), which score.py scores
-from the command line the same way.
+else seconds. `--export DIR` writes every peer estimate as CSV (t_s,qw,qx,qy,qz), which score.py
+scores from the command line the same way; `--json FILE` writes every score.
 
 gyrostat: `--gyrostat CMD` / `--gyrostat-6d CMD` run CMD through the shell from the repository
 root once per trial ({trial}: the trial's .csv.gz path, {out}: the CSV to write, {stem}: the
@@ -502,6 +502,7 @@ def main():
     ap.add_argument("--rust", action="store_true",
                     help="first run `cargo bench --bench broad_peers` (uf-ahrs and vqf crates)")
     ap.add_argument("--export", metavar="DIR", help="also write every peer estimate as CSV under DIR")
+    ap.add_argument("--json", metavar="FILE", help="also write every score (per trial and rest phase) as JSON")
     args = ap.parse_args()
 
     data = Path(args.data)
@@ -643,6 +644,9 @@ def main():
         t = timing.get(label)
         when = "" if t is None else (" (cached)" if t[1] else f" ({t[0]:.0f} s)")
         print(f"- {label}: {desc}{when}")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({c[0]: dict(nine=c[1], run=c[2], trials=c[3]) for c in columns}, f, indent=1)
     incomplete = [c[0] for c in columns if any(r is None or r["main"]["missing"] for r in c[3].values())]
     if flagged:
         print(f"\nerror: rest-phase check failed for: {', '.join(flagged)}", file=sys.stderr)
