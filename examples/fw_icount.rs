@@ -95,10 +95,12 @@ mod firmware {
 
         /// Instructions per call for the tick count of `reps` calls, rounded to nearest.
         fn instructions(&self, t: u32, reps: u32) -> u32 {
-            let overhead = if reps == REPS {
-                self.overhead[0]
-            } else {
-                self.overhead[1]
+            // Sequence counts (`reps` = the number of samples) come with their loop already
+            // subtracted (`sequence_ticks`).
+            let overhead = match reps {
+                REPS => self.overhead[0],
+                REPS_HEAVY => self.overhead[1],
+                _ => 0,
             };
             let t = t.saturating_sub(overhead) as u64;
             let d = self.per_200k as u64 * reps as u64;
@@ -136,6 +138,42 @@ mod firmware {
             let t = ticks_reps(REPS, $f);
             $table.push($name, t, REPS);
         }};
+    }
+
+    /// A window of a real IMU recording (BROAD trial 07, fast rotation): the input of the
+    /// attitude-filter counts.
+    #[allow(
+        dead_code,
+        reason = "Q0_ENU is the initial state of the ENU-frame filters (gyrostat's) counted here"
+    )]
+    mod broad {
+        include!("fw/broad_samples.rs");
+    }
+
+    /// Updates per timed chunk: a chunk of the heaviest filter update in soft float (M0) stays
+    /// far below SysTick's 2^24-tick range.
+    const CHUNK: usize = 8;
+
+    /// Net ticks of one `update` per sample of the BROAD window, in order (a filter's state
+    /// carries from one sample to the next, as in firmware): timed in chunks of `CHUNK` updates,
+    /// each minus the same loop over the same samples without the update. Divided by the
+    /// number of samples this is the average cost of one update on real, non-repeating input.
+    fn sequence_ticks(mut update: impl FnMut(&[f32; 9])) -> u32 {
+        let mut net: u32 = 0;
+        for chunk in broad::SAMPLES.chunks(CHUNK) {
+            let t = ticks(|| {
+                for s in chunk {
+                    update(black_box(s));
+                }
+            });
+            let base = ticks(|| {
+                for s in chunk {
+                    black_box(s);
+                }
+            });
+            net = net.saturating_add(t.saturating_sub(base));
+        }
+        net
     }
 
     #[entry]
@@ -544,6 +582,86 @@ mod firmware {
                         black_box(0.0035f64)
                     )));
             }
+        }
+
+        {
+            // Attitude estimation: instructions per filter update, averaged over the BROAD
+            // window (`fw/broad_samples.rs`: 256 samples of trial 07, one update each, starting
+            // from BROAD's initial state). Rows `est_*`; BENCHMARKS.md, "Attitude estimation on
+            // BROAD: peers". The peers: uf-ahrs 0.2.2 (f32, nalgebra types), updated through its
+            // `Ahrs` trait as a user would (`update`: gyro + accelerometer + magnetometer,
+            // `update_imu`: gyro + accelerometer; each returns the attitude); Madgwick with
+            // BROAD's best common beta 0.12, Mahony and VQF with uf-ahrs's defaults (Mahony's
+            // are BROAD's best common gains kp 0.74, ki 0.0012).
+            use core::time::Duration;
+            use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+            use uf_ahrs::{Ahrs, Madgwick, MadgwickParams, Mahony, MahonyParams, Vqf, VqfParams};
+            let n = broad::SAMPLES.len() as u32;
+            let dt = Duration::from_secs_f32(broad::DT);
+            let [w, x, y, z] = broad::Q0_NWU;
+            let q0_nwu = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
+            let split = |s: &[f32; 9]| {
+                let [gx, gy, gz, ax, ay, az, mx, my, mz] = *s;
+                (
+                    Vector3::new(gx, gy, gz),
+                    Vector3::new(ax, ay, az),
+                    Vector3::new(mx, my, mz),
+                )
+            };
+
+            // The sequence measure on a known cost: 1000 loop instructions plus about 3 of
+            // set-up per sample, as `calibration_check_1000`.
+            let t = sequence_ticks(|_| spin(black_box(500)));
+            table.push("calibration_check_sequence_1000", t, n);
+
+            let mut f = Vqf::new(dt, VqfParams::default());
+            let t = sequence_ticks(|s| {
+                let (g, a, m) = split(s);
+                black_box(f.update(g, a, m));
+            });
+            table.push("est_ufahrs_vqf_9d_f32", t, n);
+            let mut f = Vqf::new(dt, VqfParams::default());
+            let t = sequence_ticks(|s| {
+                let (g, a, _) = split(s);
+                black_box(f.update_imu(g, a));
+            });
+            table.push("est_ufahrs_vqf_6d_f32", t, n);
+
+            let beta = MadgwickParams { beta: 0.12 };
+            let mut f = Madgwick::new_with_orientation(dt, beta, q0_nwu);
+            let t = sequence_ticks(|s| {
+                let (g, a, m) = split(s);
+                black_box(f.update(g, a, m));
+            });
+            table.push("est_ufahrs_madgwick_9d_f32", t, n);
+            let mut f = Madgwick::new_with_orientation(dt, beta, q0_nwu);
+            let t = sequence_ticks(|s| {
+                let (g, a, _) = split(s);
+                black_box(f.update_imu(g, a));
+            });
+            table.push("est_ufahrs_madgwick_6d_f32", t, n);
+
+            let gains = MahonyParams::default();
+            let mut f = Mahony::new_with_orientation(dt, gains, q0_nwu);
+            let t = sequence_ticks(|s| {
+                let (g, a, m) = split(s);
+                black_box(f.update(g, a, m));
+            });
+            table.push("est_ufahrs_mahony_9d_f32", t, n);
+            let mut f = Mahony::new_with_orientation(dt, gains, q0_nwu);
+            let t = sequence_ticks(|s| {
+                let (g, a, _) = split(s);
+                black_box(f.update_imu(g, a));
+            });
+            table.push("est_ufahrs_mahony_6d_f32", t, n);
+
+            // ---- gyrostat's own filter goes here ---------------------------------------------
+            // Same input, same measure: start from BROAD's initial state (`broad::Q0_ENU`, sensor
+            // → ENU; `broad::DT`), then
+            //     let t = sequence_ticks(|s| { black_box(filter.update(...s...)); });
+            //     table.push("est_gyrostat_9d_f32", t, n);   // and est_gyrostat_6d_f32
+            // so that its rows print beside uf-ahrs's in the same run.
+            // ------------------------------------------------------------------------------------
         }
 
         hprintln!(
