@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the QEMU instruction-count table of BENCHMARKS.md:
 #   bash benches/icount.sh
-# Runs examples/fw_icount.rs under QEMU (-icount, deterministic) on Cortex-M4F (mps2-an386,
+# Runs examples/fw_icount.rs and examples/fw_icount_estimation.rs under QEMU (-icount, deterministic) on Cortex-M4F (mps2-an386,
 # hard float), Cortex-M33 (mps2-an505, hard float), Cortex-M3 (lm3s6965evb, soft float) and
 # Cortex-M0 (microbit, soft float), and prints one markdown row per operation: guest
 # instructions per call. A further board is one more entry in `targets` and `labels`.
@@ -12,8 +12,12 @@ labels=(M4F M33 M3 M0)
 dir="${CARGO_TARGET_DIR:-target}/icount"
 mkdir -p "$dir"
 for t in "${targets[@]}"; do
-  cargo run -q --release --example fw_icount --target "$t" > "$dir/$t.txt"
-  grep -q '^done' "$dir/$t.txt"
+  : > "$dir/$t.txt"
+  for e in fw_icount fw_icount_estimation; do
+    cargo run -q --release --example "$e" --target "$t" > "$dir/$e-$t.txt"
+    grep -q '^done' "$dir/$e-$t.txt"
+    cat "$dir/$e-$t.txt" >> "$dir/$t.txt"
+  done
 done
 header="| operation"; rule="|---"
 for i in "${!targets[@]}"; do

@@ -4,13 +4,11 @@
 //! cargo run --release --example fw_icount --target thumbv7em-none-eabihf   # Cortex-M4F
 //! cargo run --release --example fw_icount --target thumbv6m-none-eabi      # Cortex-M0
 //! ```
-//! The runner (`.cargo/config.toml`) starts QEMU with `-icount shift=7,align=off,sleep=off`: each
-//! guest instruction advances virtual time by 128 ns, so SysTick (clock source = core) ticks are
-//! a deterministic function of the instructions executed. The 24-bit SysTick down-counter is read
-//! around each operation; the tick/instruction ratio is calibrated with a `subs`/`bne` loop of
-//! known length (200 000 instructions); each operation runs 64 times in a loop whose empty cost
-//! is subtracted, and the count is per call. Counts are guest
-//! instructions (QEMU has no cycle model), identical on every run.
+//! The method (QEMU `-icount`, SysTick, a calibrated loop, `REPS` calls per count) is in
+//! `fw/icount.rs`, shared with `fw_icount_estimation` (the attitude filters beside their peers,
+//! in an image of their own, so that the peers' code does not change how the library's own
+//! operations below are inlined). Counts are guest instructions (QEMU has no cycle model),
+//! identical on every run.
 //!
 //! Rows ending in `_q30` are the fixed-point (Q1.30) path on the same operands as the f32 rows.
 //! Each operation is one line in `main` (`count!("name", || expression)`); operands go through
@@ -20,178 +18,25 @@
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(target_os = "none")]
+#[macro_use]
+#[path = "fw/icount.rs"]
+mod icount;
+
+#[cfg(target_os = "none")]
 mod firmware {
+    use crate::icount::{Calibration, Table, exit, spin, start_systick};
     use core::hint::black_box;
-    use core::sync::atomic::{Ordering, compiler_fence};
-    use cortex_m::peripheral::{SYST, syst::SystClkSource};
     use cortex_m_rt::entry;
-    use cortex_m_semihosting::{debug, hprintln};
+    use cortex_m_semihosting::debug;
     use gyrostat::{Quat, UnitQuat, Vec3};
-
-    const MASK: u32 = 0x00FF_FFFF;
-
-    /// SysTick ticks spent in `f` (valid below 2^24 ticks).
-    #[inline(always)]
-    fn ticks<R>(f: impl FnOnce() -> R) -> u32 {
-        let c0 = SYST::get_current();
-        compiler_fence(Ordering::SeqCst);
-        black_box(f());
-        compiler_fence(Ordering::SeqCst);
-        let c1 = SYST::get_current();
-        c0.wrapping_sub(c1) & MASK
-    }
-
-    /// A loop of exactly `2·n` instructions (`subs` + `bne` per iteration), plus the `n == 0`
-    /// test and the move of `n` into a register.
-    #[inline(always)]
-    fn spin(n: u32) {
-        if n == 0 {
-            return;
-        }
-        // SAFETY: pure register arithmetic on a scratch register, no memory access.
-        unsafe {
-            core::arch::asm!("2:", "subs {0}, #1", "bne 2b", inout(reg) n => _, options(nomem, nostack));
-        }
-    }
-
-    /// Repetitions per measurement: QEMU's SysTick on some boards (microbit) jitters by about
-    /// 2% of a short interval; averaging a long interval makes that negligible.
-    const REPS: u32 = 64;
-    /// Repetitions for heavy operations (a dynamics step in soft float), so that 4 calls stay
-    /// below the 2^24-tick range of SysTick.
-    const REPS_HEAVY: u32 = 4;
-
-    /// Ticks of `reps` calls of `f`.
-    #[inline(always)]
-    fn ticks_reps<R>(reps: u32, f: impl Fn() -> R) -> u32 {
-        ticks(|| {
-            for _ in 0..black_box(reps) {
-                black_box(f());
-            }
-        })
-    }
-
-    struct Calibration {
-        /// Ticks of `REPS` and of `REPS_HEAVY` empty iterations (loop and `black_box` overhead).
-        overhead: [u32; 2],
-        /// Ticks per 200 000 instructions.
-        per_200k: u32,
-    }
-
-    impl Calibration {
-        fn new() -> Self {
-            // The first readings after SysTick starts are skewed by the timer's start-up in
-            // QEMU; a warm-up run of a few thousand instructions settles it.
-            spin(black_box(5000));
-            let overhead = [ticks_reps(REPS, || ()), ticks_reps(REPS_HEAVY, || ())];
-            let t0 = ticks(|| spin(black_box(1)));
-            let t1 = ticks(|| spin(black_box(100_001)));
-            // (t1 − t0) is exactly 200 000 instructions: 100 000 more `subs`/`bne` iterations.
-            Self {
-                overhead,
-                per_200k: t1.saturating_sub(t0).max(1),
-            }
-        }
-
-        /// Instructions per call for the tick count of `reps` calls, rounded to nearest.
-        fn instructions(&self, t: u32, reps: u32) -> u32 {
-            // Sequence counts (`reps` = the number of samples) come with their loop already
-            // subtracted (`sequence_ticks`).
-            let overhead = match reps {
-                REPS => self.overhead[0],
-                REPS_HEAVY => self.overhead[1],
-                _ => 0,
-            };
-            let t = t.saturating_sub(overhead) as u64;
-            let d = self.per_200k as u64 * reps as u64;
-            ((t * 200_000 + d / 2) / d) as u32
-        }
-    }
-
-    /// Room for this many named counts.
-    const CAP: usize = 96;
-
-    /// Measures everything first and prints at the end: semihosting I/O between measurements
-    /// perturbs QEMU's virtual clock on some boards.
-    struct Table {
-        rows: [(&'static str, u32, u32); CAP],
-        len: usize,
-    }
-
-    impl Table {
-        fn push(&mut self, name: &'static str, ticks: u32, reps: u32) {
-            if let Some(row) = self.rows.get_mut(self.len) {
-                *row = (name, ticks, reps);
-                self.len += 1;
-            }
-        }
-    }
-
-    /// `count!(table, "name", || expr)` measures `REPS` calls;
-    /// `count!(table, "name", heavy, || expr)` measures `REPS_HEAVY` calls.
-    macro_rules! count {
-        ($table:expr, $name:expr, heavy, $f:expr) => {{
-            let t = ticks_reps(REPS_HEAVY, $f);
-            $table.push($name, t, REPS_HEAVY);
-        }};
-        ($table:expr, $name:expr, $f:expr) => {{
-            let t = ticks_reps(REPS, $f);
-            $table.push($name, t, REPS);
-        }};
-    }
-
-    /// A window of a real IMU recording (BROAD trial 07, fast rotation): the input of the
-    /// attitude-filter counts.
-    #[allow(
-        dead_code,
-        reason = "Q0_ENU is the initial state of the ENU-frame filters (gyrostat's) counted here"
-    )]
-    mod broad {
-        include!("fw/broad_samples.rs");
-    }
-
-    /// Updates per timed chunk: a chunk of the heaviest filter update in soft float (M0) stays
-    /// far below SysTick's 2^24-tick range.
-    const CHUNK: usize = 8;
-
-    /// Net ticks of one `update` per sample of the BROAD window, in order (a filter's state
-    /// carries from one sample to the next, as in firmware): timed in chunks of `CHUNK` updates,
-    /// each minus the same loop over the same samples without the update. Divided by the
-    /// number of samples this is the average cost of one update on real, non-repeating input.
-    fn sequence_ticks(mut update: impl FnMut(&[f32; 9])) -> u32 {
-        let mut net: u32 = 0;
-        for chunk in broad::SAMPLES.chunks(CHUNK) {
-            let t = ticks(|| {
-                for s in chunk {
-                    update(black_box(s));
-                }
-            });
-            let base = ticks(|| {
-                for s in chunk {
-                    black_box(s);
-                }
-            });
-            net = net.saturating_add(t.saturating_sub(base));
-        }
-        net
-    }
 
     #[entry]
     fn main() -> ! {
-        let mut cp = match cortex_m::Peripherals::take() {
-            Some(p) => p,
-            None => exit(debug::EXIT_FAILURE),
-        };
-        cp.SYST.set_clock_source(SystClkSource::Core);
-        cp.SYST.set_reload(MASK);
-        cp.SYST.clear_current();
-        cp.SYST.enable_counter();
-
-        let cal = Calibration::new();
-        let mut table = Table {
-            rows: [("", 0, 0); CAP],
-            len: 0,
-        };
+        if start_systick().is_none() {
+            exit(debug::EXIT_FAILURE);
+        }
+        let cal = Calibration::measure();
+        let mut table = Table::<80>::empty();
 
         let a = UnitQuat::new_unchecked(Quat::new(0.9f32, 0.1, -0.3, 0.2)).renormalize();
         let b = UnitQuat::new_unchecked(Quat::new(0.5f32, 0.5, 0.5, -0.5));
@@ -534,162 +379,8 @@ mod firmware {
             }
         }
 
-        // The attitude estimator (`gyrostat::estimation`), default parameters, one update on a
-        // BROAD-like sample (285.7 Hz) after 2 s of warm-up: the state carries on from call to
-        // call (a running filter), so each count is a steady-state update in motion.
-        {
-            use core::cell::RefCell;
-            use gyrostat::estimation::{Estimator, Params};
-            fn warm<T: gyrostat::Real>() -> Option<RefCell<Estimator<T>>> {
-                let c = T::from_f64;
-                let mut f = Estimator::try_new(Params::<T>::default()).ok()?;
-                let (g, a, m) = sample::<T>();
-                for _ in 0..570 {
-                    f.update_9d(g, a, m, c(0.0035)).ok()?;
-                }
-                Some(RefCell::new(f))
-            }
-            fn sample<T: gyrostat::Real>() -> (Vec3<T>, Vec3<T>, Vec3<T>) {
-                let c = T::from_f64;
-                (
-                    Vec3::new(c(0.4), c(-0.25), c(0.6)),
-                    Vec3::new(c(0.8), c(-1.1), c(9.6)),
-                    Vec3::new(c(3.2), c(14.9), c(-40.1)),
-                )
-            }
-            if let Some(f) = warm::<f32>() {
-                let (g, a, m) = sample::<f32>();
-                count!(table, "est_update_6d_f32", || f.try_borrow_mut().map(
-                    |mut f| f.update_6d(black_box(g), black_box(a), black_box(0.0035f32))
-                ));
-                count!(table, "est_update_9d_f32", || f.try_borrow_mut().map(
-                    |mut f| f.update_9d(
-                        black_box(g),
-                        black_box(a),
-                        black_box(m),
-                        black_box(0.0035f32)
-                    )
-                ));
-            }
-            if let Some(f) = warm::<f64>() {
-                let (g, a, m) = sample::<f64>();
-                count!(table, "est_update_9d_f64", heavy, || f
-                    .try_borrow_mut()
-                    .map(|mut f| f.update_9d(
-                        black_box(g),
-                        black_box(a),
-                        black_box(m),
-                        black_box(0.0035f64)
-                    )));
-            }
-        }
-
-        {
-            // Attitude estimation: instructions per filter update, averaged over the BROAD
-            // window (`fw/broad_samples.rs`: 256 samples of trial 07, one update each, starting
-            // from BROAD's initial state). Rows `est_*`; BENCHMARKS.md, "Attitude estimation on
-            // BROAD: peers". The peers: uf-ahrs 0.2.2 (f32, nalgebra types), updated through its
-            // `Ahrs` trait as a user would (`update`: gyro + accelerometer + magnetometer,
-            // `update_imu`: gyro + accelerometer; each returns the attitude); Madgwick with
-            // BROAD's best common beta 0.12, Mahony and VQF with uf-ahrs's defaults (Mahony's
-            // are BROAD's best common gains kp 0.74, ki 0.0012).
-            use core::time::Duration;
-            use nalgebra::{Quaternion, UnitQuaternion, Vector3};
-            use uf_ahrs::{Ahrs, Madgwick, MadgwickParams, Mahony, MahonyParams, Vqf, VqfParams};
-            let n = broad::SAMPLES.len() as u32;
-            let dt = Duration::from_secs_f32(broad::DT);
-            let [w, x, y, z] = broad::Q0_NWU;
-            let q0_nwu = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
-            let split = |s: &[f32; 9]| {
-                let [gx, gy, gz, ax, ay, az, mx, my, mz] = *s;
-                (
-                    Vector3::new(gx, gy, gz),
-                    Vector3::new(ax, ay, az),
-                    Vector3::new(mx, my, mz),
-                )
-            };
-
-            // The sequence measure on a known cost: 1000 loop instructions plus about 3 of
-            // set-up per sample, as `calibration_check_1000`.
-            let t = sequence_ticks(|_| spin(black_box(500)));
-            table.push("calibration_check_sequence_1000", t, n);
-
-            let mut f = Vqf::new(dt, VqfParams::default());
-            let t = sequence_ticks(|s| {
-                let (g, a, m) = split(s);
-                black_box(f.update(g, a, m));
-            });
-            table.push("est_ufahrs_vqf_9d_f32", t, n);
-            let mut f = Vqf::new(dt, VqfParams::default());
-            let t = sequence_ticks(|s| {
-                let (g, a, _) = split(s);
-                black_box(f.update_imu(g, a));
-            });
-            table.push("est_ufahrs_vqf_6d_f32", t, n);
-
-            let beta = MadgwickParams { beta: 0.12 };
-            let mut f = Madgwick::new_with_orientation(dt, beta, q0_nwu);
-            let t = sequence_ticks(|s| {
-                let (g, a, m) = split(s);
-                black_box(f.update(g, a, m));
-            });
-            table.push("est_ufahrs_madgwick_9d_f32", t, n);
-            let mut f = Madgwick::new_with_orientation(dt, beta, q0_nwu);
-            let t = sequence_ticks(|s| {
-                let (g, a, _) = split(s);
-                black_box(f.update_imu(g, a));
-            });
-            table.push("est_ufahrs_madgwick_6d_f32", t, n);
-
-            let gains = MahonyParams::default();
-            let mut f = Mahony::new_with_orientation(dt, gains, q0_nwu);
-            let t = sequence_ticks(|s| {
-                let (g, a, m) = split(s);
-                black_box(f.update(g, a, m));
-            });
-            table.push("est_ufahrs_mahony_9d_f32", t, n);
-            let mut f = Mahony::new_with_orientation(dt, gains, q0_nwu);
-            let t = sequence_ticks(|s| {
-                let (g, a, _) = split(s);
-                black_box(f.update_imu(g, a));
-            });
-            table.push("est_ufahrs_mahony_6d_f32", t, n);
-
-            // ---- gyrostat's own filter goes here ---------------------------------------------
-            // Same input, same measure: start from BROAD's initial state (`broad::Q0_ENU`, sensor
-            // → ENU; `broad::DT`), then
-            //     let t = sequence_ticks(|s| { black_box(filter.update(...s...)); });
-            //     table.push("est_gyrostat_9d_f32", t, n);   // and est_gyrostat_6d_f32
-            // so that its rows print beside uf-ahrs's in the same run.
-            // ------------------------------------------------------------------------------------
-        }
-
-        hprintln!(
-            "calibration reps={} overhead_ticks={} ticks_per_200000_instructions={}",
-            REPS,
-            cal.overhead[0],
-            cal.per_200k
-        );
-        for (name, t, reps) in table.rows.iter().take(table.len) {
-            hprintln!("icount {} {}", name, cal.instructions(*t, *reps));
-        }
-        hprintln!("done");
+        table.print(&cal);
         exit(debug::EXIT_SUCCESS)
-    }
-
-    fn exit(code: debug::ExitStatus) -> ! {
-        debug::exit(code);
-        loop {
-            cortex_m::asm::wfi();
-        }
-    }
-
-    #[panic_handler]
-    fn panic(_: &core::panic::PanicInfo) -> ! {
-        debug::exit(debug::EXIT_FAILURE);
-        loop {
-            cortex_m::asm::wfi();
-        }
     }
 }
 
