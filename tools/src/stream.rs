@@ -1,5 +1,5 @@
-//! Input and output of the host command-line tools, shared by `convert`, `propagate` and
-//! `simulate` (each includes this file with `#[path]`).
+//! Input and output of the command-line tools: one stream reader and one CSV writer for every
+//! tool.
 //!
 //! - [`Lines`] reads a stream line by line as bytes, numbering the lines from 1: a line that is
 //!   not UTF-8 or longer than [`MAX_LINE`] is an error naming that line, and the lines after it
@@ -21,6 +21,7 @@ pub const MAX_LINE: usize = 1 << 20;
 
 /// Writes a diagnostic line to stderr, like `eprintln!`, but ignores a failed write (a closed
 /// stderr must not turn a diagnostic into a panic).
+#[macro_export]
 macro_rules! say {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
@@ -29,7 +30,7 @@ macro_rules! say {
 }
 
 /// Like [`say!`] without the line break.
-#[allow(unused_macros)]
+#[macro_export]
 macro_rules! say_part {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
@@ -52,23 +53,8 @@ pub fn print_text(text: &str) -> io::Result<()> {
     }
 }
 
-/// The command-line arguments after the program name, each checked to be UTF-8
-/// (`std::env::args` would panic on one that is not).
-pub fn args() -> Result<Vec<String>, String> {
-    std::env::args_os()
-        .skip(1)
-        .enumerate()
-        .map(|(i, a)| {
-            a.into_string().map_err(|a| {
-                format!(
-                    "argument {} is not valid UTF-8: {:?}",
-                    i + 1,
-                    a.to_string_lossy()
-                )
-            })
-        })
-        .collect()
-}
+/// One line of a stream: its number (from 1) and its text, or why the line has none.
+pub type Line<'a> = (u64, Result<&'a str, String>);
 
 /// Lines of a byte stream, numbered from 1. Line breaks are `\n` or `\r\n`; a last line without
 /// a break counts.
@@ -90,7 +76,6 @@ impl<R: Read> Lines<R> {
 
     /// `true` when the next line needs a read from the underlying stream, which may wait: the
     /// moment to flush pending output.
-    #[allow(dead_code)] // simulate reads only a whole file
     pub fn will_read(&self) -> bool {
         self.reader.buffer().is_empty()
     }
@@ -98,8 +83,7 @@ impl<R: Read> Lines<R> {
     /// The next line and its number: `Ok(None)` at the end of the input, `Err(reason)` in place
     /// of the text for a line that is not UTF-8 or longer than [`MAX_LINE`], `Err` outside when
     /// reading fails.
-    #[allow(clippy::type_complexity)]
-    pub fn next_line(&mut self) -> io::Result<Option<(u64, Result<&str, String>)>> {
+    pub fn next_line(&mut self) -> io::Result<Option<Line<'_>>> {
         self.buf.clear();
         let (mut len, mut any, mut too_long) = (0usize, false, false);
         loop {

@@ -1,16 +1,12 @@
 //! `convert`: a command-line attitude converter for ground tools and scripts.
 //!
 //! ```text
-//! cargo run --release --example convert -- --from REP --to REP [--f32] [--degrees] [--normalize]
-//! cargo run --release --example convert -- --op OP --from REP [--to REP] [...]
+//! convert --from REP --to REP [--f32] [--degrees] [--normalize]
+//! convert --op OP --from REP [--to REP] [...]
 //! ```
 //!
 //! Reads CSV rows from stdin, writes CSV rows to stdout; see `--help` (the `HELP` text below)
 //! for the formats. Host-only: the library stays `no_std`, the I/O lives here.
-
-#[macro_use]
-#[path = "cli/stream.rs"]
-mod stream;
 
 use std::fmt::Debug;
 use std::io::{self, Write};
@@ -21,14 +17,31 @@ use gyrostat::rotation::{
     AxisAngle, Dcm, Euler, EulerSequence, Gibbs, GimbalPolicy, Mrp, RotationVector,
 };
 use gyrostat::{Error, Mat3, Quat, Real, UnitQuat, Vec3};
+use gyrostat_tools::flags::{self, Cli, Flag, Flags};
+use gyrostat_tools::stream;
+
+const CLI: Cli = Cli {
+    name: "convert",
+    help: HELP,
+    flags: &[
+        Flag::value("--from"),
+        Flag::value("--to"),
+        Flag::value("--op"),
+        Flag::switch("--f32"),
+        Flag::switch("--degrees"),
+        Flag::switch("--normalize"),
+    ],
+};
 
 const HELP: &str = "\
 convert: convert attitudes between representations (gyrostat)
 
 USAGE:
-    cargo run --release --example convert -- --from REP --to REP [--f32] [--degrees] [--normalize]
-    cargo run --release --example convert -- --op OP --from REP [--to REP] [--f32] [--degrees]
-                                                [--normalize]
+    convert --from REP --to REP [--f32] [--degrees] [--normalize]
+    convert --op OP --from REP [--to REP] [--f32] [--degrees] [--normalize]
+
+    Flags take their value as the next argument or after `=` (--from quat, --from=quat); a flag
+    given twice is an error.
 
 Reads CSV rows from stdin and writes CSV rows to stdout, no header either way: one output row
 per valid input row, in order. Blank lines (empty or only blanks) are skipped, the last one
@@ -112,8 +125,9 @@ ERRORS:
         error: line N: reason
     to stderr and no output row; the run continues with the next line and exits with status 1
     at the end. With --normalize a zero quaternion and a matrix with det <= 0 are still errors.
-    Bad command-line arguments exit with status 2. When stdout is closed early (a pipe into
-    `head`), the run stops quietly with the status it would have had if the input ended there.
+    Bad command-line arguments print `error: reason` and exit with status 2, before any output.
+    When stdout is closed early (a pipe into `head`), the run stops quietly with the status it
+    would have had if the input ended there.
 ";
 
 /// Tolerance on `|q|` and on `‖RᵀR − 1‖` for input rows: data printed with at least 4
@@ -225,54 +239,27 @@ impl Opts {
     }
 }
 
-fn parse_args() -> Result<Option<Opts>, String> {
-    let mut from = None;
-    let mut to = None;
-    let mut op = None;
-    let (mut f32, mut degrees, mut normalize) = (false, false, false);
-    let mut args = stream::args()?.into_iter();
-    while let Some(a) = args.next() {
-        match a.as_str() {
-            "-h" | "--help" => return Ok(None),
-            "--f32" => f32 = true,
-            "--degrees" => degrees = true,
-            "--normalize" => normalize = true,
-            "--from" | "--to" => {
-                let v = args.next().ok_or_else(|| format!("{a} needs a value"))?;
-                let r = Rep::parse(&v)?;
-                if a == "--from" {
-                    from = Some(r);
-                } else {
-                    to = Some(r);
-                }
-            }
-            "--op" => {
-                let v = args.next().ok_or_else(|| format!("{a} needs a value"))?;
-                op = Some(Op::parse(&v)?);
-            }
-            _ => {
-                if let Some(v) = a.strip_prefix("--from=") {
-                    from = Some(Rep::parse(v)?);
-                } else if let Some(v) = a.strip_prefix("--to=") {
-                    to = Some(Rep::parse(v)?);
-                } else if let Some(v) = a.strip_prefix("--op=") {
-                    op = Some(Op::parse(v)?);
-                } else {
-                    return Err(format!("unknown argument '{a}'"));
-                }
-            }
-        }
-    }
+/// The options of a run, from the flags given.
+fn options(f: &Flags) -> Result<Opts, String> {
+    let rep = |_: &str, v: &str| Rep::parse(v);
+    let from = f.get("--from", rep)?;
+    let to = f.get("--to", rep)?;
+    let op = f.get("--op", |_, v| Op::parse(v))?;
+    let (f32, degrees, normalize) = (
+        f.switch("--f32"),
+        f.switch("--degrees"),
+        f.switch("--normalize"),
+    );
     let Some(op) = op else {
         return match (from, to) {
-            (Some(from), Some(to)) => Ok(Some(Opts {
+            (Some(from), Some(to)) => Ok(Opts {
                 from,
                 to: Some(to),
                 op: Op::Convert,
                 f32,
                 degrees,
                 normalize,
-            })),
+            }),
             _ => Err("--from and --to are required".into()),
         };
     };
@@ -291,14 +278,14 @@ fn parse_args() -> Result<Option<Opts>, String> {
                 "a 3x3 matrix, row-major"
             }
         )),
-        (_, to) => Ok(Some(Opts {
+        (_, to) => Ok(Opts {
             from,
             to,
             op,
             f32,
             degrees,
             normalize,
-        })),
+        }),
     }
 }
 
@@ -538,7 +525,7 @@ fn run<T: Real + FromStr + Debug>(o: &Opts) -> Result<bool, String> {
                 Err(reason) => {
                     all_ok = false;
                     out.flush()?;
-                    say!("error: line {n}: {reason}");
+                    flags::line_error(n, &reason);
                 }
             }
         }
@@ -552,21 +539,12 @@ fn run<T: Real + FromStr + Debug>(o: &Opts) -> Result<bool, String> {
 }
 
 fn main() -> ExitCode {
-    let o = match parse_args() {
-        Ok(Some(o)) => o,
-        Ok(None) => {
-            return match stream::print_text(HELP) {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) => {
-                    say!("error: writing stdout: {e}");
-                    ExitCode::FAILURE
-                }
-            };
-        }
-        Err(e) => {
-            say!("error: {e}\n\n{HELP}");
-            return ExitCode::from(2);
-        }
+    let o = match CLI
+        .command_line()
+        .and_then(|f| options(&f).map_err(|e| flags::usage_error(&e)))
+    {
+        Ok(o) => o,
+        Err(status) => return status,
     };
     let r = if o.f32 {
         run::<f32>(&o)
@@ -577,7 +555,7 @@ fn main() -> ExitCode {
         Ok(true) => ExitCode::SUCCESS,
         Ok(false) => ExitCode::FAILURE,
         Err(e) => {
-            say!("error: {e}");
+            flags::error(&e);
             ExitCode::FAILURE
         }
     }

@@ -1,14 +1,10 @@
 //! `propagate`: integrate gyro increments or rate samples from stdin into attitudes on stdout.
 //!
 //! ```text
-//! cargo run --release --example propagate -- --input increments|rates --algo ALGO --dt SECONDS \
-//!     [--q0 w,x,y,z] [--f32 | --fixed] [--compensated] [--every N]
+//! propagate --input increments|rates --algo ALGO --dt SECONDS [--q0 w,x,y,z] [--f32 | --fixed] \
+//!     [--compensated] [--every N]
 //! ```
 //! Run with `--help` for the full description of the input and output formats.
-
-#[macro_use]
-#[path = "cli/stream.rs"]
-mod stream;
 
 use std::fmt::Debug;
 use std::io::{self, Write};
@@ -21,8 +17,23 @@ use gyrostat::propagation::{
     RateIntegrator, RateMethod,
 };
 use gyrostat::{Quat, Real, UnitQuat, Vec3};
+use gyrostat_tools::flags::{self, Cli, Flag, Flags};
+use gyrostat_tools::stream::{self, Csv, Lines};
 
-use stream::{Csv, Lines};
+const CLI: Cli = Cli {
+    name: "propagate",
+    help: HELP,
+    flags: &[
+        Flag::value("--input"),
+        Flag::value("--algo"),
+        Flag::value("--dt"),
+        Flag::value("--q0"),
+        Flag::switch("--f32"),
+        Flag::switch("--fixed"),
+        Flag::switch("--compensated"),
+        Flag::value("--every"),
+    ],
+};
 
 const HELP: &str = "\
 propagate: integrate gyro increments or rate samples into attitude quaternions
@@ -30,6 +41,9 @@ propagate: integrate gyro increments or rate samples into attitude quaternions
 USAGE:
     propagate --input increments|rates --algo ALGO --dt SECONDS [--q0 w,x,y,z] [--f32 | --fixed]
               [--compensated] [--every N]
+
+    Flags take their value as the next argument or after `=` (--dt 0.01, --dt=0.01); a flag
+    given twice is an error.
 
 INPUT (stdin): one sample per line, three comma-separated numbers `dx,dy,dz` (body frame).
     --input increments   sample k (0-based) is the integral of omega over [k*dt, (k+1)*dt], rad
@@ -123,79 +137,26 @@ struct Args {
     every: u64,
 }
 
-fn parse_args() -> Result<Option<Args>, String> {
-    let mut input: Option<String> = None;
-    let mut algo: Option<String> = None;
-    let mut dt: Option<f64> = None;
-    let mut q0 = [1.0f64, 0.0, 0.0, 0.0];
-    let mut arith = Arith::F64;
-    let mut compensated = false;
-    let mut every = 1u64;
-    let mut it = stream::args()?.into_iter();
-    while let Some(a) = it.next() {
-        let mut value = |name: &str| it.next().ok_or_else(|| format!("{name} needs a value"));
-        match a.as_str() {
-            "--help" | "-h" => return Ok(None),
-            "--input" => input = Some(value("--input")?),
-            "--algo" => algo = Some(value("--algo")?),
-            "--dt" => {
-                let v = value("--dt")?;
-                let x: f64 = v
-                    .trim()
-                    .parse()
-                    .map_err(|_| format!("--dt: invalid number '{v}'"))?;
-                if !x.is_finite() || x <= 0.0 {
-                    return Err(format!("--dt: must be finite and > 0, got {v}"));
-                }
-                dt = Some(x);
-            }
-            "--q0" => {
-                let v = value("--q0")?;
-                let parts: Vec<&str> = v.split(',').collect();
-                if parts.len() != 4 {
-                    return Err(format!(
-                        "--q0: expected 4 comma-separated numbers w,x,y,z, found {}",
-                        parts.len()
-                    ));
-                }
-                for (slot, p) in q0.iter_mut().zip(&parts) {
-                    *slot = p
-                        .trim()
-                        .parse()
-                        .map_err(|_| format!("--q0: invalid number '{}'", p.trim()))?;
-                    if !slot.is_finite() {
-                        return Err(format!("--q0: not a finite number '{}'", p.trim()));
-                    }
-                }
-            }
-            "--f32" | "--fixed" => {
-                if arith != Arith::F64 {
-                    return Err("--f32 and --fixed exclude each other".into());
-                }
-                arith = if a == "--f32" {
-                    Arith::F32
-                } else {
-                    Arith::Fixed
-                };
-            }
-            "--compensated" => compensated = true,
-            "--every" => {
-                let v = value("--every")?;
-                every = v
-                    .trim()
-                    .parse()
-                    .map_err(|_| format!("--every: invalid count '{v}'"))?;
-                if every == 0 {
-                    return Err("--every: must be at least 1".into());
-                }
-            }
-            other => return Err(format!("unknown argument '{other}' (see --help)")),
-        }
-    }
+/// The arguments of a run, from the flags given.
+fn arguments(f: &Flags) -> Result<Args, String> {
+    let input = f.value("--input");
+    let algo = f.value("--algo");
+    let dt = f.get("--dt", flags::positive)?;
+    let q0 = f
+        .get("--q0", |flag, v| flags::numbers::<4>(flag, v, "w,x,y,z"))?
+        .unwrap_or([1.0, 0.0, 0.0, 0.0]);
+    let arith = match (f.switch("--f32"), f.switch("--fixed")) {
+        (true, true) => return Err("--f32 and --fixed exclude each other".into()),
+        (true, false) => Arith::F32,
+        (false, true) => Arith::Fixed,
+        (false, false) => Arith::F64,
+    };
+    let compensated = f.switch("--compensated");
+    let every = f.get("--every", flags::at_least_one)?.unwrap_or(1);
     let input = input.ok_or("--input is required (increments or rates)")?;
     let algo_name = algo.ok_or("--algo is required")?;
     let dt = dt.ok_or("--dt is required")?;
-    let algo = match (input.as_str(), algo_name.as_str()) {
+    let algo = match (input, algo_name) {
         ("increments", "exp") => Algo::Increments(ConingRule::Exp),
         ("increments", "coning1") => Algo::Increments(ConingRule::OnePlusPrevious),
         ("increments", "coning2") => Algo::Increments(ConingRule::TwoSample),
@@ -224,14 +185,14 @@ fn parse_args() -> Result<Option<Args>, String> {
             "--compensated needs floating point (--f32 or the default f64), not --fixed".into(),
         );
     }
-    Ok(Some(Args {
+    Ok(Args {
         algo,
         dt,
         q0,
         arith,
         compensated,
         every,
-    }))
+    })
 }
 
 /// Parses one `dx,dy,dz` row.
@@ -594,21 +555,12 @@ fn finish(result: Result<(), Failure>, p: &mut Printer) -> Result<(), Failure> {
 }
 
 fn main() -> ExitCode {
-    let args = match parse_args() {
-        Ok(Some(a)) => a,
-        Ok(None) => {
-            return match stream::print_text(HELP) {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) => {
-                    say!("error: writing stdout: {e}");
-                    ExitCode::FAILURE
-                }
-            };
-        }
-        Err(e) => {
-            say!("error: {e}");
-            return ExitCode::from(2);
-        }
+    let args = match CLI
+        .command_line()
+        .and_then(|f| arguments(&f).map_err(|e| flags::usage_error(&e)))
+    {
+        Ok(a) => a,
+        Err(status) => return status,
     };
     let r = match (args.arith, args.compensated) {
         (Arith::F64, false) => run::<f64, UnitQuat<f64>>(&args),
@@ -619,17 +571,14 @@ fn main() -> ExitCode {
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,
-        Err(Failure::Usage(e)) => {
-            say!("error: {e}");
-            ExitCode::from(2)
-        }
+        Err(Failure::Usage(e)) => flags::usage_error(&e),
         Err(Failure::Row(n, e)) => {
-            say!("error: line {n}: {e}");
-            ExitCode::from(1)
+            flags::line_error(n, &e);
+            ExitCode::FAILURE
         }
         Err(Failure::Io(e)) => {
-            say!("error: {e}");
-            ExitCode::from(1)
+            flags::error(&e.to_string());
+            ExitCode::FAILURE
         }
     }
 }

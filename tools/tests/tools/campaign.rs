@@ -16,7 +16,7 @@
 use std::ffi::OsString;
 use std::os::unix::ffi::OsStringExt;
 
-use host_tests::cli::{Closed, Output, numbers, run, run_closed, run_raw};
+use crate::cli::{Closed, Output, numbers, run, run_closed, run_raw};
 
 /// Random streams per tool and setting.
 fn rounds() -> usize {
@@ -583,11 +583,7 @@ fn simulate_turns_overflow_and_long_steps_into_errors() {
         let what = format!("{args:?}");
         no_panic(&what, &out);
         assert_eq!(out.status, Some(2), "{what}: {}", out.stderr);
-        assert!(
-            out.stderr.starts_with("simulate: error: "),
-            "{what}: {}",
-            out.stderr
-        );
+        assert!(out.stderr.starts_with("error: "), "{what}: {}", out.stderr);
         let written = finite_rows(&what, &out);
         if rows != usize::MAX {
             assert_eq!(written, rows, "{what}: {}", out.stdout);
@@ -636,7 +632,7 @@ fn simulate_torque_file_garbage_names_its_line() {
         assert_eq!(out.status, Some(2), "{what}: {}", out.stderr);
         assert!(
             out.stderr
-                .starts_with(&format!("simulate: error: --torque-file {p}: line {n}: ")),
+                .starts_with(&format!("error: --torque-file {p}: line {n}: ")),
             "{what}: {}",
             out.stderr
         );
@@ -762,7 +758,7 @@ fn bad_flags_give_status_2_and_a_message() {
         (
             "simulate",
             with(&sim, &["--bogus"]),
-            "unknown argument \"--bogus\"",
+            "unknown argument '--bogus'",
         ),
         (
             "simulate",
@@ -815,13 +811,8 @@ fn bad_flags_give_status_2_and_a_message() {
         let what = format!("{tool} {args:?}");
         no_panic(&what, &out);
         assert_eq!(out.status, Some(2), "{what}: {}", out.stderr);
-        let prefix = if *tool == "simulate" {
-            "simulate: error: "
-        } else {
-            "error: "
-        };
         assert!(
-            out.stderr.starts_with(prefix) && out.stderr.contains(msg),
+            out.stderr.starts_with("error: ") && out.stderr.contains(msg),
             "{what}: expected {msg:?} in {}",
             out.stderr
         );
@@ -934,7 +925,7 @@ fn simulate_shows_its_header_before_a_long_run_ends() {
     let steps = args.iter().position(|a| *a == "--steps").expect("--steps") + 1;
     args[steps] = "1000000000";
     args.extend(["--every", "100000000"]);
-    let mut child = Command::new(host_tests::cli::example("simulate"))
+    let mut child = Command::new(crate::cli::tool("simulate"))
         .args(&args)
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
@@ -975,7 +966,7 @@ fn convert_and_propagate_answer_a_line_while_the_input_stays_open() {
             "0.001,0,0\n",
         ),
     ] {
-        let mut child = Command::new(host_tests::cli::example(tool))
+        let mut child = Command::new(crate::cli::tool(tool))
             .args(args)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())

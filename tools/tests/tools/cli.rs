@@ -1,70 +1,19 @@
-//! The host command-line tools (`examples/convert.rs`, `examples/propagate.rs`,
-//! `examples/simulate/`) as processes, for the tests of their interfaces.
-//!
-//! Cargo tells integration tests where the workspace's *binaries* are (`CARGO_BIN_EXE_<name>`),
-//! not its examples. `cargo test --workspace` builds the examples too, as plain executables in
-//! `<target>/<profile dir>/examples/`. So the first call of [`example`] in a test process runs
-//! the same build again with the cargo that runs the tests, for the target directory of the
-//! running test executable (`<target>/<profile dir>/deps/<test>`):
-//! `cargo test --workspace --no-run [--release] --target-dir <target>`. Under the README test
-//! command (`cargo test --workspace --release`) every unit is fresh and this is a check of a
-//! second or two; a targeted run (`cargo test --release -p host-tests --test cli_simulate`)
-//! builds what is missing first, so a test never runs a stale tool. The command must be the
-//! workspace test build itself: `cargo build -p gyrostat --example ...` resolves other features
-//! (gyrostat without the `nalgebra`/`mint` features host-tests enables) and would compile a
-//! second copy of the library and the tools. A `OnceLock` makes the build happen once per test
-//! process; concurrent cargo processes are serialised by cargo's own lock on the target
-//! directory.
+//! The command-line tools as processes, for the tests of their interfaces: Cargo builds the
+//! binaries of this package before its tests and names them in `CARGO_BIN_EXE_<name>`.
 
 use std::ffi::OsString;
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Command, Stdio};
-use std::sync::OnceLock;
 
-/// The three command-line tools.
-pub const TOOLS: [&str; 3] = ["convert", "propagate", "simulate"];
-
-/// `(target directory, profile directory)` of the running test executable.
-fn target_of_this_test() -> (PathBuf, PathBuf) {
-    let exe = std::env::current_exe().expect("the test knows its executable");
-    // <target>/<profile dir>/deps/<test executable>
-    let profile_dir = exe
-        .parent()
-        .and_then(Path::parent)
-        .expect("test executables live in <target>/<profile>/deps")
-        .to_path_buf();
-    let target = profile_dir
-        .parent()
-        .expect("a profile directory has a parent")
-        .to_path_buf();
-    (target, profile_dir)
-}
-
-/// The path of the built example `name` (one of [`TOOLS`]), building the tools on first use.
-pub fn example(name: &str) -> PathBuf {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    let dir = DIR.get_or_init(|| {
-        let (target, profile_dir) = target_of_this_test();
-        let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
-        let mut cmd = Command::new(env!("CARGO"));
-        cmd.current_dir(&root)
-            .args(["test", "-q", "--workspace", "--no-run", "--target-dir"])
-            .arg(&target);
-        // The same profile as the running test: `--release` when it is optimised.
-        if !cfg!(debug_assertions) {
-            cmd.arg("--release");
-        }
-        // Cargo's "Executable ..." lines go to stderr; keep the test's output readable.
-        let out = cmd.output().expect("cargo runs");
-        assert!(
-            out.status.success(),
-            "building the command-line tools failed:\n{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        profile_dir.join("examples")
-    });
-    dir.join(name)
+/// The path of the tool `name` (`convert`, `propagate` or `simulate`).
+pub fn tool(name: &str) -> PathBuf {
+    PathBuf::from(match name {
+        "convert" => env!("CARGO_BIN_EXE_convert"),
+        "propagate" => env!("CARGO_BIN_EXE_propagate"),
+        "simulate" => env!("CARGO_BIN_EXE_simulate"),
+        other => panic!("no tool {other}"),
+    })
 }
 
 /// What a tool run produced.
@@ -94,7 +43,7 @@ pub fn run(name: &str, args: &[&str], stdin: &str) -> Output {
 /// Runs the tool `name` with arguments and standard input that need not be UTF-8. Stdout must
 /// be UTF-8 (the tools write ASCII); stderr is read lossily.
 pub fn run_raw(name: &str, args: &[OsString], stdin: Vec<u8>) -> Output {
-    let mut child = Command::new(example(name))
+    let mut child = Command::new(tool(name))
         .args(args)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
@@ -134,7 +83,7 @@ pub fn run_closed(name: &str, args: &[&str], stdin: &str, closed: Closed) -> (Op
         drop(reader);
         Stdio::from(writer)
     };
-    let mut cmd = Command::new(example(name));
+    let mut cmd = Command::new(tool(name));
     cmd.args(args).stdin(Stdio::piped()).stdout(closed_pipe());
     match closed {
         Closed::Stdout => cmd.stderr(Stdio::piped()),

@@ -1,13 +1,12 @@
-//! The `convert` example as an interface: flags, CSV formats, error lines, exit status,
+//! The `convert` tool as an interface: flags, CSV formats, error lines, exit status,
 //! round-tripping output numbers, checked against the independent reference matrices.
 
 use host_tests::ref_rotation::{euler_matrix, rot_dist, rotvec_matrix};
 use host_tests::reference::quat_matrix;
 
-/// Runs `convert ARGS` with `input` on stdin: (stdout, stderr, success). The tool is built by
-/// [`host_tests::cli::example`] (same target directory and profile as this test).
+/// Runs `convert ARGS` with `input` on stdin: (stdout, stderr, success).
 fn run(args: &[&str], input: &str) -> (String, String, bool) {
-    let out = host_tests::cli::run("convert", args, input);
+    let out = crate::cli::run("convert", args, input);
     (out.stdout, out.stderr, out.status == Some(0))
 }
 
@@ -146,9 +145,7 @@ fn sample_quats() -> Vec<[f64; 4]> {
 }
 
 fn csv(rows: &[Vec<f64>]) -> String {
-    rows.iter()
-        .map(|r| host_tests::cli::row(r) + "\n")
-        .collect()
+    rows.iter().map(|r| crate::cli::row(r) + "\n").collect()
 }
 
 fn m3(v: &[f64]) -> M3 {
@@ -465,7 +462,7 @@ fn operation_flags_are_checked() {
             err.starts_with(&format!("error: {msg}")) || err.contains(msg),
             "{args:?}: {err}"
         );
-        let st = host_tests::cli::run("convert", args, "").status;
+        let st = crate::cli::run("convert", args, "").status;
         assert_eq!(st, Some(2));
     }
     // A row of the wrong length for the operation names it.

@@ -5,10 +5,6 @@
 //! a plot. With flags it runs any case, reaction wheels and external torques included, and
 //! writes CSV; see `--help`.
 
-#[macro_use]
-#[path = "../cli/stream.rs"]
-mod stream;
-
 mod plot;
 mod torque;
 
@@ -24,10 +20,38 @@ use gyrostat::dynamics::{
     Invariants, Quartic, State, Wheel, WheelCommand,
 };
 use gyrostat::{Error, Quat, Real, UnitQuat, Vec3};
+use gyrostat_tools::flags::{self, Cli, Flag, Flags};
+use gyrostat_tools::stream::{self, Csv};
+use gyrostat_tools::{say, say_part};
 
 use plot::{Figure, Series};
-use stream::Csv;
 use torque::{ExternalTorque, Schedule};
+
+const CLI: Cli = Cli {
+    name: "simulate",
+    help: HELP,
+    flags: &[
+        Flag::value("--inertia"),
+        Flag::value("--inertia-offdiag"),
+        Flag::value("--omega"),
+        Flag::value("--momentum"),
+        Flag::value("--spin"),
+        Flag::value("--quartic"),
+        Flag::value("--semi-rigid"),
+        Flag::value("--q0"),
+        Flag::repeated("--wheel"),
+        Flag::value("--wheel-torque"),
+        Flag::value("--wheel-speed"),
+        Flag::value("--torque"),
+        Flag::value("--torque-file"),
+        Flag::value("--plot"),
+        Flag::value("--dt"),
+        Flag::value("--steps"),
+        Flag::value("--every"),
+        Flag::value("--integrator"),
+        Flag::switch("--f32"),
+    ],
+};
 
 /// The most `--wheel`s a run takes. The library's wheel count is a compile-time constant; this
 /// tool instantiates it for 0 to 4 wheels (three orthogonal wheels plus a skewed spare, or a
@@ -56,6 +80,9 @@ USAGE:
             t,qw,qx,qy,qz,w1,w2,w3,J1,J2,J3,energy
         then one row at step 0 and one after every K-th step. With N wheels the header and
         every row go on with N more columns, wheel1,...,wheelN.
+
+    Flags take their value as the next argument or after `=` (--dt 0.01, --dt=0.01); a flag
+    given twice is an error, except --wheel (one per wheel).
 
 OPTIONS:
     --inertia I1,I2,I3          diagonal of the body inertia tensor (kg m^2)
@@ -106,8 +133,8 @@ OPTIONS:
                                 skipped); each row's torque holds from its time until the next
                                 row's (zero-order hold), the last row for ever, zero before the
                                 first. A step that contains a switching time is split there.
-                                A bad file prints `simulate: error: --torque-file FILE: line N:
-                                reason` and exits with status 2 before any output.
+                                A bad file prints `error: --torque-file FILE: line N: reason`
+                                and exits with status 2 before any output.
     --plot FILE.svg             also write a plot: body rates, relative drift of the conserved
                                 quantities (log scale), attitude error against the closed form
                                 (torque-free rigid body) or, with --f32, against the same run in
@@ -132,7 +159,7 @@ body angular momentum (body plus wheels: R(q) J is the lab-frame total momentum)
 of wheel I relative to the body (rad/s). Rows are written as they are computed (flushed at
 least every 0.1 s).
 
-Errors print `simulate: error: reason` on stderr and exit with status 2: invalid input (before
+Errors print `error: reason` on stderr and exit with status 2: invalid input (before
 any output), and a run that cannot go on, after the rows written so far: a step the library
 rejects (a step that turns the body by more than half a turn, |w| dt > pi at either end of the
 step, is too long for every integrator; --integrator exact has no such limit), and a state that is no longer finite (values too large for f64, or f32 with --f32; checked at step 0
@@ -163,38 +190,27 @@ macro_rules! with_wheels {
 }
 
 fn main() -> ExitCode {
-    let args = match stream::args() {
-        Ok(a) => a,
-        Err(e) => return failed(&e),
+    let f = match CLI.command_line() {
+        Ok(f) => f,
+        Err(status) => return status,
     };
-    if args.iter().any(|a| a == "-h" || a == "--help") {
-        return match stream::print_text(HELP) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => failed(&format!("writing stdout: {e}")),
-        };
-    }
-    let result = match args.as_slice() {
-        [] => default_scenario(None),
-        [flag, path] if flag == "--plot" => default_scenario(Some(PathBuf::from(path))),
-        _ => parse(&args).and_then(|cfg| {
+    // No flags, or only --plot: the built-in scenario.
+    let result = if f.names().all(|n| n == "--plot") {
+        default_scenario(f.value("--plot").map(PathBuf::from))
+    } else {
+        config(&f).and_then(|cfg| {
             if cfg.f32 {
                 with_wheels!(cfg.wheels.len(), run_csv::<f32>(&cfg))
             } else {
                 with_wheels!(cfg.wheels.len(), run_csv::<f64>(&cfg))
             }
-        }),
+        })
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => failed(&e),
+        // Every error of simulate exits with the status of a bad command line.
+        Err(e) => flags::usage_error(&e),
     }
-}
-
-/// Reports `e` and returns the error status.
-fn failed(e: &str) -> ExitCode {
-    say!("simulate: error: {e}");
-    say!("(run `simulate --help` for the interface)");
-    ExitCode::from(2)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -263,45 +279,9 @@ impl Config {
     }
 }
 
-fn parse_list<const N: usize>(flag: &str, s: &str) -> Result<[f64; N], String> {
-    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    if parts.len() != N {
-        return Err(format!(
-            "{flag} takes {N} comma-separated numbers, got {:?}",
-            s
-        ));
-    }
-    let mut out = [0.0; N];
-    for (o, p) in out.iter_mut().zip(&parts) {
-        *o = parse_num(flag, p)?;
-    }
-    Ok(out)
-}
-
-fn parse_vec(flag: &str, s: &str) -> Result<Vec<f64>, String> {
-    s.split(',').map(|p| parse_num(flag, p.trim())).collect()
-}
-
-fn parse_num(flag: &str, s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("{flag}: {s:?} is not a number"))?;
-    if !v.is_finite() {
-        return Err(format!("{flag}: {s:?} is not a finite number"));
-    }
-    Ok(v)
-}
-
-fn parse_count(flag: &str, s: &str) -> Result<u64, String> {
-    s.trim()
-        .parse()
-        .map_err(|_| format!("{flag}: {s:?} is not a non-negative integer"))
-}
-
 /// `--wheel AX,AY,AZ,INERTIA[,SPEED0]`, the `index`-th (1-based).
 fn parse_wheel(index: usize, s: &str) -> Result<WheelSpec, String> {
-    let v = parse_vec("--wheel", s)?;
+    let v = flags::list("--wheel", s)?;
     if v.len() != 4 && v.len() != 5 {
         return Err(format!(
             "--wheel takes AX,AY,AZ,INERTIA[,SPEED0] (4 or 5 comma-separated numbers), got {s:?}"
@@ -329,149 +309,94 @@ fn read_torque_file(path: &str) -> Result<Schedule, String> {
     Schedule::parse(stream::Lines::new(file)).map_err(|e| format!("--torque-file {path}: {e}"))
 }
 
-fn parse(args: &[String]) -> Result<Config, String> {
-    let mut inertia = None;
-    let mut offdiag = None;
-    let mut omega = None;
-    let mut momentum = None;
-    let mut spin = None;
-    let mut quartic = None;
-    let mut semi_rigid = None;
-    let mut q0 = None;
-    let mut dt = None;
-    let mut steps = None;
-    let mut every = None;
-    let mut method = None;
-    let mut wheels = Vec::new();
-    let mut wheel_torque = None;
-    let mut wheel_speed = None;
-    let mut torque = None;
-    let mut torque_file = None;
-    let mut plot = None;
-    let mut f32 = false;
-    let mut it = args.iter();
-    fn set<V>(slot: &mut Option<V>, flag: &str, v: V) -> Result<(), String> {
-        if slot.is_some() {
-            return Err(format!("{flag} given more than once"));
-        }
-        *slot = Some(v);
-        Ok(())
+/// `--semi-rigid KIND:MASS,OMEGA_V,R0`.
+fn semi_rigid(flag: &str, value: &str) -> Result<(Arrangement, [f64; 3]), String> {
+    let usage = || {
+        format!(
+            "{flag} takes KIND:MASS,OMEGA_V,R0 with KIND octahedral, cubic or tetrahedral, got \
+             {value:?}"
+        )
+    };
+    let (kind, numbers) = value.split_once(':').ok_or_else(usage)?;
+    let kind = match kind.trim() {
+        "octahedral" => Arrangement::Octahedral,
+        "cubic" => Arrangement::Cubic,
+        "tetrahedral" => Arrangement::Tetrahedral,
+        _ => return Err(usage()),
+    };
+    let v = flags::numbers::<3>(flag, numbers, "MASS,OMEGA_V,R0")?;
+    if v.iter().any(|&x| x <= 0.0) {
+        return Err(format!(
+            "{flag}: MASS, OMEGA_V and R0 must be > 0, got {numbers:?}"
+        ));
     }
-    while let Some(flag) = it.next() {
-        let flag = flag.as_str();
-        if flag == "--f32" {
-            if f32 {
-                return Err("--f32 given more than once".into());
-            }
-            f32 = true;
-            continue;
-        }
-        let known = [
-            "--inertia",
-            "--inertia-offdiag",
-            "--omega",
-            "--momentum",
-            "--spin",
-            "--quartic",
-            "--q0",
-            "--dt",
-            "--steps",
-            "--every",
-            "--integrator",
-            "--wheel",
-            "--wheel-torque",
-            "--wheel-speed",
-            "--torque",
-            "--torque-file",
-            "--plot",
-            "--semi-rigid",
-        ];
-        if !known.contains(&flag) {
-            return Err(format!("unknown argument {flag:?}"));
-        }
-        let value = it
-            .next()
-            .ok_or_else(|| format!("{flag} needs a value"))?
-            .as_str();
-        match flag {
-            "--inertia" => set(&mut inertia, flag, parse_list::<3>(flag, value)?)?,
-            "--inertia-offdiag" => set(&mut offdiag, flag, parse_list::<3>(flag, value)?)?,
-            "--omega" => set(&mut omega, flag, parse_list::<3>(flag, value)?)?,
-            "--momentum" => set(&mut momentum, flag, parse_list::<3>(flag, value)?)?,
-            "--spin" => set(&mut spin, flag, parse_list::<3>(flag, value)?)?,
-            "--q0" => set(&mut q0, flag, parse_list::<4>(flag, value)?)?,
-            "--dt" => set(&mut dt, flag, parse_num(flag, value)?)?,
-            "--steps" => set(&mut steps, flag, parse_count(flag, value)?)?,
-            "--every" => set(&mut every, flag, parse_count(flag, value)?)?,
-            "--wheel" => {
-                if wheels.len() == MAX_WHEELS {
-                    return Err(format!(
-                        "at most {MAX_WHEELS} --wheel (the capacity of this tool)"
-                    ));
-                }
-                wheels.push(parse_wheel(wheels.len() + 1, value)?);
-            }
-            "--wheel-torque" => set(&mut wheel_torque, flag, parse_vec(flag, value)?)?,
-            "--wheel-speed" => set(&mut wheel_speed, flag, parse_vec(flag, value)?)?,
-            "--torque" => set(&mut torque, flag, parse_list::<3>(flag, value)?)?,
-            "--torque-file" => set(&mut torque_file, flag, value.to_string())?,
-            "--plot" => set(&mut plot, flag, PathBuf::from(value))?,
-            "--semi-rigid" => {
-                let usage = || {
-                    format!(
-                        "--semi-rigid takes KIND:MASS,OMEGA_V,R0 with KIND octahedral, cubic or \
-                         tetrahedral, got {value:?}"
-                    )
-                };
-                let (kind, numbers) = value.split_once(':').ok_or_else(usage)?;
-                let kind = match kind.trim() {
-                    "octahedral" => Arrangement::Octahedral,
-                    "cubic" => Arrangement::Cubic,
-                    "tetrahedral" => Arrangement::Tetrahedral,
-                    _ => return Err(usage()),
-                };
-                let v = parse_list::<3>(flag, numbers)?;
-                if v.iter().any(|&x| x <= 0.0) {
-                    return Err(format!(
-                        "--semi-rigid: MASS, OMEGA_V and R0 must be > 0, got {numbers:?}"
-                    ));
-                }
-                set(&mut semi_rigid, flag, (kind, v))?
-            }
-            "--quartic" => {
-                let (kind, t) = value.split_once(':').ok_or_else(|| {
-                    format!("--quartic takes octahedral:T4 or cubic:T22, got {value:?}")
-                })?;
-                let t = parse_num(flag, t)?;
-                let octa = match kind.trim() {
-                    "octahedral" => true,
-                    "cubic" => false,
-                    other => {
-                        return Err(format!(
-                            "--quartic: unknown kind {other:?} (octahedral or cubic)"
-                        ));
-                    }
-                };
-                set(&mut quartic, flag, (octa, t))?
-            }
-            "--integrator" => {
-                let m = match value.trim() {
-                    "rk4" => Method::Step(Integrator::Rk4),
-                    "strang" => Method::Step(Integrator::Strang),
-                    "yoshida4" => Method::Step(Integrator::Yoshida4),
-                    "suzuki4" => Method::Step(Integrator::Suzuki4),
-                    "exact" => Method::Exact,
-                    other => {
-                        return Err(format!(
-                            "--integrator: unknown {other:?} (rk4, strang, yoshida4, suzuki4, exact)"
-                        ));
-                    }
-                };
-                set(&mut method, flag, m)?
-            }
-            _ => unreachable!("flag list checked above"),
-        }
+    Ok((kind, v))
+}
+
+/// `--quartic octahedral:T4|cubic:T22`: (octahedral?, coefficient).
+fn quartic(flag: &str, value: &str) -> Result<(bool, f64), String> {
+    let (kind, t) = value
+        .split_once(':')
+        .ok_or_else(|| format!("{flag} takes octahedral:T4 or cubic:T22, got {value:?}"))?;
+    let t = flags::number(flag, t)?;
+    match kind.trim() {
+        "octahedral" => Ok((true, t)),
+        "cubic" => Ok((false, t)),
+        other => Err(format!(
+            "{flag}: unknown kind {other:?} (octahedral or cubic)"
+        )),
     }
+}
+
+/// `--integrator NAME`.
+fn integrator(flag: &str, value: &str) -> Result<Method, String> {
+    Ok(match value.trim() {
+        "rk4" => Method::Step(Integrator::Rk4),
+        "strang" => Method::Step(Integrator::Strang),
+        "yoshida4" => Method::Step(Integrator::Yoshida4),
+        "suzuki4" => Method::Step(Integrator::Suzuki4),
+        "exact" => Method::Exact,
+        other => {
+            return Err(format!(
+                "{flag}: unknown {other:?} (rk4, strang, yoshida4, suzuki4, exact)"
+            ));
+        }
+    })
+}
+
+/// The configuration of a CSV run, from the flags given.
+fn config(f: &Flags) -> Result<Config, String> {
+    let three =
+        |fields: &'static str| move |flag: &str, v: &str| flags::numbers::<3>(flag, v, fields);
+    let inertia = f.get("--inertia", three("I1,I2,I3"))?;
+    let offdiag = f.get("--inertia-offdiag", three("I12,I13,I23"))?;
+    let omega = f.get("--omega", three("w1,w2,w3"))?;
+    let momentum = f.get("--momentum", three("J1,J2,J3"))?;
+    let spin = f.get("--spin", three("S1,S2,S3"))?;
+    let quartic = f.get("--quartic", quartic)?;
+    let semi_rigid = f.get("--semi-rigid", semi_rigid)?;
+    let q0 = f.get("--q0", |flag, v| flags::numbers::<4>(flag, v, "w,x,y,z"))?;
+    let dt = f.get("--dt", flags::positive)?;
+    let steps = f.get("--steps", flags::count)?;
+    let every = f.get("--every", flags::at_least_one)?;
+    let method = f.get("--integrator", integrator)?;
+    let given_wheels: Vec<&str> = f.values("--wheel").collect();
+    if given_wheels.len() > MAX_WHEELS {
+        return Err(format!(
+            "at most {MAX_WHEELS} --wheel (the capacity of this tool)"
+        ));
+    }
+    let wheels = given_wheels
+        .iter()
+        .enumerate()
+        .map(|(i, v)| parse_wheel(i + 1, v))
+        .collect::<Result<Vec<_>, _>>()?;
+    let wheel_torque = f.get("--wheel-torque", flags::list)?;
+    let wheel_speed = f.get("--wheel-speed", flags::list)?;
+    let torque = f.get("--torque", three("TX,TY,TZ"))?;
+    let torque_file = f.value("--torque-file");
+    let plot = f.value("--plot").map(PathBuf::from);
+    let f32 = f.switch("--f32");
     let initial = match (omega, momentum) {
         (Some(w), None) => Initial::Omega(w),
         (None, Some(j)) => Initial::Momentum(j),
@@ -479,13 +404,7 @@ fn parse(args: &[String]) -> Result<Config, String> {
         (None, None) => return Err("missing --omega or --momentum".into()),
     };
     let dt = dt.ok_or("missing --dt")?;
-    if dt <= 0.0 {
-        return Err(format!("--dt must be > 0, got {dt}"));
-    }
     let every = every.unwrap_or(1);
-    if every == 0 {
-        return Err("--every must be at least 1".into());
-    }
     let spin = spin.unwrap_or([0.0; 3]);
     let method = method.ok_or("missing --integrator")?;
     if semi_rigid.is_some() {
@@ -556,7 +475,7 @@ fn parse(args: &[String]) -> Result<Config, String> {
         (Some(_), Some(_)) => return Err("give either --torque or --torque-file, not both".into()),
         (Some(t), None) => (ExternalTorque::Constant(t), "--torque".to_string()),
         (None, Some(path)) => (
-            ExternalTorque::Schedule(read_torque_file(&path)?),
+            ExternalTorque::Schedule(read_torque_file(path)?),
             format!("--torque-file {path}"),
         ),
         (None, None) => (ExternalTorque::None, String::new()),
@@ -1714,19 +1633,20 @@ fn print_quietly(text: &str) -> Result<(), String> {
 }
 
 /// Where the default scenario's plot goes: `simulate-default.svg` in the Cargo target directory
-/// the binary was built in (`<target>/<profile>/examples/simulate`), so that running it from a
-/// checkout leaves the work tree clean; the current directory otherwise.
+/// the binary was built in (`<target>/<profile>/simulate`, or `<target>/<triple>/<profile>/...`:
+/// the nearest directory above the binary holding Cargo's `CACHEDIR.TAG`), so that running it
+/// from a checkout leaves the work tree clean; the current directory otherwise (an installed
+/// binary).
 fn default_plot_path() -> PathBuf {
     let name = "simulate-default.svg";
     let exe = std::env::current_exe().ok();
-    let examples = exe.as_deref().and_then(Path::parent);
-    match examples {
-        Some(dir) if dir.file_name().is_some_and(|n| n == "examples") => dir
-            .parent()
-            .and_then(Path::parent)
-            .map_or_else(|| PathBuf::from(name), |target| target.join(name)),
-        _ => PathBuf::from(name),
-    }
+    exe.as_deref()
+        .into_iter()
+        .flat_map(Path::ancestors)
+        .skip(1)
+        .take(3)
+        .find(|dir| dir.join("CACHEDIR.TAG").is_file())
+        .map_or_else(|| PathBuf::from(name), |target| target.join(name))
 }
 
 /// `path` relative to the current directory when it lies below it.

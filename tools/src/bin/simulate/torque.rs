@@ -3,7 +3,7 @@
 
 use std::io::{self, Read};
 
-use crate::stream::Lines;
+use gyrostat_tools::stream::Lines;
 
 /// The external body-frame torque of a run.
 #[derive(Debug, Clone, PartialEq)]
