@@ -849,7 +849,7 @@ fn replica_reproduces_library() {
 /// size: what is left is the random walk of 13–21 roundings per step; what it removes is the
 /// bias.
 ///
-/// `cargo test --release -p host-tests --test dynamics_f32_rounding -- --ignored --nocapture`
+/// `cargo test --release -p host-tests --test dynamics compensated:: -- --ignored --nocapture`
 #[test]
 #[ignore = "an experiment that prints its numbers; run with --ignored --nocapture"]
 fn cause_experiment() {

@@ -11,8 +11,9 @@
 //!   `Type::item`, inside an `impl` block of `Type` — inherent or trait — in a file of that
 //!   module) — or, with no path,
 //!   starts with one of the markers *definition*, *derivation*, *illustration*, *out of scope*;
-//! - the test cell holds `tests/FILE::name` spans: `fn name` in `host-tests/tests/FILE.rs`; a row
-//!   with an implementation needs at least one;
+//! - the test cell holds `tests/FILE::name` spans: `fn name` in `host-tests/tests/FILE.rs`, FILE
+//!   being `AREA/MODULE` (`tests/dynamics/mass::bent_axle_6_5_6`); a row with an implementation
+//!   needs at least one;
 //! - under `## Misprints`, every bullet cites at least one test, and every cited path is checked.
 //!
 //! The labels of the seed are embedded below (extracted from the seed text with the scan in
@@ -533,8 +534,8 @@ fn parser_self_checks() {
         impl_self_type("impl<T: Real, const N: usize> Gyrostat<T, N> {"),
         Some("Gyrostat")
     );
-    assert!(check_test("tests/seed_index::parser_self_checks").is_ok());
-    assert!(check_test("tests/seed_index::no_such_test").is_err());
+    assert!(check_test("tests/dynamics/seed_index::parser_self_checks").is_ok());
+    assert!(check_test("tests/dynamics/seed_index::no_such_test").is_err());
     let labels = seed_labels(
         "(6.6.10 a) \\tag{6.4.1} (6.7.27)x (6.3.1) Fig. 6.8.2 (6.7.5c-d) (6.6.10 \\text{ b})",
     );

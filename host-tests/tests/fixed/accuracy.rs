@@ -269,7 +269,7 @@ fn coning_fixed_against_f32_and_closed_form() {
                 "α = {alpha:5}, base {b:3} rad: worst error fixed {ex:.2e}, f32 {e32:.2e}, f64 {e64:.2e} rad"
             );
             rows.push((alpha, b, ex, e32));
-            // The worst-case budget of `fixed_firmware.rs` for 1200 updates of this size:
+            // The worst-case budget of `firmware.rs` for 1200 updates of this size:
             // quantisation ≤ 1.9e-6 plus arithmetic ≤ 2.2e-6 rad.
             assert!(ex < 4.1e-6, "α {alpha} base {b}: {ex:e}");
         }
@@ -299,7 +299,7 @@ fn coning_fixed_against_f32_and_closed_form() {
 }
 
 /// The drift constants of the coning rules, measured in Q1.30 exactly as
-/// `propagation_coning.rs` measures them in f64 (slope of the body-z error over 100 cone
+/// `propagation/coning.rs` measures them in f64 (slope of the body-z error over 100 cone
 /// periods, α = 0.05, Ω = 2π), with f32 measured beside it on the same inputs.
 ///
 /// The exponential-per-increment drift is reproduced to 5%. For the rules with a coning term

@@ -1,5 +1,6 @@
-//! The fixed-point firmware (`examples/fw_fixed.rs`): bit-identity across the boards, the host and
-//! `propagate --fixed`, and accuracy against the closed-form coning attitude.
+//! The fixed-point firmware (`examples/fw_fixed.rs`): bit-identity across the boards and the host,
+//! and accuracy against the closed-form coning attitude (`propagate --fixed` reproduces the same
+//! bits: `tools/tests/tools/fixed.rs`).
 //!
 //! The scenario (`examples/fw/fixed_scenario.rs`, included here) runs on the host in this test.
 //! `.ci/run` runs the firmware on the M0, M3, M4F, M33 and RISC-V boards, writes
@@ -7,8 +8,8 @@
 //! (`--ignored`); the boards' lines must then equal the host's lines character for
 //! character (every number is the hex of a raw Q1.30 integer). The bit-identity check is
 //! `#[ignore]`d, so a plain `cargo test` lists it as ignored instead of passing without checking
-//! anything, and it fails when run without its input. The accuracy and `propagate --fixed`
-//! checks always run (on the host's lines, which the CI check proves equal to the boards').
+//! anything, and it fails when run without its input. The accuracy checks always run (on the
+//! host's lines, which the CI check proves equal to the boards').
 //!
 //! Accuracy reference: `host_tests::ref_propagation::Coning` (the closed form, written
 //! independently with `std`), at the same α, Ω and times. Tolerances, per check, from the error
@@ -25,20 +26,17 @@
 //! The bound asserted for the 2-sample attitude, 2e-7 rad, is a tenth of those worst cases (the
 //! errors are unbiased, ties to even). The f32 and f64 paths on the same increments are printed
 //! beside it; the comparison with f32 over several cone angles and base attitudes is in
-//! `fixed_point.rs`.
-
-use std::io::Write;
-use std::process::{Command, Stdio};
+//! `accuracy.rs`.
 
 use gyrostat::fixed::Q30;
 use gyrostat::propagation::coning::coning2_update;
 use gyrostat::{Quat, UnitQuat, Vec3};
 use host_tests::cast::{self, vec3};
-use host_tests::examples::{build_example, firmware_output};
+use host_tests::examples::firmware_output;
 use host_tests::ref_propagation::Coning;
 use host_tests::reference::quat_angle;
 
-include!("../../examples/fw/fixed_scenario.rs");
+include!("../../../examples/fw/fixed_scenario.rs");
 
 /// The scenario's lines as computed on the host.
 fn host_lines() -> Vec<String> {
@@ -223,74 +221,4 @@ fn matrix_rotation_and_health_of_the_final_attitude() {
     }
     let h = values(find(&lines, "health "), 1)[0];
     assert!(h.abs() <= 4.0 * 2f64.powi(-30), "|q|² − 1 = {h:e}");
-}
-
-/// `propagate --fixed`, fed the scenario's increments as decimal f64 text (shortest round-trip
-/// form), prints exactly the firmware's attitudes: the 2-sample checkpoints and every rule's final
-/// attitude, compared as raw Q1.30 integers.
-#[test]
-fn propagate_fixed_reproduces_the_firmware_bit_for_bit() {
-    let lines = host_lines();
-    let bin = build_example("propagate");
-    let s = scenario_start();
-    let input: String = (0..N_INCREMENTS)
-        .map(|k| {
-            let [x, y, z] = scenario_increment(k);
-            format!("{x:?},{y:?},{z:?}\n")
-        })
-        .collect();
-    let raw = |x: &str| -> i32 {
-        let v: f64 = x.parse().unwrap();
-        let r = v * 2f64.powi(30);
-        assert_eq!(r, r.round(), "{x} is not a multiple of 2^-30");
-        r as i32
-    };
-    for (algo, prefix) in [
-        ("exp", "rule Exp "),
-        ("coning1", "rule OnePlusPrevious "),
-        ("coning2", "rule TwoSample "),
-        ("coning3", "rule ThreeSample "),
-        ("coning4", "rule FourSample "),
-    ] {
-        let q0 = format!("{:?},{:?},{:?},{:?}", s[0], s[1], s[2], s[3]);
-        let mut child = Command::new(&bin)
-            .args(["--input", "increments", "--algo", algo, "--dt"])
-            .arg(format!("{H:?}"))
-            .args(["--q0", &q0, "--fixed"])
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .spawn()
-            .expect("propagate runs");
-        // Written from a thread: the output pipe would fill while the input is still being fed.
-        let mut stdin = child.stdin.take().unwrap();
-        let feed = input.clone();
-        let writer = std::thread::spawn(move || stdin.write_all(feed.as_bytes()));
-        let out = child.wait_with_output().unwrap();
-        writer.join().unwrap().unwrap();
-        assert!(out.status.success(), "{algo}");
-        let text = String::from_utf8(out.stdout).unwrap();
-        let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
-        assert_eq!(rows.len(), N_INCREMENTS, "{algo}: one row per increment");
-        let bits = |row: &[&str]| -> Vec<i32> { row[1..5].iter().map(|x| raw(x)).collect() };
-        let fw_bits = |line: &str, skip: usize| -> Vec<i32> {
-            line.split_whitespace()
-                .skip(skip)
-                .map(|h| u32::from_str_radix(h, 16).unwrap() as i32)
-                .collect()
-        };
-        let last = &rows[N_INCREMENTS - 1];
-        let skip = prefix.split_whitespace().count();
-        assert_eq!(
-            bits(last),
-            fw_bits(find(&lines, prefix), skip),
-            "{algo}: final attitude"
-        );
-        if algo == "coning2" {
-            for line in lines.iter().filter(|l| l.starts_with("coning2 ")) {
-                let consumed: usize = line.split_whitespace().nth(1).unwrap().parse().unwrap();
-                assert_eq!(bits(&rows[consumed - 1]), fw_bits(line, 2), "{line}");
-            }
-        }
-    }
-    println!("propagate --fixed: every rule's attitude equals the firmware's bits");
 }

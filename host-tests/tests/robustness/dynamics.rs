@@ -3,7 +3,7 @@
 //! without torque and wheels, the monitors, the exact free body, the elliptic functions, the
 //! seed's analysis functions, the Euler-coordinate rotor and the semi-rigid rotors.
 //!
-//! `cargo test --release -p host-tests --test robustness_dynamics -- --nocapture` prints the
+//! `cargo test --release -p host-tests --test robustness dynamics:: -- --nocapture` prints the
 //! table; `GYROSTAT_CAMPAIGN_N=1000000 GYROSTAT_CAMPAIGN_WRITE=1` is the long setting that
 //! writes it into `ROBUSTNESS.md`.
 

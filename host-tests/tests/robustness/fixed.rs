@@ -9,9 +9,9 @@
 //! here from the formulas (exact products of the Q1.30 values, the rule coefficients, the
 //! exponential by `sin`/`cos`), not against gyrostat's own float path.
 //!
-//! Integer overflow: the fixed-point code saturates or works in 64 bits by design; this file also
-//! runs in a debug build (`cargo test -p host-tests --test robustness_fixed`, overflow checks on),
-//! where an overflowing `i32`/`i64` operation would panic and be reported as a panic.
+//! Integer overflow: the fixed-point code saturates or works in 64 bits by design; the library is
+//! built with overflow checks in the host test profiles (release: `Cargo.toml`; debug: always),
+//! so an overflowing `i32`/`i64` operation would panic and be reported as a panic.
 
 use gyrostat::fixed::{Fixed, IncrementScale, Q24, Q30, increment_from_rate};
 use gyrostat::propagation::coning::{

@@ -4,7 +4,7 @@
 //! rates between attitudes, the normalisation policy, the rate-sample steps and the rate
 //! integrator with every method and normalisation.
 //!
-//! `cargo test --release -p host-tests --test robustness_propagation -- --nocapture` prints the
+//! `cargo test --release -p host-tests --test robustness propagation:: -- --nocapture` prints the
 //! table; `GYROSTAT_CAMPAIGN_N=1000000 GYROSTAT_CAMPAIGN_WRITE=1` is the long setting that
 //! writes it into `ROBUSTNESS.md`.
 

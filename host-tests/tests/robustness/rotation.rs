@@ -3,7 +3,7 @@
 //! conversions, Euler angles in all 24 conventions with every gimbal policy, the Euler rate and
 //! Euler momentum matrices, the double-cover algebra, slerp and nlerp.
 //!
-//! `cargo test --release -p host-tests --test robustness_rotation -- --nocapture` prints the
+//! `cargo test --release -p host-tests --test robustness rotation:: -- --nocapture` prints the
 //! table; `GYROSTAT_CAMPAIGN_N=1000000 GYROSTAT_CAMPAIGN_WRITE=1` is the long setting that
 //! writes it into `ROBUSTNESS.md`.
 

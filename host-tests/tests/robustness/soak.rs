@@ -9,7 +9,7 @@
 //!   (6, 4, 3) tumbling near its intermediate axis, `dt = 0.01 s`: the largest `||q| − 1|`,
 //!   relative `|J|` drift, relative energy error and lab-momentum drift over every step.
 //!
-//! `cargo test --release -p host-tests --test soak -- --nocapture` runs the shortened setting
+//! `cargo test --release -p host-tests --test robustness soak:: -- --nocapture` runs the shortened setting
 //! (10⁶ updates, 10⁵ steps per method, as in CI); `GYROSTAT_SOAK=full` runs the full one
 //! (10⁸ updates, 10⁷ steps per method), whose numbers BENCHMARKS.md ("Soak") quotes.
 

@@ -22,7 +22,7 @@ use host_tests::reference::{
     C, mat_dist, mat_mul, mat_vec, rodrigues, su2_matrix, u2_dist, u2_mul,
 };
 
-include!("../../examples/fw/rotation_cases.rs");
+include!("../../../examples/fw/rotation_cases.rs");
 
 struct Line {
     case: usize,
