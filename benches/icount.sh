@@ -12,7 +12,7 @@ labels=(M4F M33 M3 M0)
 dir="${CARGO_TARGET_DIR:-target}/icount"
 mkdir -p "$dir"
 for t in "${targets[@]}"; do
-  cargo run -q --release --example fw_icount --target "$t" > "$dir/$t.txt"
+  cargo run -q --profile firmware --example fw_icount --target "$t" > "$dir/$t.txt"
   grep -q '^done' "$dir/$t.txt"
 done
 header="| operation"; rule="|---"

@@ -1,8 +1,8 @@
 //! Firmware: deterministic guest-instruction counts of named operations under QEMU.
 //!
 //! ```text
-//! cargo run --release --example fw_icount --target thumbv7em-none-eabihf   # Cortex-M4F
-//! cargo run --release --example fw_icount --target thumbv6m-none-eabi      # Cortex-M0
+//! cargo run --profile firmware --example fw_icount --target thumbv7em-none-eabihf   # Cortex-M4F
+//! cargo run --profile firmware --example fw_icount --target thumbv6m-none-eabi      # Cortex-M0
 //! ```
 //! The runner (`.cargo/config.toml`) starts QEMU with `-icount shift=7,align=off,sleep=off`: each
 //! guest instruction advances virtual time by 128 ns, so SysTick (clock source = core) ticks are

@@ -9,7 +9,7 @@
 //!   slow input stream shows its rows promptly.
 //! - A closed stdout (`tool ... | head`) is [`is_closed_pipe`]: the tools stop quietly there,
 //!   without a panic and without a message. [`print_text`] writes `--help` and summaries that
-//!   way, and [`say!`] writes diagnostics to stderr ignoring a closed stderr.
+//!   way, and [`say!`](crate::say) writes diagnostics to stderr ignoring a closed stderr.
 
 use std::io::{self, BufRead, BufReader, Read, Write};
 use std::time::{Duration, Instant};
@@ -29,7 +29,7 @@ macro_rules! say {
     }};
 }
 
-/// Like [`say!`] without the line break.
+/// Like [`say!`](crate::say) without the line break.
 #[macro_export]
 macro_rules! say_part {
     ($($arg:tt)*) => {{

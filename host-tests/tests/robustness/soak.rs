@@ -76,7 +76,7 @@ fn coning2_update_soak_f32() {
     // The fast renormalisation removes each update's drift to second order: |q| stays within
     // a few ulp of 1 (f32 ulp at 1: 6e-8 below, 1.2e-7 above), whatever the run length.
     assert!(worst_norm < 4.0 * f64::from(f32::EPSILON), "{worst_norm}");
-    // The attitude error grows from the rounding of each update (see propagation_long_run:
+    // The attitude error grows from the rounding of each update (see propagation/long_run.rs:
     // worst case 1.2e-7 rad per update if every rounding had the same sign).
     let (_, last) = log[log.len() - 1];
     assert!(last < 1.2e-7 * updates as f64, "{last}");

@@ -13,11 +13,11 @@
 //!   (order 4 of `magnus4`, `cf4`, `rk4`).
 //!
 //! Both in f64 and with `--f32`. The f64 parameters are those of the library-level test
-//! (`propagation_coning.rs`). In f32 the drift must stand above the rounding of the attitude
-//! (about 6e-8 rad per update): larger Ωh and α are used where the leading term still holds to
-//! 5% (measured), and the 4-sample rule, whose α² term is below that floor at every α where it
-//! dominates the O(α⁴) terms, is checked against the f64 run of the same input instead (within
-//! 1%, in a regime where both measure the same O(α⁴)-dominated drift).
+//! (`host-tests/tests/propagation/coning.rs`). In f32 the drift must stand above the rounding of
+//! the attitude (about 6e-8 rad per update): larger Ωh and α are used where the leading term
+//! still holds to 5% (measured), and the 4-sample rule, whose α² term is below that floor at
+//! every α where it dominates the O(α⁴) terms, is checked against the f64 run of the same input
+//! instead (within 1%, in a regime where both measure the same O(α⁴)-dominated drift).
 
 use std::f64::consts::TAU;
 

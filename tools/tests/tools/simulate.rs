@@ -106,7 +106,7 @@ fn free_body_error(integ: &str, dt: f64, steps: u64, every: u64, f32: bool) -> (
 
 #[test]
 fn exact_free_body_matches_reference() {
-    // The library's own bounds for the closed form (exact_free_rigid_body.rs): f64 5e-13 rad and
+    // The library's own bounds for the closed form (host-tests/tests/dynamics/free_rigid_body.rs): f64 5e-13 rad and
     // 2e-13; f32 5e-6 rad and 2e-6 (20–40 ulp of the phases).
     let (att, mom) = free_body_error("exact", 0.05, 400, 10, false);
     println!("exact f64: attitude {att:.2e} rad, momentum {mom:.2e}");
