@@ -19,8 +19,8 @@
 //! Every error of every tool is one line on stderr, `error: REASON`; a problem of an input line
 //! names it, `error: line N: REASON`. A bad command line (an unknown or repeated flag, a missing
 //! or invalid value, a combination the tool rejects) prints its reason, `error: --dt: must be
-//! finite and > 0, got -1`, writes nothing on stdout and exits with status [`USAGE`] (2). The
-//! reasons of a flag value start with the flag's name.
+//! finite and > 0, got -1`, writes nothing on stdout and exits with status [`USAGE`] (2). A
+//! reason about a flag's value starts with the flag.
 //!
 //! # Adding a flag or a tool
 //!
@@ -280,9 +280,11 @@ impl Flags {
         self.value(name).map(|v| parse(name, v)).transpose()
     }
 
-    /// A tool asks only for the flags it declared (a misspelt name would never be given).
+    /// A tool asks only for the flags it declared: a misspelt name would never be given, and its
+    /// flag would be ignored without a word. A programming error, not an input error: the
+    /// interface tests, which give every flag, find it.
     fn declared(&self, name: &str) {
-        debug_assert!(
+        assert!(
             self.spec.iter().any(|f| f.name == name),
             "{name} is not a declared flag"
         );
@@ -430,6 +432,12 @@ mod tests {
         ] {
             assert!(matches!(parse(args), Ok(Parsed::Help)), "{args:?}");
         }
+    }
+
+    #[test]
+    #[should_panic(expected = "--df is not a declared flag")]
+    fn asking_for_an_undeclared_flag_is_a_programming_error() {
+        flags(&["--dt", "1"]).value("--df");
     }
 
     #[test]

@@ -241,10 +241,12 @@ impl Opts {
 
 /// The options of a run, from the flags given.
 fn options(f: &Flags) -> Result<Opts, String> {
-    let rep = |_: &str, v: &str| Rep::parse(v);
+    let rep = |flag: &str, v: &str| Rep::parse(v).map_err(|e| format!("{flag}: {e}"));
     let from = f.get("--from", rep)?;
     let to = f.get("--to", rep)?;
-    let op = f.get("--op", |_, v| Op::parse(v))?;
+    let op = f.get("--op", |flag, v| {
+        Op::parse(v).map_err(|e| format!("{flag}: {e}"))
+    })?;
     let (f32, degrees, normalize) = (
         f.switch("--f32"),
         f.switch("--degrees"),

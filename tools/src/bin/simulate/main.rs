@@ -610,7 +610,7 @@ fn build<T: Real>(cfg: &Config) -> Result<Model<T>, String> {
     let moments = cfg.inertia.unwrap_or([0.0; 3]);
     let inertia = Inertia::try_from_components(v3(moments), v3(cfg.offdiag)).map_err(|e| {
         format!(
-            "inertia {:?} with off-diagonal {:?}: {e} (must be symmetric positive definite with \
+            "--inertia {:?} with off-diagonal {:?}: {e} (must be symmetric positive definite with \
              principal moments I_a <= I_b + I_c)",
             moments, cfg.offdiag
         )
