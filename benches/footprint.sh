@@ -38,10 +38,10 @@ current="$dir/current.txt"
 : > "$current"
 for t in "${targets[@]}"; do
   for c in "${caps[@]}"; do
-    GYROSTAT_FOOTPRINT="$c" cargo build -q --release --example fw_footprint --target "$t"
-    "$size_tool" -A "$target_dir/$t/release/examples/fw_footprint" > "$dir/$t-$c.size"
+    GYROSTAT_FOOTPRINT="$c" cargo build -q --profile firmware --example fw_footprint --target "$t"
+    "$size_tool" -A "$target_dir/$t/firmware/examples/fw_footprint" > "$dir/$t-$c.size"
     GYROSTAT_FOOTPRINT="$c" GYROSTAT_FOOTPRINT_STACK=1 \
-      cargo run -q --release --example fw_footprint --target "$t" > "$dir/$t-$c.stack"
+      cargo run -q --profile firmware --example fw_footprint --target "$t" > "$dir/$t-$c.stack"
     # Stack of the typical case (the first) and the worst over all cases.
     stack=$(awk -v c="$c" '$1=="footprint" && $2==c && $3=="stack" && NF>3 {
       w=$4; for (i=5;i<=NF;i++) if ($i>w) w=$i; print $4, w}' "$dir/$t-$c.stack")

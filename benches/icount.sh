@@ -14,7 +14,7 @@ mkdir -p "$dir"
 for t in "${targets[@]}"; do
   : > "$dir/$t.txt"
   for e in fw_icount fw_icount_estimation; do
-    cargo run -q --release --example "$e" --target "$t" > "$dir/$e-$t.txt"
+    cargo run -q --profile firmware --example "$e" --target "$t" > "$dir/$e-$t.txt"
     grep -q '^done' "$dir/$e-$t.txt"
     cat "$dir/$e-$t.txt" >> "$dir/$t.txt"
   done

@@ -1,17 +1,17 @@
 //! Firmware: the fixed-point (Q1.30) coning propagation on a Cortex-M or RISC-V core under QEMU.
 //!
 //! ```text
-//! cargo run --release --example fw_fixed --target thumbv6m-none-eabi           # M0, microbit
-//! cargo run --release --example fw_fixed --target thumbv7m-none-eabi           # M3, lm3s6965evb
-//! cargo run --release --example fw_fixed --target thumbv7em-none-eabihf        # M4F, mps2-an386
-//! cargo run --release --example fw_fixed --target thumbv8m.main-none-eabihf    # M33, mps2-an505
-//! cargo run --release --example fw_fixed --target riscv32imac-unknown-none-elf # RV32IMAC, virt
+//! cargo run --profile firmware --example fw_fixed --target thumbv6m-none-eabi           # M0, microbit
+//! cargo run --profile firmware --example fw_fixed --target thumbv7m-none-eabi           # M3, lm3s6965evb
+//! cargo run --profile firmware --example fw_fixed --target thumbv7em-none-eabihf        # M4F, mps2-an386
+//! cargo run --profile firmware --example fw_fixed --target thumbv8m.main-none-eabihf    # M33, mps2-an505
+//! cargo run --profile firmware --example fw_fixed --target riscv32imac-unknown-none-elf # RV32IMAC, virt
 //! ```
 //! Runs the built-in coning scenario of `examples/fw/fixed_scenario.rs` (2400 gyro increments of
 //! classical coning into the 2-sample hot path, every coning rule and the two-speed accumulator)
 //! and prints its lines over semihosting, every number as the hex of its raw Q1.30 integer, then
 //! `done` and exit 0 (any library error exits 1). The host test
-//! `host-tests/tests/fixed_firmware.rs` runs the same scenario on the host and checks that the
+//! `host-tests/tests/fixed/firmware.rs` runs the same scenario on the host and checks that the
 //! boards printed the same bits, and checks the numbers against the closed-form coning
 //! attitude in f64.
 //!

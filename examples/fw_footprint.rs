@@ -1,9 +1,9 @@
 //! Firmware: flash and stack footprint of one library capability linked alone (Cortex-M).
 //!
 //! ```text
-//! GYROSTAT_FOOTPRINT=euler cargo build --release --example fw_footprint --target thumbv6m-none-eabi
+//! GYROSTAT_FOOTPRINT=euler cargo build --profile firmware --example fw_footprint --target thumbv6m-none-eabi
 //! GYROSTAT_FOOTPRINT=euler GYROSTAT_FOOTPRINT_STACK=1 \
-//!     cargo run --release --example fw_footprint --target thumbv6m-none-eabi
+//!     cargo run --profile firmware --example fw_footprint --target thumbv6m-none-eabi
 //! bash benches/footprint.sh          # every capability on M0 and M4F, as a table
 //! ```
 //! `GYROSTAT_FOOTPRINT` (read when the example is compiled) names the one capability the image

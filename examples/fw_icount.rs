@@ -1,8 +1,8 @@
 //! Firmware: deterministic guest-instruction counts of named operations under QEMU.
 //!
 //! ```text
-//! cargo run --release --example fw_icount --target thumbv7em-none-eabihf   # Cortex-M4F
-//! cargo run --release --example fw_icount --target thumbv6m-none-eabi      # Cortex-M0
+//! cargo run --profile firmware --example fw_icount --target thumbv7em-none-eabihf   # Cortex-M4F
+//! cargo run --profile firmware --example fw_icount --target thumbv6m-none-eabi      # Cortex-M0
 //! ```
 //! The method (QEMU `-icount`, SysTick, a calibrated loop, `REPS` calls per count) is in
 //! `fw/icount.rs`, shared with `fw_icount_estimation` (the attitude filters beside their peers,

@@ -1,10 +1,12 @@
 //! Firmware: proof that gyrostat's firmware path links with no panicking branch.
 //!
 //! ```text
-//! cargo run --release --example fw_nopanic --target thumbv7em-none-eabihf
+//! cargo run --profile firmware --example fw_nopanic --target thumbv7em-none-eabihf
 //! ```
 //! (and the same for every firmware target: thumbv6m-none-eabi, thumbv7m-none-eabi,
-//! thumbv8m.main-none-eabihf, riscv32imac-unknown-none-elf).
+//! thumbv8m.main-none-eabihf, riscv32imac-unknown-none-elf). The `firmware` profile (LTO, one
+//! codegen unit) lets the optimiser see through every call; a build without LTO keeps calls it
+//! cannot prove panic-free and does not link.
 //! Every library entry point a firmware calls is fed opaque inputs (`core::hint::black_box`), so
 //! the optimiser must keep all of their branches, error paths included. The `#[panic_handler]`
 //! calls an `extern "C"` function that exists nowhere: if any panicking branch (an index out of

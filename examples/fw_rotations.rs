@@ -2,16 +2,16 @@
 //! under QEMU.
 //!
 //! ```text
-//! cargo run --release --example fw_rotations --target thumbv7em-none-eabihf        # M4F, mps2-an386
-//! cargo run --release --example fw_rotations --target thumbv7m-none-eabi          # M3, lm3s6965evb
-//! cargo run --release --example fw_rotations --target thumbv6m-none-eabi          # M0, microbit
-//! cargo run --release --example fw_rotations --target thumbv8m.main-none-eabihf   # M33, mps2-an505
-//! cargo run --release --example fw_rotations --target riscv32imac-unknown-none-elf # RV32IMAC, virt
+//! cargo run --profile firmware --example fw_rotations --target thumbv7em-none-eabihf        # M4F, mps2-an386
+//! cargo run --profile firmware --example fw_rotations --target thumbv7m-none-eabi          # M3, lm3s6965evb
+//! cargo run --profile firmware --example fw_rotations --target thumbv6m-none-eabi          # M0, microbit
+//! cargo run --profile firmware --example fw_rotations --target thumbv8m.main-none-eabihf   # M33, mps2-an505
+//! cargo run --profile firmware --example fw_rotations --target riscv32imac-unknown-none-elf # RV32IMAC, virt
 //! ```
 //! For each case of `examples/fw/rotation_cases.rs` it builds `q₁`, `q₂` from axis-angle, the
 //! product `q = q₁ ⊗ q₂`, its rotation matrix and the rotated vector, and prints one line
 //! `case I q W X Y Z m R00 … R22 v X Y Z` (f32, shortest round-trip form) over semihosting, then
-//! exits 0. Any library error exits 1. The host test `host-tests/tests/firmware_output.rs` checks
+//! exits 0. Any library error exits 1. The host test `host-tests/tests/rotation/firmware.rs` checks
 //! the printed numbers against the independent f64 reference. On the host this example is an
 //! empty program.
 #![cfg_attr(target_os = "none", no_std, no_main)]

@@ -2,8 +2,10 @@
 // test so that the host computes exactly what the boards compute:
 // - examples/fw_fixed.rs (Cortex-M0/M3/M4F/M33 and RISC-V under QEMU) prints the lines of
 //   `run_scenario`;
-// - host-tests/tests/fixed_firmware.rs runs the same function on the host, checks that the boards
-//   printed the same bits, and checks the numbers against the closed-form coning attitude.
+// - host-tests/tests/fixed/firmware.rs runs the same function on the host, checks that the boards
+//   printed the same bits, and checks the numbers against the closed-form coning attitude;
+// - tools/tests/tools/fixed.rs feeds the same increments to `propagate --fixed` and checks that
+//   it prints the same bits.
 //
 // Inputs: classical coning (half-cone angle ALPHA, coning rate OMEGA), the exact increments over
 // each gyro interval, computed in IEEE-754 f64 with gyrostat's `Real` for f64 (the `libm` crate:

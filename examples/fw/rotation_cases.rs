@@ -1,6 +1,6 @@
 // The fixed rotation cases of the `fw_rotations` firmware example, shared (by `include!`) with the
 // host test that checks the firmware's output against the independent f64 reference
-// (host-tests/tests/firmware_output.rs). Each case: (axis1, angle1, axis2, angle2, vector); the
+// (host-tests/tests/rotation/firmware.rs). Each case: (axis1, angle1, axis2, angle2, vector); the
 // firmware composes q = q(axis1, angle1) ⊗ q(axis2, angle2) and rotates the vector by it.
 // Angles in radians. Axes need not be unit length.
 

@@ -1135,7 +1135,7 @@ fn write_section(section: &str, n: u64, calls: u64, cpu: f64, table: &str) {
         format!("GYROSTAT_CAMPAIGN_N={n} ")
     };
     let body = format!(
-        "{open}\n`{seed}{count}cargo test --release -p host-tests --test robustness_{section} \
+        "{open}\n`{seed}{count}cargo test --release -p host-tests --test robustness {section}:: \
          -- --nocapture`: {} inputs per family and type, {} calls in all, seed {:#x}, \
          {cpu:.1} s of one core in the families.\n\n{table}",
         group(n),

@@ -1,7 +1,5 @@
-//! The repository's example programs as the tests use them: the bare-metal targets whose
-//! firmware output CI hands to the tests, and the host tools, built on demand.
-
-use std::path::PathBuf;
+//! The repository's firmware examples as the tests use them: the bare-metal targets whose
+//! firmware output CI hands to the tests.
 
 /// The bare-metal targets `.ci/run` runs the firmware examples on (Cortex-M0, M3, M4F, M33,
 /// RV32IMAC); their output files are named after them.
@@ -29,11 +27,4 @@ pub fn firmware_output(prefix: &str) -> Vec<(&'static str, String)> {
             (target, text)
         })
         .collect()
-}
-
-/// The host example `name`, built with the profile and target directory of the calling test:
-/// [`crate::cli::example`] (one builder for every test, so that all of them run the binaries
-/// of the workspace test build rather than a second build with other features).
-pub fn build_example(name: &str) -> PathBuf {
-    crate::cli::example(name)
 }

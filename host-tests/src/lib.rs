@@ -14,8 +14,7 @@
 //!   tiny-step RK4 free rigid body.
 //! - [`tolerance`]: the one tolerance trait, [`tolerance::Tolerance`].
 //! - [`cast`]: gyrostat values of any scalar type to and from f64 arrays.
-//! - [`cli`]: the command-line tools (examples) built and run as processes.
-//! - [`examples`]: the firmware targets and the host tools of the repository's examples.
+//! - [`examples`]: the firmware examples' targets and the output CI hands to the tests.
 //! - [`per_type!`]: runs test items for f32 and for f64.
 //! - [`campaign`]: the adversarial input campaign (generators, checks, runner, `ROBUSTNESS.md`
 //!   tables); [`family!`] declares one API family.
@@ -23,7 +22,6 @@
 pub mod broad;
 pub mod campaign;
 pub mod cast;
-pub mod cli;
 pub mod examples;
 pub mod ref_dynamics;
 pub mod ref_exact;

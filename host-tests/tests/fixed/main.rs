@@ -1,0 +1,10 @@
+//! Tests of the fixed-point layer (`gyrostat::fixed`, `src/fixed/`) against the independent f64
+//! reference, beside the f32 path (the whole map is in `host-tests/README.md`):
+//!
+//! - [`accuracy`]: Q1.30 products, exponential, renormalisation, range edges, coning drift and
+//!   raw sensor increments.
+//! - [`firmware`]: the `fw_fixed` scenario on the host, and the boards' output bit for bit
+//!   (ignored unless CI hands it the output: `-- --ignored firmware::`).
+
+mod accuracy;
+mod firmware;

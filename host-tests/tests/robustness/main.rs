@@ -1,0 +1,14 @@
+//! Robustness of every public API family: the adversarial input campaign (`host_tests::campaign`,
+//! tables in `ROBUSTNESS.md`), one module per layer, the named regressions and the f32 soak (the
+//! whole map is in `host-tests/README.md`):
+//!
+//! - [`rotation`], [`propagation`], [`dynamics`], [`fixed`]: the campaign per layer.
+//! - [`regressions`]: every case the campaign once found, pinned to its typed error or value.
+//! - [`soak`]: long f32 runs of the hot paths, watching the invariants.
+
+mod dynamics;
+mod fixed;
+mod propagation;
+mod regressions;
+mod rotation;
+mod soak;

@@ -1,0 +1,20 @@
+//! The command-line tools as processes: their interfaces (flags, formats, errors, exit statuses)
+//! and their numbers against the independent references of `host_tests`. One module per tool
+//! (`tools/src/bin/`), the adversarial campaign over all three, and `propagate --fixed` against
+//! the fixed-point firmware:
+//!
+//! - [`convert`]: every representation and operation against the reference matrices.
+//! - [`propagate`]: the coning rules and rate methods against closed-form coning motion, and
+//!   `--compensated`.
+//! - [`simulate`]: the free rigid body and a gyrostat with wheels and torques against tiny-step
+//!   references, the plot, the error paths.
+//! - [`fixed`]: `propagate --fixed` reproduces the firmware's Q1.30 bits.
+//! - [`campaign`]: garbage input, bad flags, overflowing values and closed pipes for all three.
+//! - [`cli`]: the tools as processes (`CARGO_BIN_EXE_*`).
+
+mod campaign;
+mod cli;
+mod convert;
+mod fixed;
+mod propagate;
+mod simulate;
