@@ -42,7 +42,7 @@ const MAX_HALVINGS: u32 = 5;
 /// the scale of `φ`). `Pⱼ` is tracked as `P̃ⱼ = Pⱼ·4^(j−2)`, which stays near `θ²/16` at every
 /// level (`P̃ⱼ₋₁ = cⱼ² P̃ⱼ`): a small `Pⱼ` never loses its relative precision to the format's
 /// absolute resolution, so the error of `c` grows only by the doubling of `c² − P` (≤ 2ᵏ times
-/// the series' rounding, measured in `host-tests/tests/fixed_point.rs`). Nothing is divided.
+/// the series' rounding, measured in `host-tests/tests/fixed/accuracy.rs`). Nothing is divided.
 /// The result `(c₀, s₀·φ)` scales the original `φ`.
 fn exp_large<const F: u32>(phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
     // θ² in units of 2^-(2F−2): each square < 2⁶², shifted by 2, three of them < 3·2⁶⁰.

@@ -58,7 +58,7 @@
 //!   `1/|q|²` leaves Q1.30).
 //!
 //! # Accuracy
-//! Measured against the f64 reference (`host-tests/tests/fixed_point.rs`,
+//! Measured against the f64 reference (`host-tests/tests/fixed/accuracy.rs`,
 //! `fixed_firmware.rs`; `BENCHMARKS.md` has the tables), in units `u = 2⁻³⁰`: product ≤ 0.5u
 //! per component, rotation ≤ 3.4u, matrix ≤ 3.7u, exponential ≤ 0.64u on the series domain and
 //! ≤ 29u up to `|φ| = 3.4` rad. Over 10⁶ constant-rate updates the attitude error is 9.5e-6 rad

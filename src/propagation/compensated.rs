@@ -34,7 +34,7 @@
 //! ([`RateIntegrator::with_step_remainder`]). What is left is the rounding of the small
 //! increments, about `u·|φ|` per update (`u = 2⁻²⁴`), mostly a random walk.
 //!
-//! Measured over one hour at 1 kHz (3.6·10⁶ updates; `host-tests/tests/propagation_compensated.rs`,
+//! Measured over one hour at 1 kHz (3.6·10⁶ updates; `host-tests/tests/propagation/compensated.rs`,
 //! BENCHMARKS.md), in f32: steady rotation up to 1.1 rad/s, every increment rule ≤ 3.6e-7 rad
 //! from the exact attitude (plain: 1.7e-6…2.4e-2), Magnus-4 and CF4 from rate samples ≤ 2.4e-7
 //! (plain: 1.0e-4…6.8e-2), RK4 from rate samples ≤ 1.1e-5 (plain: up to 3.5e-4); coning motion

@@ -20,7 +20,7 @@
 //! in `ΩT` for pure coning motion (Miller 1983, *J. Guidance* 6(4); Ignagni 1990, *J. Guidance*
 //! 13(2); Lee, Yoon, Lee & Lee 1990, *IEEE Trans. AES* 26(5), the forms with every cross
 //! product taken with the last increment). The drifts are measured in
-//! `host-tests/tests/propagation_coning.rs` (the 4-sample constant is derived there from the
+//! `host-tests/tests/propagation/coning.rs` (the 4-sample constant is derived there from the
 //! series of the rule minus the exact coning term, `−x⁹/315` per update with `x = Ωh`).
 //!
 //! The drifts are the leading terms in `α²`: every rule approximates only the `½ α × ω` part of

@@ -17,7 +17,7 @@
 //!
 //! (`α` half-cone angle, `Ω` coning frequency, `h` sample interval, `T` attitude update interval;
 //! the drifts are the rates at which pure coning motion makes the attitude error grow along the
-//! cone axis, measured in `host-tests/tests/propagation_coning.rs`.)
+//! cone axis, measured in `host-tests/tests/propagation/coning.rs`.)
 //!
 //! Every exponential-map rule forms a body-frame rotation vector `φ` and then goes through one
 //! update kernel, [`kernels::apply_rotation_vector`]: `q ← normalise(q ⊗ exp(φ))`.

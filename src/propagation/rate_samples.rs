@@ -24,7 +24,7 @@
 //! Neither falls on a sample, so they are taken from the cubic Lagrange interpolant through four
 //! consecutive samples that contain the interval. Its error is `O(h⁴)` in `ω`, so each step
 //! keeps a local error `O(h⁵)` and all three methods converge with order 4 (measured in
-//! `host-tests/tests/propagation_rates.rs`). [`RateIntegrator`] uses, for the interval ending at
+//! `host-tests/tests/propagation/rate_samples.rs`). [`RateIntegrator`] uses, for the interval ending at
 //! the newest sample `k`, the samples `k−3 … k` (no look-ahead, so no latency), except at the
 //! start, where the first three intervals wait for sample 3 and use samples `0 … 3`. A record of
 //! only three samples uses the quadratic interpolant (still order 3 locally), one of two samples
@@ -33,7 +33,7 @@
 //! The interpolation, not the integrator, dominates the error: on the coning test motion the
 //! three methods fed samples agree to within 4% of each other and are about 35× less accurate
 //! than the same steps fed the exact rates at the nodes (measured in
-//! `host-tests/tests/propagation_rates.rs`). If a sensor can deliver rates at two points per
+//! `host-tests/tests/propagation/rate_samples.rs`). If a sensor can deliver rates at two points per
 //! interval (or the step can span two sample intervals), feed [`magnus4_step`] / [`cf4_step`]
 //! directly. A centred window (`k−1 … k+2` for `[tₖ, tₖ₊₁]`) was measured only 1.65× more
 //! accurate than the backward one on the same motion, not worth its one-sample latency.

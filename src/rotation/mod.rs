@@ -27,7 +27,7 @@
 //! ((6.7.10a–d) for `ZYZ`).
 //!
 //! # Accuracy contract
-//! Enforced by the tests in `host-tests/tests/rotation_*.rs` against an independent f64
+//! Enforced by the tests in `host-tests/tests/rotation/` against an independent f64
 //! reference (rotation matrices built as products of elementary matrices). Errors are measured
 //! as effects — the geodesic angle between the rotation a result represents and the exact one —
 //! not as raw angles (at gimbal lock the angles are not unique, the rotation is).

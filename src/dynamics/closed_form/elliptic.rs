@@ -34,7 +34,7 @@
 //! divides the spread by 4 per step), so the cost is bounded for every input.
 //!
 //! # Accuracy (measured)
-//! `cargo test --release -p host-tests --test exact_elliptic -- --nocapture` compares against
+//! `cargo test --release -p host-tests --test dynamics elliptic:: -- --nocapture` compares against
 //! an independent f64 reference (Gauss–Legendre quadrature of the defining integrals, Jacobi
 //! functions by bisection/Newton inversion of `F`, in `host-tests/src/ref_exact.rs`) over
 //! `m ∈ {0, 10⁻⁶, 0.1, 0.5, 0.8, 0.9, 0.99, 0.9999, 1 − 10⁻⁶}` and `|u| ≤ 4K(m)`, and `K` against

@@ -64,8 +64,8 @@
 //! # Accuracy (measured)
 //! Against a tiny-step RK4 integration of Euler's equations and `q̇ = ½ q ⊗ (0, ω)` over
 //! `t ≤ 20` for 13 cases (all regimes, both circulation sides, permuted axes, a near-saddle
-//! flip with `1 − m = 10⁻⁴`) — `cargo test --release -p host-tests --test exact_free_rigid_body
-//! -- --nocapture`:
+//! flip with `1 − m = 10⁻⁴`) — `cargo test --release -p host-tests --test dynamics
+//! free_rigid_body:: -- --nocapture`:
 //!
 //! | | f64 | f32 |
 //! |---|---|---|

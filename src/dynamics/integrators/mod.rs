@@ -51,7 +51,7 @@
 //! (`dt = 0.004`, horizons 12–60, eight well-conditioned torque-free cases), and 1300–2900×
 //! further with a constant torque. The causes, found by changing one thing at a time in a
 //! replica of these flows that reproduces the library bit for bit
-//! (`host-tests/tests/dynamics_f32_rounding.rs`, `cause_experiment`; the table is in
+//! (`host-tests/tests/dynamics/compensated.rs`, `cause_experiment`; the table is in
 //! BENCHMARKS.md, "Dynamics in f32"):
 //!
 //! - *Rounding the value at every sub-step.* Each of the 13 (Yoshida) or 21 (Suzuki) rotations
