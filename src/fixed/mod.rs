@@ -119,9 +119,11 @@
 //! # Ok::<(), gyrostat::Error>(())
 //! ```
 
+mod carried;
 mod exp;
 
 pub use crate::real::fixed::{Fixed, Q24, Q30};
+pub use carried::{CarriedAttitude, IncrementQuantizer};
 
 #[cfg(doc)]
 use crate::Ring;

@@ -11,7 +11,7 @@ use std::io::{self, Write};
 use std::process::ExitCode;
 use std::str::FromStr;
 
-use gyrostat::fixed::Q30;
+use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
     RateIntegrator, RateMethod,
@@ -499,7 +499,8 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
     let q0 = UnitQuat::try_from_near_unit(Quat::new(w, x, y, z), 1e-3)
         .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
     let q0 = UnitQuat::<Q30>::try_from_f64(q0).map_err(|e| Failure::Usage(format!("--q0: {e}")))?;
-    let mut integ = IncrementIntegrator::new(q0, rule, Normalization::Fast);
+    let mut integ = IncrementIntegrator::new(CarriedAttitude::new(q0), rule, Normalization::Fast);
+    let mut quantizer = IncrementQuantizer::<30>::new();
     let mut p = Printer {
         out: Csv::stdout(),
         every: args.every,
@@ -517,7 +518,8 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
                 Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
                 Err(e) => return Err(e),
             };
-            let v = Vec3::<Q30>::try_from_f64(v)
+            let v = quantizer
+                .try_quantize(v)
                 .map_err(|e| Failure::Row(n, format!("{e} (Q1.30 holds |value| < 2 rad)")));
             let v = match v {
                 Ok(v) => v,
