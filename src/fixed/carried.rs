@@ -400,7 +400,7 @@ mod tests {
         assert_eq!(wide_bits(1.5 * 2f64.powi(-61)), Ok(2)); // tie to even
         assert_eq!(wide_bits(2.5 * 2f64.powi(-61)), Ok(2));
         assert_eq!(wide_bits(2f64.powi(-70)), Ok(0));
-        assert_eq!(wide_bits(2.0 - 2f64.powi(-52)), Ok((1 << 62) - (1 << 10)));
+        assert_eq!(wide_bits(2.0 - 2f64.powi(-52)), Ok((1 << 62) - (1 << 9))); // 2⁻⁵²·2⁶¹ = 2⁹
         assert_eq!(wide_bits(2.0), Err(Error::OutOfRange));
         assert_eq!(wide_bits(f64::NAN), Err(Error::NonFinite));
         assert_eq!(wide_bits(f64::NEG_INFINITY), Err(Error::NonFinite));
