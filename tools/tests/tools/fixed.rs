@@ -133,9 +133,8 @@ fn propagate_fixed_has_no_rounding_bias() {
         alpha: 3f64.to_radians(),
         omega_c: 2.0 * std::f64::consts::PI * 19.37,
     };
-    let w = [0.3, -0.2, 0.5];
-    let wn = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]) as f64;
-    let wn = wn.sqrt();
+    let w: [f64; 3] = [0.3, -0.2, 0.5];
+    let wn = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
     let (sb, cb) = 0.4f64.sin_cos();
     let base = [cb, 0.6 * sb, 0.8 * sb, 0.0];
     let rate = move |t: f64| {
@@ -143,7 +142,8 @@ fn propagate_fixed_has_no_rounding_bias() {
         qmul(base, [c, s * w[0] / wn, s * w[1] / wn, s * w[2] / wn])
     };
     type Truth<'a> = &'a dyn Fn(f64) -> [f64; 4];
-    let motions: [(&str, usize, Truth, Box<dyn Fn(usize) -> [f64; 3]>); 2] = [
+    type Increments<'a> = Box<dyn Fn(usize) -> [f64; 3] + 'a>;
+    let motions: [(&str, usize, Truth, Increments); 2] = [
         (
             "cone 3° 19.37 Hz",
             20_000,
