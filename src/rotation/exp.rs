@@ -70,7 +70,7 @@ impl<T: Real> ExpMap for T {
         exp_beyond_series_real(phi, theta_sq)
     }
     /// `q * UnitQuat::exp_unchecked(φ)`, the same operations, with the past-the-series branch
-    /// out of line ([`mul_exp_beyond_series`]): an attitude update's angle is almost always
+    /// out of line (`mul_exp_beyond_series`): an attitude update's angle is almost always
     /// inside the series, and the branch's `sin`/`cos` calls would otherwise make the whole
     /// update save and restore registers around them (measured on the Cortex-M4F: the 2-sample
     /// update `kernels::coning2_update` in 8 instructions fewer).
