@@ -69,33 +69,6 @@ impl<T: Real> ExpMap for T {
     fn exp_beyond_series(phi: Vec3<T>, theta_sq: T) -> Quat<T> {
         exp_beyond_series_real(phi, theta_sq)
     }
-    /// `q * UnitQuat::exp_unchecked(φ)`, the same operations, with the past-the-series branch
-    /// out of line (`mul_exp_beyond_series`): an attitude update's angle is almost always
-    /// inside the series, and the branch's `sin`/`cos` calls would otherwise make the whole
-    /// update save and restore registers around them (measured on the Cortex-M4F: the 2-sample
-    /// update `kernels::coning2_update` in 8 instructions fewer).
-    #[inline]
-    fn mul_exp(q: Quat<T>, phi: Vec3<T>) -> Quat<T> {
-        let n2 = phi.norm_squared();
-        if n2 <= T::EXP_SERIES_MAX_SQ {
-            let (c, s) = half_angle_series(n2);
-            q * Quat::from_parts(c, phi.scale(s))
-        } else {
-            let [w, x, y, z] = q.to_array();
-            let r = mul_exp_beyond_series(w, x, y, z, phi.x, phi.y, phi.z, n2);
-            Quat::from_array(r)
-        }
-    }
-}
-
-/// `q ⊗ exp(φ)` past the series (the rare branch of the floats' [`ExpMap::mul_exp`]), with
-/// scalar arguments, so that the caller passes them in registers instead of spilling `q` and
-/// `φ` to memory on the hot path.
-#[cold]
-#[inline(never)]
-#[allow(clippy::too_many_arguments)]
-fn mul_exp_beyond_series<T: Real>(w: T, x: T, y: T, z: T, px: T, py: T, pz: T, n2: T) -> [T; 4] {
-    (Quat::new(w, x, y, z) * exp_beyond_series_real(Vec3::new(px, py, pz), n2)).to_array()
 }
 
 /// `(cos(θ/2), sin(θ/2)/θ)` for `θ² = theta_sq ≤` [`Ring::EXP_SERIES_MAX_SQ`], by the series
