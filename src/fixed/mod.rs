@@ -125,7 +125,7 @@
 //! |---|---:|---:|---:|---:|---:|---:|
 //! | quaternion product | 3261 | 606 | 1874 | 175 | 42 | 172 |
 //! | 2-sample coning update (rule, exp, product, renormalisation) | 9052 | 1941 | 5143 | 705 | 102 | 702 |
-//! | the same, carried ([`CarriedAttitude::coning2_update`]; f32 columns: the same image) | 9072 | 1853 | 5153 | 683 | 89 | 667 |
+//! | the same, carried ([`CarriedAttitude::coning2_update`]; all six columns from one later image) | 9051 | 1854 | 5150 | 683 | 92 | 670 |
 //!
 //! # When to choose fixed point
 //! On a core without an FPU (Cortex-M0/M0+, M3), for the strapdown attitude update from gyro
