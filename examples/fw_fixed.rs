@@ -98,6 +98,16 @@ mod firmware {
 
     #[unsafe(no_mangle)]
     #[inline(never)]
+    fn gyrostat_fixed_hot_quantize_raw(
+        quant: &mut IncrementQuantizer<30>,
+        s: &IncrementScale,
+        raw: &[i16; 3],
+    ) -> Vec3<Q30> {
+        quant.quantize_raw(s, *raw)
+    }
+
+    #[unsafe(no_mangle)]
+    #[inline(never)]
     fn gyrostat_fixed_hot_coning_rules(q: &UnitQuat<Q30>, t: &[Vec3<Q30>; 4]) -> UnitQuat<Q30> {
         let n = black_box(Normalization::Fast);
         let q = apply_rotation_vector(*q, one_plus_previous_terms(t[0], t[1]), n);
@@ -169,6 +179,11 @@ mod firmware {
         black_box(gyrostat_fixed_hot_integrator(&mut integ, &t));
         black_box(gyrostat_fixed_hot_renormalize(&q));
         black_box(gyrostat_fixed_hot_raw_increment(&scale, &[1, -2, 3]));
+        black_box(gyrostat_fixed_hot_quantize_raw(
+            &mut quant,
+            &scale,
+            &[1, -2, 3],
+        ));
         Ok(())
     }
 

@@ -315,6 +315,12 @@ impl IncrementScale {
         Self::try_new(rad_per_s_per_lsb * dt)
     }
 
+    /// The stored mantissa and shift (`rad_per_lsb = mantissa · 2^−(shift + 30)`).
+    #[inline]
+    pub(crate) fn parts(&self) -> (i32, u32) {
+        (self.mantissa, self.shift)
+    }
+
     /// The scale in rad/LSB, exactly as stored.
     pub fn rad_per_lsb(&self) -> f64 {
         f64::from(self.mantissa) * pow2_neg(self.shift + 30)
