@@ -26,7 +26,7 @@
 mod firmware {
     use board::{entry, hprintln};
     use core::hint::black_box;
-    use gyrostat::fixed::{IncrementScale, Q30};
+    use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, IncrementScale, Q30};
     use gyrostat::propagation::coning::{
         four_sample_terms, one_plus_previous_terms, three_sample_terms,
     };
@@ -75,6 +75,35 @@ mod firmware {
         t2: &Vec3<Q30>,
     ) -> UnitQuat<Q30> {
         coning2_update(*q, *t1, *t2)
+    }
+
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    fn gyrostat_fixed_hot_coning2_carried(
+        q: &CarriedAttitude<30>,
+        t1: &Vec3<Q30>,
+        t2: &Vec3<Q30>,
+    ) -> CarriedAttitude<30> {
+        q.coning2_update(*t1, *t2)
+    }
+
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    fn gyrostat_fixed_hot_quantize(
+        quant: &mut IncrementQuantizer<30>,
+        v: &Vec3<f64>,
+    ) -> Option<Vec3<Q30>> {
+        quant.try_quantize(*v).ok()
+    }
+
+    #[unsafe(no_mangle)]
+    #[inline(never)]
+    fn gyrostat_fixed_hot_quantize_raw(
+        quant: &mut IncrementQuantizer<30>,
+        s: &IncrementScale,
+        raw: &[i16; 3],
+    ) -> Vec3<Q30> {
+        quant.quantize_raw(s, *raw)
     }
 
     #[unsafe(no_mangle)]
@@ -132,6 +161,16 @@ mod firmware {
         black_box(gyrostat_fixed_hot_matrix(&q));
         black_box(gyrostat_fixed_hot_exp(&t));
         black_box(gyrostat_fixed_hot_coning2_update(&q, &t, &t));
+        black_box(gyrostat_fixed_hot_coning2_carried(
+            &CarriedAttitude::new(q),
+            &t,
+            &t,
+        ));
+        let mut quant = black_box(IncrementQuantizer::new());
+        black_box(gyrostat_fixed_hot_quantize(
+            &mut quant,
+            &black_box(Vec3::new(1e-3, -2e-3, 5e-4)),
+        ));
         black_box(gyrostat_fixed_hot_coning_rules(&q, &[t, t, t, t]));
         let mut acc = black_box(ConingAccumulator::new());
         black_box(gyrostat_fixed_hot_accumulator(&mut acc, &q, &t));
@@ -140,6 +179,11 @@ mod firmware {
         black_box(gyrostat_fixed_hot_integrator(&mut integ, &t));
         black_box(gyrostat_fixed_hot_renormalize(&q));
         black_box(gyrostat_fixed_hot_raw_increment(&scale, &[1, -2, 3]));
+        black_box(gyrostat_fixed_hot_quantize_raw(
+            &mut quant,
+            &scale,
+            &[1, -2, 3],
+        ));
         Ok(())
     }
 

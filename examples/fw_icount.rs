@@ -198,7 +198,7 @@ mod firmware {
 
         {
             // Fixed point (Q1.30), the same operations and operands as the f32 rows above.
-            use gyrostat::fixed::Q30;
+            use gyrostat::fixed::{CarriedAttitude, Q30};
             use gyrostat::propagation::coning::{four_sample_terms, one_plus_previous_terms};
             use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
             use gyrostat::propagation::{ConingAccumulator, Normalization};
@@ -231,6 +231,15 @@ mod firmware {
                 black_box(t1),
                 black_box(t2)
             ));
+            // The carried attitude (rounding residuals carried, the renormalisation folded in):
+            // what `propagate --fixed` runs. Its residuals as a running update leaves them.
+            let carried = CarriedAttitude::new(aq)
+                .coning2_update(t1, t2)
+                .coning2_update(t3, t4);
+            count!(table, "prop_coning2_update_carried_q30", || black_box(
+                carried
+            )
+            .coning2_update(black_box(t1), black_box(t2)));
             count!(table, "prop_coning1_fast_q30", || apply_rotation_vector(
                 black_box(aq),
                 one_plus_previous_terms(black_box(t1), black_box(t2)),

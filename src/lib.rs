@@ -18,7 +18,7 @@
 //! |---|---|
 //! | [strapdown attitude from gyro increments, in f32](#strapdown-attitude-from-gyro-increments-in-f32) | [`propagation::IncrementIntegrator`], [`propagation::ConingRule`], [`propagation::CompensatedAttitude`] |
 //! | [attitude from rate samples](#attitude-from-rate-samples) | [`propagation::RateIntegrator`], [`propagation::RateMethod`] |
-//! | [fixed point on a Cortex-M0](#fixed-point-on-a-cortex-m0) | [`fixed::Q30`], [`fixed::IncrementScale`], [`propagation::kernels::coning2_update`] |
+//! | [fixed point on a Cortex-M0](#fixed-point-on-a-cortex-m0) | [`fixed::Q30`], [`fixed::IncrementScale`], [`fixed::IncrementQuantizer`], [`fixed::CarriedAttitude`] |
 //! | [Euler angles, with gimbal lock](#euler-angles-with-gimbal-lock) | [`UnitQuat::to_euler`], [`rotation::EulerSequence`], [`rotation::GimbalPolicy`] |
 //! | [a gyrostat with a reaction wheel](#a-gyrostat-with-a-reaction-wheel) | [`dynamics::Gyrostat::with_wheels`], [`dynamics::Gyrostat::step_with`], [`dynamics::Control`] |
 //! | [converting an attitude log](#converting-an-attitude-log) | [`Quat::try_normalize`], [`UnitQuat::to_euler_angles`], [`RotationVector`], [`Dcm`] |
@@ -65,19 +65,22 @@
 //! ## Fixed point on a Cortex-M0
 //! With no FPU, run the update in Q1.30 ([`fixed`]): the same generic functions take
 //! [`fixed::Q30`] instead of `f32`, in integer arithmetic only and with the same bits on every
-//! target. Raw sensor registers become Q1.30 increments through a scale checked once; the kernels
-//! of [`propagation::kernels`] are the unchecked hot path.
+//! target. Raw sensor registers become Q1.30 increments through a scale checked once, with the
+//! rounding remainder carried from one reading to the next ([`fixed::IncrementQuantizer`]); the
+//! attitude is a [`fixed::CarriedAttitude`], which carries the low bits its roundings discard
+//! into the next update, so that neither drifts from rounding (the plain `UnitQuat<Q30>` with
+//! [`propagation::kernels::coning2_update`] does: see the [`fixed`] docs, "Rounding bias").
 //! ```
-//! use gyrostat::fixed::{IncrementScale, Q30};
-//! use gyrostat::propagation::kernels::coning2_update;
+//! use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, IncrementScale};
 //! use gyrostat::UnitQuat;
 //!
 //! let scale = IncrementScale::try_new(1.0653e-6)?; // the gyro's rad per LSB, checked once
-//! let mut q = UnitQuat::<Q30>::IDENTITY;
+//! let mut quant = IncrementQuantizer::new();
+//! let mut q = CarriedAttitude::new(UnitQuat::IDENTITY);
 //! let (r1, r2) = ([120i16, -40, 7], [118i16, -43, 9]); // two raw increment readings
-//! q = coning2_update(q, scale.increment(r1), scale.increment(r2));
-//! let _bits = q.to_bits(); // log these: a ground tool reproduces them exactly
-//! assert!(q.to_f64().angle() < 3e-4);
+//! q = q.coning2_update(quant.quantize_raw(&scale, r1), quant.quantize_raw(&scale, r2));
+//! let _bits = q.attitude().to_bits(); // log these: a ground tool reproduces them exactly
+//! assert!(q.attitude().to_f64().angle() < 3e-4);
 //! # Ok::<(), gyrostat::Error>(())
 //! ```
 //!

@@ -7,25 +7,31 @@
 // - tools/tests/tools/fixed.rs feeds the same increments to `propagate --fixed` and checks that
 //   it prints the same bits.
 //
-// Inputs: classical coning (half-cone angle ALPHA, coning rate OMEGA), the exact increments over
-// each gyro interval, computed in IEEE-754 f64 with gyrostat's `Real` for f64 (the `libm` crate:
-// pure Rust built from correctly rounded basic operations, no fused multiply-add and no x87 on any
-// of the targets), then rounded to Q1.30 by `Fixed::try_from_f64` (integer code on the IEEE
-// bits). So the inputs are the same bits on the host and on every board; the firmware also prints
-// a checksum of them (`inputs` line), which the host test compares first.
+// Inputs: classical coning (half-cone angle ALPHA, coning rate OMEGA, a frequency that is not a
+// fraction of the sample rate with a small denominator: the input does not repeat), the exact
+// increments over each gyro interval, computed in IEEE-754 f64 with gyrostat's `Real` for f64
+// (the `libm` crate: pure Rust built from correctly rounded basic operations, no fused
+// multiply-add and no x87 on any of the targets), then converted to Q1.30 by an
+// `IncrementQuantizer` (integer code on the IEEE bits, the remainder carried). So the inputs are
+// the same bits on the host and on every board; the firmware also prints a checksum of them
+// (`inputs` line), which the host test compares first.
 //
 // Propagation: the increment stream feeds, in one pass,
-// - `coning2_update` (the 2-sample hot path with fast renormalisation), printed every
-//   CHECK_EVERY increments;
-// - an `IncrementIntegrator` for each `ConingRule` (fast renormalisation), flushed at the end;
-// - the two-speed `ConingAccumulator`, one attitude update per TWO_SPEED_GROUP increments;
-// then the final 2-sample attitude's health value, rotation matrix and rotated body z axis.
-// Every number is printed as the hex of its raw Q1.30 integer: bit-identity is string equality.
+// - `CarriedAttitude::coning2_update` (the 2-sample hot path, rounding residuals carried, fast
+//   renormalisation folded in), printed every CHECK_EVERY increments;
+// - the plain `kernels::coning2_update` on `UnitQuat<Q30>` (no residuals), printed at the end;
+// - an `IncrementIntegrator` over a `CarriedAttitude` for each `ConingRule` (fast
+//   renormalisation), flushed at the end;
+// - the two-speed `ConingAccumulator`, one carried attitude update per TWO_SPEED_GROUP
+//   increments;
+// then the final carried 2-sample attitude's health value, rotation matrix and rotated body z
+// axis. Every number is printed as the hex of its raw Q1.30 integer: bit-identity is string
+// equality.
 
 /// Half-cone angle α (rad).
 const ALPHA: f64 = 0.05;
-/// Coning rate Ω (rad/s): 2 Hz.
-const OMEGA: f64 = 4.0 * core::f64::consts::PI;
+/// Coning rate Ω (rad/s): 2.0137 Hz, 198.6 samples per cone period (the input does not repeat).
+const OMEGA: f64 = 2.0 * core::f64::consts::PI * 2.0137;
 /// Gyro sample interval h (s): 400 Hz.
 const H: f64 = 1.0 / 400.0;
 /// Number of increments: 6 s, a multiple of 2, 3, 4 and 8 (every rule ends on a full group).
@@ -63,8 +69,8 @@ fn scenario_start() -> [f64; 4] {
 fn run_scenario(
     out: &mut dyn FnMut(core::fmt::Arguments<'_>),
 ) -> Result<(), gyrostat::Error> {
-    use gyrostat::fixed::Q30;
-    use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
+    use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
+    use gyrostat::propagation::kernels::coning2_update;
     use gyrostat::propagation::normalization::norm_squared_deviation;
     use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
     use gyrostat::{Quat, Ring, UnitQuat, Vec3};
@@ -73,31 +79,36 @@ fn run_scenario(
     let s = scenario_start();
     let q0 = UnitQuat::<Q30>::try_from_f64(UnitQuat::new_unchecked(Quat::from_array(s)))?;
     let fast = Normalization::Fast;
-    let mut q2 = q0;
+    let mut quantizer = IncrementQuantizer::<30>::new();
+    let mut q2 = CarriedAttitude::new(q0);
+    let mut q2_plain = q0;
     let mut pending: Option<Vec3<Q30>> = None;
-    let mut rules = ConingRule::ALL.map(|r| IncrementIntegrator::new(q0, r, fast));
+    let mut rules = ConingRule::ALL.map(|r| IncrementIntegrator::new(CarriedAttitude::new(q0), r, fast));
     let mut acc = ConingAccumulator::<Q30>::new();
-    let mut q_two_speed = q0;
+    let mut q_two_speed = CarriedAttitude::new(q0);
     let (mut sum, mut hash) = (0i64, 0u32);
     for k in 0..N_INCREMENTS {
-        let d = Vec3::<Q30>::try_from_f64(Vec3::from_array(scenario_increment(k)))?;
+        let d = quantizer.try_quantize(Vec3::from_array(scenario_increment(k)))?;
         for c in d.to_array() {
             sum += i64::from(c.to_bits());
             hash = hash.rotate_left(5) ^ (c.to_bits() as u32);
         }
         match pending.take() {
             None => pending = Some(d),
-            Some(first) => q2 = coning2_update(q2, first, d),
+            Some(first) => {
+                q2 = q2.coning2_update(first, d);
+                q2_plain = coning2_update(q2_plain, first, d);
+            }
         }
         for integ in rules.iter_mut() {
             integ.push(d)?;
         }
         acc.push_unchecked(d);
         if acc.count() == TWO_SPEED_GROUP {
-            q_two_speed = apply_rotation_vector(q_two_speed, acc.take(), fast);
+            q_two_speed = q_two_speed.rotated_unchecked(acc.take(), fast);
         }
         if (k + 1) % CHECK_EVERY == 0 {
-            let [w, x, y, z] = q2.to_array().map(hex);
+            let [w, x, y, z] = q2.attitude().to_array().map(hex);
             out(format_args!("coning2 {} {w:08x} {x:08x} {y:08x} {z:08x}", k + 1));
         }
     }
@@ -106,8 +117,11 @@ fn run_scenario(
         let [w, x, y, z] = integ.flush().to_array().map(hex);
         out(format_args!("rule {rule:?} {w:08x} {x:08x} {y:08x} {z:08x}"));
     }
-    let [w, x, y, z] = q_two_speed.to_array().map(hex);
+    let [w, x, y, z] = q_two_speed.attitude().to_array().map(hex);
     out(format_args!("twospeed {w:08x} {x:08x} {y:08x} {z:08x}"));
+    let [w, x, y, z] = q2_plain.to_array().map(hex);
+    out(format_args!("plain2 {w:08x} {x:08x} {y:08x} {z:08x}"));
+    let q2 = q2.attitude();
     out(format_args!("health {:08x}", hex(norm_squared_deviation(q2))));
     let m = q2.to_rotation_matrix().m;
     out(format_args!(

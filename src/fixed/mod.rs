@@ -52,6 +52,10 @@
 //!   rate would integrate the rounding of its (identical) increment quaternion linearly. A
 //!   coning rule's update ([`UnitQuat::mul_exp_coning_unchecked`]) also forms its cross product exactly
 //!   and adds it to the increments at 2⁻³³, so the small coning term is not rounded to 2⁻³⁰.
+//! - [`CarriedAttitude`] carries the residuals of the rotation vector's, the increment's and the
+//!   attitude's roundings into the next update and folds the renormalisation into the increment
+//!   (see "Rounding bias" below); [`IncrementQuantizer`] converts increments with the remainder
+//!   carried.
 //! - Renormalisation: [`UnitQuat::renormalize_fast`] is `q + q·(1 − |q|²)/2` (one Newton step of
 //!   the inverse square root, no division); [`UnitQuat::renormalize`] iterates that step on the
 //!   scale until it stops changing (valid for `|q|² ∈ (½, 2)`: below, the squared scale
@@ -59,17 +63,49 @@
 //!
 //! # Accuracy
 //! Measured against the f64 reference (`host-tests/tests/fixed/accuracy.rs`,
-//! `fixed_firmware.rs`; `BENCHMARKS.md` has the tables), in units `u = 2⁻³⁰`: product ≤ 0.5u
-//! per component, rotation ≤ 3.4u, matrix ≤ 3.7u, exponential ≤ 0.64u on the series domain and
-//! ≤ 29u up to `|φ| = 3.4` rad. Over 10⁶ constant-rate updates the attitude error is 9.5e-6 rad
-//! (f32 on the same inputs: 3.9e-3 rad). Under classical coning the 2-sample path stays within
-//! 6e-9 rad of the closed form near the identity (f32: 6e-9 to 8e-8) and within 1.3e-6 rad from
-//! other base attitudes (f32: 5e-6 to 3e-5). One limit: the attitude itself has the absolute
-//! step 2⁻³⁰, and a periodic motion repeats its roundings every period; drifts below about
-//! 1e-7 rad/s are then measured with an offset of about 1.3e-8 rad/s (the one-plus-previous and
-//! 2-sample drift constants at α = 0.05 come out 16% high, f32 within 1%; the
-//! exponential-per-increment drift is reproduced to 0.4%). `host-tests` shows the cause by
-//! rounding the f64 path's attitude to 2⁻³⁰ per update, which reproduces the offset.
+//! `firmware.rs`, `carried.rs`; `BENCHMARKS.md` has the tables), in units `u = 2⁻³⁰`: product
+//! ≤ 0.5u per component, rotation ≤ 3.4u, matrix ≤ 3.7u, exponential ≤ 0.64u on the series
+//! domain and ≤ 29u up to `|φ| = 3.4` rad. Propagated with [`CarriedAttitude`] from increments
+//! converted by an [`IncrementQuantizer`] (what `propagate --fixed` runs), the attitude has no
+//! rounding bias: over 60 s at 1 kHz a constant rate ends within 5e-8 rad of the exact attitude
+//! (f32: 1e-6 to 7e-4), and under classical coning every rule reproduces the f64 error, drift
+//! included (one-plus-previous and 2-sample within 0.1 % of f64's on a cone that does not repeat
+//! and within 1 % on one that does), started on the cone or at the identity.
+//!
+//! # Rounding bias
+//! The plain update (`UnitQuat<Q30>` with [`UnitQuat::mul_exp_coning_unchecked`] and
+//! [`Normalization::Fast`](crate::propagation::Normalization::Fast), each increment converted on
+//! its own) rounds to nearest with ties to even, an unbiased rounding of a random value. But an
+//! attitude update does not round random values: under a constant rate, or under coning, the
+//! same increment, the same coning term and nearly the same attitude come again and again, and
+//! so does each rounding error. Measured through `propagate --fixed` (1 kHz, exact increments,
+//! error against the closed form; issue 18): the 4-sample rule on a 1° cone at 10 Hz drifted
+//! 1.45e-5 rad in 60 s (f64: 2.2e-10), every rule started at the identity 8.5e-6 to 1.7e-5, a
+//! constant rate 2e-6 to 1.4e-5; on a 3° cone at 19.37 Hz the 2-sample rule ended 24 % and the
+//! one-plus-previous rule 84 % off the drift that f64 reproduces. Five roundings were found to
+//! drift, one at a time, by writing the update again in `i128` with each rounding either
+//! forgotten or its residual carried and leaving one out at a time
+//! (`host-tests/tests/fixed/ablation.rs`; the table is in BENCHMARKS.md):
+//!
+//! | rounding | left alone it costs | mechanism |
+//! |---|---|---|
+//! | each increment to 2⁻³⁰ | up to 1.5e-5 rad in 60 s | a constant rate, and the constant axial increment `−Ω(1 − cos α)h` of coning, is rounded the same way every sample: a wrong angle per sample, up to 2⁻³¹ rad (4.7e-7 rad/s at 1 kHz) |
+//! | the attitude to 2⁻³⁰ | up to 3e-6 rad; on a repeating input the drift vanishes | the four components repeat their phases; on the 1° cone (100 samples a period) the drift per period is below one step and the integer attitude returns to the same bits every period: the 2-sample rule's drift (2.98e-7 rad) is lost (2.6e-10) |
+//! | the coning term `lever × last` to 2⁻³³ | up to 8e-7 rad | under coning the term is nearly constant along the cone axis |
+//! | the rotation increment `sin(θ/2)/θ·φ` to 2⁻³³ | up to 3e-6 rad | constant for a constant rate; its axial part constant under coning |
+//! | the fast renormalisation as a second rounding of the attitude | up to 5.6e-6 rad | `q + round(q·e)` with `e` a few units: the correction itself is quantised the same way every update |
+//!
+//! The fix is at each mechanism, exact in integers: [`IncrementQuantizer`] converts increments
+//! with the remainder carried (the sum of the converted increments stays within 2⁻³¹ rad of the
+//! sum of the given ones); [`CarriedAttitude`] keeps the residual of each of the three roundings
+//! inside an update (10 words beside the attitude) and adds it to the next update's value before
+//! rounding, and folds the renormalisation into the increment, `(cos(θ/2), u)·(1 + e)`, so that
+//! the attitude is rounded once per update. A wider attitude (an `i64` Q1.62) would remove the
+//! attitude's share too, but every product of the update would then be 64 × 32 bits; the
+//! carried residuals cost nothing extra (the carried 2-sample update is 1854 instructions on
+//! the Cortex-M0 against 1944 for the plain one: the folded renormalisation saves more than the
+//! residuals cost). The plain `UnitQuat<Q30>` path stays, bit for bit as before, for callers
+//! that need its 4-word state.
 //!
 //! # Cost
 //! The Cortex-M0 has no 32×32 → 64-bit multiply; an `i64` product there is a call of
@@ -89,6 +125,7 @@
 //! |---|---:|---:|---:|---:|---:|---:|
 //! | quaternion product | 3261 | 606 | 1874 | 175 | 42 | 172 |
 //! | 2-sample coning update (rule, exp, product, renormalisation) | 9052 | 1941 | 5143 | 705 | 102 | 702 |
+//! | the same, carried ([`CarriedAttitude::coning2_update`]; all six columns from one later image) | 9051 | 1854 | 5150 | 683 | 92 | 670 |
 //!
 //! # When to choose fixed point
 //! On a core without an FPU (Cortex-M0/M0+, M3), for the strapdown attitude update from gyro
@@ -119,9 +156,11 @@
 //! # Ok::<(), gyrostat::Error>(())
 //! ```
 
+mod carried;
 mod exp;
 
 pub use crate::real::fixed::{Fixed, Q24, Q30};
+pub use carried::{CarriedAttitude, IncrementQuantizer};
 
 #[cfg(doc)]
 use crate::Ring;
@@ -274,6 +313,12 @@ impl IncrementScale {
     /// As [`IncrementScale::try_new`] for the product.
     pub fn try_from_rate(rad_per_s_per_lsb: f64, dt: f64) -> Result<Self, Error> {
         Self::try_new(rad_per_s_per_lsb * dt)
+    }
+
+    /// The stored mantissa and shift (`rad_per_lsb = mantissa · 2^−(shift + 30)`).
+    #[inline]
+    pub(crate) fn parts(&self) -> (i32, u32) {
+        (self.mantissa, self.shift)
     }
 
     /// The scale in rad/LSB, exactly as stored.

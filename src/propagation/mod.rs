@@ -39,7 +39,7 @@
 //! [`kernels`] and the [`compensated`] updates built on them, the attitude trait over both, and
 //! the integrators on top.
 
-mod attitude;
+pub(crate) mod attitude;
 pub mod compensated;
 pub mod coning;
 pub mod exponential;

@@ -120,20 +120,23 @@ impl<T: Ring> UnitQuat<T> {
     /// The rotation matrix `R(q)`: columns are the body axes in lab coordinates, so that
     /// `R(q)·v = q ⊗ v ⊗ q*`. Equal to the Rodrigues form (6.6.15) for the same axis and angle.
     ///
-    /// Each entry is `1 − 2(a² + b²)` or `2(ab ± cd)` with the inner sum one [`Ring::dot`] (the
-    /// same roundings as written out for the floats, one rounding in fixed point).
+    /// Each entry is `1 − 2(a² + b²)` or `2(ab ± cd)`, formed as one [`Ring::dot`] with the
+    /// doubled components `2b`, `2d` (shared by the entries): `1 − (a·2a + b·2b)`,
+    /// `a·2b ± c·2d`. For the floats doubling is exact and commutes with rounding, so the
+    /// entries are bit for bit those of `2·(ab ± cd)` written out, in 21 operations instead of
+    /// 30; fixed point rounds each entry once (the doubled product summed exactly).
     #[inline]
     pub fn to_rotation_matrix(self) -> Mat3<T> {
         let Quat { w, x, y, z } = self.0;
-        let d = |a: T, b: T, c: T, e: T| T::dot([a, c], [b, e]).twice();
-        let diag = |a: T, b: T| T::ONE - T::dot([a, b], [a, b]).twice();
-        // `ab − wc` as `ab + w·(−c)`: each negated factor has one use, so that the floats' `w·c`
-        // is shared with the `ab + wc` entry (negating the shared `w` kept three products more:
-        // 5.8 against 4.4 ns per matrix on x86-64). Negation is exact: the same bits.
+        let (x2, y2, z2) = (x.twice(), y.twice(), z.twice());
+        let d = |a: T, b2: T, c: T, e2: T| T::dot([a, c], [b2, e2]);
+        let diag = |a: T, a2: T, b: T, b2: T| T::ONE - T::dot([a, b], [a2, b2]);
+        // `ab − wc` as `a·2b + w·(−2c)`: each negated factor has one use, so that the floats'
+        // `w·2c` is shared with the `ab + wc` entry. Negation is exact: the same bits.
         Mat3::from_rows(
-            [diag(y, z), d(x, y, w, -z), d(x, z, w, y)],
-            [d(x, y, w, z), diag(x, z), d(y, z, w, -x)],
-            [d(x, z, w, -y), d(y, z, w, x), diag(x, y)],
+            [diag(y, y2, z, z2), d(x, y2, w, -z2), d(x, z2, w, y2)],
+            [d(x, y2, w, z2), diag(x, x2, z, z2), d(y, z2, w, -x2)],
+            [d(x, z2, w, -y2), d(y, z2, w, x2), diag(x, x2, y, y2)],
         )
     }
 

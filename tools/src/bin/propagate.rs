@@ -11,7 +11,7 @@ use std::io::{self, Write};
 use std::process::ExitCode;
 use std::str::FromStr;
 
-use gyrostat::fixed::Q30;
+use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
     RateIntegrator, RateMethod,
@@ -70,10 +70,15 @@ OPTIONS:
                    its norm must be within 1e-3 of 1 (it is then normalised exactly)
     --f32          run the propagation in f32 (default f64)
     --fixed        run the propagation in Q1.30 fixed point, the integer code of the firmware
-                   (--input increments only): each number is rounded to the nearest multiple of
-                   2^-30 rad (ties to even; |value| < 2 rad, else a row error), q0 likewise after
-                   its exact normalisation in f64, and the attitude gets the fast
-                   renormalisation q + q(1 - |q|^2)/2 after every update, as on the firmware.
+                   (--input increments only): each number is converted to the nearest multiple
+                   of 2^-30 rad with the remainder of the previous rows added and the new
+                   remainder carried to the next row (gyrostat::fixed::IncrementQuantizer: the
+                   sum of the converted increments stays within 2^-31 of the sum of the given
+                   ones; |value| < 2 rad, else a row error), q0 is rounded likewise (after its
+                   exact normalisation in f64), and the attitude is a
+                   gyrostat::fixed::CarriedAttitude: every update carries the low bits its
+                   roundings discard into the next one and folds the fast renormalisation
+                   q + q(1 - |q|^2)/2 into the increment, so the rounding does not drift.
                    The output is bit for bit what gyrostat's fixed-point firmware computes from
                    the same increments: every printed number is an exact multiple of 2^-30.
     --compensated  carry the attitude's rounding error beside it (compensated accumulation,
@@ -92,7 +97,7 @@ OUTPUT (stdout): `k,qw,qx,qy,qz` after sample k (0-based) whenever k is a multip
     stalls). Numbers are printed in the shortest form that
     round-trips to the same f64 (or f32 with --f32). The attitude is renormalised exactly after
     every update (with --compensated: the compensated pair is, and the line is its part rounded
-    to f64 or f32, unit within a few ulp; with --fixed: the fast renormalisation, see above).
+    to f64 or f32, unit within a few ulp; with --fixed: the fast renormalisation folded into each update, see above).
     increments: the line for sample k is the attitude at time (k+1)*dt, after increments 0..=k.
         coningN updates the attitude once per N increments (after samples N-1, 2N-1, ...). A
         line printed inside a group, and the final line if the input ends inside a group,
@@ -499,7 +504,8 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
     let q0 = UnitQuat::try_from_near_unit(Quat::new(w, x, y, z), 1e-3)
         .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
     let q0 = UnitQuat::<Q30>::try_from_f64(q0).map_err(|e| Failure::Usage(format!("--q0: {e}")))?;
-    let mut integ = IncrementIntegrator::new(q0, rule, Normalization::Fast);
+    let mut integ = IncrementIntegrator::new(CarriedAttitude::new(q0), rule, Normalization::Fast);
+    let mut quantizer = IncrementQuantizer::<30>::new();
     let mut p = Printer {
         out: Csv::stdout(),
         every: args.every,
@@ -517,7 +523,8 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
                 Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
                 Err(e) => return Err(e),
             };
-            let v = Vec3::<Q30>::try_from_f64(v)
+            let v = quantizer
+                .try_quantize(v)
                 .map_err(|e| Failure::Row(n, format!("{e} (Q1.30 holds |value| < 2 rad)")));
             let v = match v {
                 Ok(v) => v,
