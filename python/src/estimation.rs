@@ -243,11 +243,9 @@ fn estimate<'py>(
         .chain(m.as_ref().map(|m| ("mag", m.len())))
     {
         if len != 3 * n {
-            return Err(RowError::call(format!(
-                "{name}: {} rows for {n} time stamps",
-                len / 3
-            ))
-            .into());
+            return Err(
+                RowError::call(format!("{name}: {} rows for {n} time stamps", len / 3)).into(),
+            );
         }
     }
     let frame = match frame {

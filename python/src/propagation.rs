@@ -222,7 +222,8 @@ fn propagate_increments<'py>(
             array2(py, out, 4)?.into_any()
         }
         (Precision::F64, true) => {
-            let out = py.detach(|| self::increments::<f64, CompensatedAttitude<f64>>(&input, q0, rule))?;
+            let out =
+                py.detach(|| self::increments::<f64, CompensatedAttitude<f64>>(&input, q0, rule))?;
             array2(py, out, 4)?.into_any()
         }
         (Precision::F32, false) => {
@@ -230,7 +231,8 @@ fn propagate_increments<'py>(
             array2(py, out, 4)?.into_any()
         }
         (Precision::F32, true) => {
-            let out = py.detach(|| self::increments::<f32, CompensatedAttitude<f32>>(&input, q0, rule))?;
+            let out =
+                py.detach(|| self::increments::<f32, CompensatedAttitude<f32>>(&input, q0, rule))?;
             array2(py, out, 4)?.into_any()
         }
         (Precision::Q30, _) => {

@@ -5,13 +5,13 @@
 //! matrix). Every `from_*` checks its rows and returns unit quaternions; every `as_*` takes the
 //! unit quaternions the package holds.
 
-use numpy::{PyArray1, PyArray2, PyReadonlyArray2};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use gyrostat::rotation::{Dcm, Euler, EulerSequence, GimbalPolicy, Mrp, RotationVector};
 use gyrostat::{Error, Mat3, Quat, UnitQuat, Vec3};
 
-use crate::{RowError, array2, map_rows, rows};
+use crate::{RowError, map_index_into, map_into, rows};
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(quat_from_quat, m)?)?;
@@ -64,22 +64,27 @@ fn quat_from_quat<'py>(
     scalar_first: bool,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let q = rows(&quat, 4, "quat")?;
-    let out = py.detach(|| {
-        map_rows::<4, 4>(&q, |r| {
-            let [w, x, y, z] = if scalar_first {
-                r
-            } else {
-                [r[3], r[0], r[1], r[2]]
-            };
-            UnitQuat::try_new(Quat::new(w, x, y, z))
-                .map(|u| u.to_array())
-                .map_err(|e| match e {
-                    Error::ZeroNorm => "quaternion has zero norm".to_string(),
-                    _ => non_finite("quaternion"),
-                })
-        })
-    })?;
-    array2(py, out, 4)
+    map_into::<4, 4>(py, &q, |r| {
+        let [w, x, y, z] = if scalar_first {
+            r
+        } else {
+            [r[3], r[0], r[1], r[2]]
+        };
+        // |q|² in the normal range (every finite quaternion from 1e-150 to 1e150 in
+        // norm): one square root and one division, to 1 ulp of the library's scaled
+        // normalisation; beyond it (and for zero or non-finite rows) the library's.
+        let n2 = w * w + x * x + y * y + z * z;
+        if (1e-300..=1e300).contains(&n2) {
+            let s = 1.0 / n2.sqrt();
+            return Ok([w * s, x * s, y * s, z * s]);
+        }
+        UnitQuat::try_new(Quat::new(w, x, y, z))
+            .map(|u| u.to_array())
+            .map_err(|e| match e {
+                Error::ZeroNorm => "quaternion has zero norm".to_string(),
+                _ => non_finite("quaternion"),
+            })
+    })
 }
 
 /// The held quaternions in scipy's order (`x, y, z, w` unless `scalar_first`), each the
@@ -93,21 +98,30 @@ fn quat_as_quat<'py>(
     canonical: bool,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let q = rows(&quat, 4, "quat")?;
-    let out = py.detach(|| {
-        map_rows::<4, 4>(&q, |r| {
-            let [w, x, y, z] = if canonical {
-                held(r).canonical().to_array()
-            } else {
-                r
-            };
-            Ok(if scalar_first {
-                [w, x, y, z]
-            } else {
-                [x, y, z, w]
-            })
+    if scalar_first && !canonical {
+        // The rows as held: a copy.
+        let out = PyArray2::<f64>::zeros(py, [q.len() / 4, 4], false);
+        {
+            let mut rw = out.readwrite();
+            let slots = rw
+                .as_slice_mut()
+                .map_err(|e| RowError::call(format!("output array: {e}")))?;
+            py.detach(|| slots.copy_from_slice(&q));
+        }
+        return Ok(out);
+    }
+    map_into::<4, 4>(py, &q, |r| {
+        let [w, x, y, z] = if canonical {
+            held(r).canonical().to_array()
+        } else {
+            r
+        };
+        Ok(if scalar_first {
+            [w, x, y, z]
+        } else {
+            [x, y, z, w]
         })
-    })?;
-    array2(py, out, 4)
+    })
 }
 
 /// Euler angles (rad, or degrees) in scipy's sequence notation.
@@ -126,15 +140,12 @@ fn quat_from_euler<'py>(
     } else {
         1.0
     };
-    let out = py.detach(|| {
-        map_rows::<3, 4>(&a, |r| {
-            Euler::new(s, r.map(|x| x * k))
-                .try_to_unit_quat()
-                .map(|q| q.to_array())
-                .map_err(|_| non_finite("angles"))
-        })
-    })?;
-    array2(py, out, 4)
+    map_into::<3, 4>(py, &a, |r| {
+        Euler::new(s, r.map(|x| x * k))
+            .try_to_unit_quat()
+            .map(|q| q.to_array())
+            .map_err(|_| non_finite("angles"))
+    })
 }
 
 /// Euler angles of held attitudes, and per row whether it is at a gimbal lock (the middle angle
@@ -154,18 +165,26 @@ fn quat_as_euler<'py>(
     } else {
         1.0
     };
-    let (angles, lock) = py.detach(|| {
-        let n = q.len() / 4;
-        let mut angles = Vec::with_capacity(3 * n);
-        let mut lock = Vec::with_capacity(n);
-        for r in q.chunks_exact(4) {
-            let sol = held([r[0], r[1], r[2], r[3]]).to_euler(s, GimbalPolicy::ZeroThird);
-            angles.extend(sol.euler.angles.map(|x| x * k));
-            lock.push(sol.singularity.is_some());
-        }
-        (angles, lock)
-    });
-    Ok((array2(py, angles, 3)?, PyArray1::from_vec(py, lock)))
+    let n = q.len() / 4;
+    let angles = PyArray2::<f64>::zeros(py, [n, 3], false);
+    let lock = PyArray1::<bool>::zeros(py, [n], false);
+    {
+        let (mut a, mut l) = (angles.readwrite(), lock.readwrite());
+        let e = |e: numpy::AsSliceError| RowError::call(format!("output array: {e}"));
+        let (a, l) = (a.as_slice_mut().map_err(e)?, l.as_slice_mut().map_err(e)?);
+        py.detach(|| {
+            for ((r, a), l) in q
+                .chunks_exact(4)
+                .zip(a.chunks_exact_mut(3))
+                .zip(l.iter_mut())
+            {
+                let sol = held([r[0], r[1], r[2], r[3]]).to_euler(s, GimbalPolicy::ZeroThird);
+                a.copy_from_slice(&sol.euler.angles.map(|x| x * k));
+                *l = sol.singularity.is_some();
+            }
+        });
+    }
+    Ok((angles, lock))
 }
 
 /// Rotation vectors (angle × axis; rad, or degrees when `degrees`: the whole vector scaled).
@@ -182,17 +201,14 @@ fn quat_from_rotvec<'py>(
     } else {
         1.0
     };
-    let out = py.detach(|| {
-        map_rows::<3, 4>(&v, |r| {
-            RotationVector::try_new(v3(r.map(|x| x * k)))
-                .map(|v| v.to_unit_quat().to_array())
-                .map_err(|e| match e {
-                    Error::NonFinite => non_finite("rotation vector"),
-                    e => format!("rotation vector: {e} (its length overflows)"),
-                })
-        })
-    })?;
-    array2(py, out, 4)
+    map_into::<3, 4>(py, &v, |r| {
+        RotationVector::try_new(v3(r.map(|x| x * k)))
+            .map(|v| v.to_unit_quat().to_array())
+            .map_err(|e| match e {
+                Error::NonFinite => non_finite("rotation vector"),
+                e => format!("rotation vector: {e} (its length overflows)"),
+            })
+    })
 }
 
 /// Rotation vectors of held attitudes, angle in `[0, π]`.
@@ -209,15 +225,12 @@ fn quat_as_rotvec<'py>(
     } else {
         1.0
     };
-    let out = py.detach(|| {
-        map_rows::<4, 3>(&q, |r| {
-            Ok(RotationVector::from_unit_quat(held(r))
-                .vector()
-                .scale(k)
-                .to_array())
-        })
-    })?;
-    array2(py, out, 3)
+    map_into::<4, 3>(py, &q, |r| {
+        Ok(RotationVector::from_unit_quat(held(r))
+            .vector()
+            .scale(k)
+            .to_array())
+    })
 }
 
 /// Modified Rodrigues parameters `σ = axis·tan(angle/4)`, any finite value (the shadow set is
@@ -229,14 +242,11 @@ fn quat_from_mrp<'py>(
     mrp: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let p = rows(&mrp, 3, "mrp")?;
-    let out = py.detach(|| {
-        map_rows::<3, 4>(&p, |r| {
-            Mrp::try_new(v3(r))
-                .map(|m| m.to_unit_quat().to_array())
-                .map_err(|_| non_finite("MRP"))
-        })
-    })?;
-    array2(py, out, 4)
+    map_into::<3, 4>(py, &p, |r| {
+        Mrp::try_new(v3(r))
+            .map(|m| m.to_unit_quat().to_array())
+            .map_err(|_| non_finite("MRP"))
+    })
 }
 
 /// MRPs of held attitudes, `|σ| ≤ 1`.
@@ -247,10 +257,9 @@ fn quat_as_mrp<'py>(
     quat: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let q = rows(&quat, 4, "quat")?;
-    let out = py.detach(|| {
-        map_rows::<4, 3>(&q, |r| Ok(Mrp::from_unit_quat(held(r)).vector().to_array()))
-    })?;
-    array2(py, out, 3)
+    map_into::<4, 3>(py, &q, |r| {
+        Ok(Mrp::from_unit_quat(held(r)).vector().to_array())
+    })
 }
 
 /// Rotation matrices, rows of 9 numbers (row-major): a rotation within `1000·ε` is converted
@@ -264,20 +273,16 @@ fn quat_from_matrix<'py>(
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let m = rows(&matrix, 9, "matrix")?;
     let tol = Dcm::<f64>::default_tolerance();
-    let out = py.detach(|| {
-        map_rows::<9, 4>(&m, |r| {
-            let m = Mat3::from_rows([r[0], r[1], r[2]], [r[3], r[4], r[5]], [r[6], r[7], r[8]]);
-            Dcm::try_from_matrix(m, tol)
-                .or_else(|_| Dcm::try_from_matrix_orthonormalized(m))
-                .map(|d| d.to_unit_quat().to_array())
-                .map_err(|e| match e {
-                    Error::NonFinite => non_finite("matrix"),
-                    _ => "matrix has no nearest rotation (determinant <= 0, or singular)"
-                        .to_string(),
-                })
-        })
-    })?;
-    array2(py, out, 4)
+    map_into::<9, 4>(py, &m, |r| {
+        let m = Mat3::from_rows([r[0], r[1], r[2]], [r[3], r[4], r[5]], [r[6], r[7], r[8]]);
+        Dcm::try_from_matrix(m, tol)
+            .or_else(|_| Dcm::try_from_matrix_orthonormalized(m))
+            .map(|d| d.to_unit_quat().to_array())
+            .map_err(|e| match e {
+                Error::NonFinite => non_finite("matrix"),
+                _ => "matrix has no nearest rotation (determinant <= 0, or singular)".to_string(),
+            })
+    })
 }
 
 /// Rotation matrices of held attitudes, rows of 9 numbers (row-major; columns are the body
@@ -289,15 +294,12 @@ fn quat_as_matrix<'py>(
     quat: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let q = rows(&quat, 4, "quat")?;
-    let out = py.detach(|| {
-        map_rows::<4, 9>(&q, |r| {
-            let m = held(r).to_rotation_matrix().m;
-            Ok([
-                m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2],
-            ])
-        })
-    })?;
-    array2(py, out, 9)
+    map_into::<4, 9>(py, &q, |r| {
+        let m = held(r).to_rotation_matrix().m;
+        Ok([
+            m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2],
+        ])
+    })
 }
 
 /// The number of rows of a broadcast of `a` and `b` rows (equal, or one of them 1).
@@ -324,17 +326,13 @@ fn quat_compose<'py>(
     let (qa, qb) = (rows(&a, 4, "a")?, rows(&b, 4, "b")?);
     let (na, nb) = (qa.len() / 4, qb.len() / 4);
     let n = broadcast(na, nb)?;
-    let out = py.detach(|| {
-        let mut out = Vec::with_capacity(4 * n);
-        for i in 0..n {
-            let (ia, ib) = (if na == 1 { 0 } else { i }, if nb == 1 { 0 } else { i });
-            let pa = held([qa[4 * ia], qa[4 * ia + 1], qa[4 * ia + 2], qa[4 * ia + 3]]);
-            let pb = held([qb[4 * ib], qb[4 * ib + 1], qb[4 * ib + 2], qb[4 * ib + 3]]);
-            out.extend((pa * pb).renormalize().to_array());
-        }
-        out
-    });
-    array2(py, out, 4)
+    let (qa, qb) = (&*qa, &*qb);
+    let row = |q: &[f64], i: usize| held([q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]]);
+    let idx = |i: usize| (if na == 1 { 0 } else { i }, if nb == 1 { 0 } else { i });
+    map_index_into::<4>(py, n, |i| {
+        let (ia, ib) = idx(i);
+        (row(qa, ia) * row(qb, ib)).renormalize().to_array()
+    })
 }
 
 /// `R(q)·v` (or `R(q)ᵀ·v` when `inverse`) for held attitudes and vectors, one row broadcast
@@ -350,22 +348,18 @@ fn quat_apply<'py>(
     let (q, v) = (rows(&quat, 4, "quat")?, rows(&vectors, 3, "vectors")?);
     let (nq, nv) = (q.len() / 4, v.len() / 3);
     let n = broadcast(nq, nv)?;
-    let out = py.detach(|| {
-        let mut out = Vec::with_capacity(3 * n);
-        for i in 0..n {
-            let (iq, iv) = (if nq == 1 { 0 } else { i }, if nv == 1 { 0 } else { i });
-            let a = held([q[4 * iq], q[4 * iq + 1], q[4 * iq + 2], q[4 * iq + 3]]);
-            let x = v3([v[3 * iv], v[3 * iv + 1], v[3 * iv + 2]]);
-            let y = if inverse {
-                a.inverse_rotate(x)
-            } else {
-                a.rotate(x)
-            };
-            out.extend(y.to_array());
-        }
-        out
-    });
-    array2(py, out, 3)
+    let (q, v) = (&*q, &*v);
+    map_index_into::<3>(py, n, |i| {
+        let (iq, iv) = (if nq == 1 { 0 } else { i }, if nv == 1 { 0 } else { i });
+        let a = held([q[4 * iq], q[4 * iq + 1], q[4 * iq + 2], q[4 * iq + 3]]);
+        let x = v3([v[3 * iv], v[3 * iv + 1], v[3 * iv + 2]]);
+        let y = if inverse {
+            a.inverse_rotate(x)
+        } else {
+            a.rotate(x)
+        };
+        y.to_array()
+    })
 }
 
 /// The rotation angles of held attitudes, in `[0, π]`.
@@ -376,10 +370,7 @@ fn quat_magnitude<'py>(
     quat: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let q = rows(&quat, 4, "quat")?;
-    let out = py.detach(|| {
-        q.chunks_exact(4)
-            .map(|r| held([r[0], r[1], r[2], r[3]]).angle())
-            .collect::<Vec<f64>>()
-    });
-    Ok(PyArray1::from_vec(py, out))
+    let out = map_into::<4, 1>(py, &q, |r| Ok([held(r).angle()]))?;
+    let n = out.len();
+    out.reshape([n])
 }

@@ -121,7 +121,9 @@ fn simulate<'py>(
         if v.iter().all(|x| x.is_finite()) {
             Ok(())
         } else {
-            Err(RowError::call(format!("{name}: every number must be finite")))
+            Err(RowError::call(format!(
+                "{name}: every number must be finite"
+            )))
         }
     };
     for (name, v) in [
