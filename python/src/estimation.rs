@@ -106,8 +106,10 @@ fn params<T: Real>(
     heading_time_constant: Option<f64>,
     overrides: &[(String, f64)],
 ) -> Result<Params<T>, RowError> {
-    let mut p = Params::<T>::default();
-    p.frame = frame;
+    let mut p = Params::<T> {
+        frame,
+        ..Params::default()
+    };
     if let Some(tau) = heading_time_constant {
         p.gains = Gains::Fixed {
             heading_time_constant: T::from_f64(tau),

@@ -148,6 +148,9 @@ fn quat_from_euler<'py>(
     })
 }
 
+/// Euler angles (N, 3) and the gimbal-lock flags (N,).
+type EulerRows<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<bool>>);
+
 /// Euler angles of held attitudes, and per row whether it is at a gimbal lock (the middle angle
 /// within `2·ε` of its pole: the third angle is then set to 0, scipy's choice).
 #[pyfunction]
@@ -157,7 +160,7 @@ fn quat_as_euler<'py>(
     quat: PyReadonlyArray2<'py, f64>,
     seq: &str,
     degrees: bool,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<bool>>)> {
+) -> PyResult<EulerRows<'py>> {
     let s = self::seq(seq)?;
     let q = rows(&quat, 4, "quat")?;
     let k = if degrees {
