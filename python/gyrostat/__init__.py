@@ -98,8 +98,9 @@ class Rotation:
     # -- quaternions -------------------------------------------------------------------------
     @classmethod
     def from_quat(cls, quat: ArrayLike, *, scalar_first: bool = False) -> "Rotation":
-        """Quaternions of any finite non-zero norm, (4,) or (N, 4), each normalised; ``x, y, z,
-        w`` unless ``scalar_first``. A zero or non-finite row raises."""
+        """Quaternions of any finite norm, (4,) or (N, 4), each normalised; ``x, y, z, w``
+        unless ``scalar_first``. A non-finite row, or one of norm at or below machine epsilon
+        (2.2e-16: no attitude computation makes one, its direction is noise), raises."""
         q, single = _rows(quat, 4, "quat")
         return cls(_gyrostat.quat_from_quat(q, bool(scalar_first)), single)
 

@@ -54,7 +54,10 @@ fn non_finite(what: &str) -> String {
     format!("{what} has a NaN or infinite component")
 }
 
-/// Quaternions of any finite non-zero norm, normalised (scipy's `from_quat`); rows `x, y, z, w`
+/// `(4ε)²`: the smallest squared norm [`quat_from_quat`] normalises without the library.
+const FAST_MIN_NORM2: f64 = 16.0 * f64::EPSILON * f64::EPSILON;
+
+/// Quaternions of any finite norm above `ε` (the library's `UnitQuat::MIN_NORM`), normalised (scipy's `from_quat`); rows `x, y, z, w`
 /// unless `scalar_first`.
 #[pyfunction]
 #[pyo3(signature = (quat, scalar_first))]
@@ -70,11 +73,11 @@ fn quat_from_quat<'py>(
         } else {
             [r[3], r[0], r[1], r[2]]
         };
-        // |q|² in the normal range (every finite quaternion from 1e-150 to 1e150 in
-        // norm): one square root and one division, to 1 ulp of the library's scaled
+        // A norm from 4ε (the library rejects ε and below as zero, `UnitQuat::MIN_NORM`) to
+        // 1e150: one square root and one division, to 1 ulp of the library's scaled
         // normalisation; beyond it (and for zero or non-finite rows) the library's.
         let n2 = w * w + x * x + y * y + z * z;
-        if (1e-300..=1e300).contains(&n2) {
+        if (FAST_MIN_NORM2..=1e300).contains(&n2) {
             let s = 1.0 / n2.sqrt();
             return Ok([w * s, x * s, y * s, z * s]);
         }
