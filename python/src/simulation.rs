@@ -35,7 +35,6 @@ fn keywords(msg: &str) -> String {
         out.push_str(&match word {
             // The flags whose keywords differ in more than the dashes.
             "torque-file" => "torque_schedule".to_string(),
-            "wheel" => "wheels".to_string(),
             w => w.replace('-', "_"),
         });
         rest = &name[end..];
