@@ -50,7 +50,7 @@ Array = npt.NDArray[np.float64]
 
 def _error(message: str) -> GyrostatError:
     err = GyrostatError(message)
-    err.row = None  # type: ignore[attr-defined]
+    err.row = None
     return err
 
 
