@@ -9,7 +9,8 @@ with yoshida4; its result is the time of the first flip (the first zero crossing
 campaign runs one after another, then on a thread pool (gyrostat releases the GIL for the whole
 run, so threads run on separate cores), a process pool, and, when dask is installed, dask's
 threaded scheduler (the same code runs on a cluster with dask.distributed). It prints the wall
-time and the speed-up of each; the results are identical whichever way they ran.
+time, the cores kept busy (CPU seconds per wall second: above 1 only if the runs overlapped)
+and the speed-up of each; the results are identical whichever way they ran.
 """
 
 from __future__ import annotations
@@ -44,12 +45,21 @@ def first_flip(case: dict) -> float:
     return float(sim.t[k[0] + 1]) if k.size else float("nan")
 
 
+def cpu_seconds() -> float:
+    """User plus system CPU time of this process, its threads and its finished children."""
+    t = os.times()
+    return t.user + t.system + t.children_user + t.children_system
+
+
 def timed(label: str, run, base: float | None = None):
-    t0 = time.perf_counter()
+    """Runs `run()`; prints its wall time, the speed-up over `base` and the CPU it used per
+    second of wall time (the cores it kept busy: on a machine shared with other work, fewer
+    than the workers)."""
+    c0, t0 = cpu_seconds(), time.perf_counter()
     out = run()
-    dt = time.perf_counter() - t0
+    dt, cpu = time.perf_counter() - t0, cpu_seconds() - c0
     speed = "" if base is None else f"  speed-up {base / dt:.2f}x"
-    print(f"  {label:<34} {dt:7.2f} s{speed}")
+    print(f"  {label:<34} {dt:7.2f} s  {cpu / dt:4.2f} cores busy{speed}")
     return np.array(out), dt
 
 
@@ -63,12 +73,17 @@ def main() -> None:
     print(f"{args.runs} dispersed runs of 4000 steps, {w} workers, {os.cpu_count()} cores")
     seq, base = timed("sequential", lambda: [first_flip(c) for c in cases])
     results = {"sequential": seq}
-    with cf.ThreadPoolExecutor(w) as pool:
-        results["threads"], _ = timed(f"thread pool ({w} threads)",
-                                      lambda: list(pool.map(first_flip, cases)), base)
-    with cf.ProcessPoolExecutor(w) as pool:
-        results["processes"], _ = timed(f"process pool ({w} processes)",
-                                        lambda: list(pool.map(first_flip, cases, chunksize=50)), base)
+
+    def pool(kind, **kw):
+        # The pool's start and shutdown are part of the time (a process pool's CPU time is
+        # counted when its workers have exited).
+        with kind(w) as p:
+            return list(p.map(first_flip, cases, **kw))
+
+    results["threads"], _ = timed(f"thread pool ({w} threads)",
+                                  lambda: pool(cf.ThreadPoolExecutor), base)
+    results["processes"], _ = timed(f"process pool ({w} processes)",
+                                    lambda: pool(cf.ProcessPoolExecutor, chunksize=50), base)
     try:
         import dask
         import dask.bag as db
