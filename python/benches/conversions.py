@@ -65,6 +65,8 @@ def main() -> None:
          lambda a, b: same_rotation(a.as_quat(), b.as_quat())),
         ("as_quat", lambda: rs.as_quat(), lambda: rg.as_quat(),
          lambda a, b: float(np.max(np.abs(a - b)))),
+        ("as_quat(scalar_first=True)", lambda: rs.as_quat(scalar_first=True),
+         lambda: rg.as_quat(scalar_first=True), lambda a, b: float(np.max(np.abs(a - b)))),
         ("as_quat(canonical=True)", lambda: rs.as_quat(canonical=True),
          lambda: rg.as_quat(canonical=True), lambda a, b: float(np.max(np.abs(a - b)))),
         ("from_euler('ZYX')", lambda: R.from_euler("ZYX", euler),
