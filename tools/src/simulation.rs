@@ -6,8 +6,9 @@
 //!
 //! A run is described by a [`Spec`] (the values of `simulate`'s flags, each optional as on the
 //! command line), checked once into a [`Config`] ([`Spec::try_into_config`]); [`setup`] builds
-//! the body and its initial state in a scalar type `T` with `N` wheels (the [`with_wheels!`]
-//! macro picks `N` at run time), and [`Sim::run`] steps it, handing every state to the caller.
+//! the body and its initial state in a scalar type `T` with `N` wheels (the
+//! [`with_wheels!`](crate::with_wheels) macro picks `N` at run time), and [`Sim::run`] steps
+//! it, handing every state to the caller.
 //! Error messages name the command-line flags (`--inertia`, `--wheel-torque`); the Python
 //! package names its keyword arguments in their place.
 
