@@ -1,6 +1,7 @@
 //! The command-line tools of gyrostat (`convert`, `propagate`, `simulate`) and what they share:
-//! one flag dialect and error style ([`flags`]) and one stream reader and CSV writer
-//! ([`stream`]).
+//! one flag dialect and error style ([`flags`]), one stream reader and CSV writer
+//! ([`stream`]), and the scenarios of `simulate` ([`simulation`], with the external torque of
+//! [`torque`]), which the Python package (`python/`) runs too.
 //!
 //! The tools are binaries of this crate (`src/bin/`); install them with
 //! `cargo install --path tools`, or run them from a checkout with the cargo aliases of
@@ -12,4 +13,6 @@
 //! input with [`stream::Lines`].
 
 pub mod flags;
+pub mod simulation;
 pub mod stream;
+pub mod torque;

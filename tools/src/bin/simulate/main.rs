@@ -6,7 +6,6 @@
 //! writes CSV; see `--help`.
 
 mod plot;
-mod torque;
 
 use std::fmt::{Display, Write as _};
 use std::io::{self, IsTerminal, Write};
@@ -14,18 +13,18 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
-use gyrostat::dynamics::semi_rigid::{Arrangement, QuarticBasis, SemiRigidRotor};
-use gyrostat::dynamics::{
-    BodyHamiltonian, Control, DriftMonitor, FreeRigidBody, Gyrostat, Inertia, Integrator,
-    Invariants, Quartic, State, Wheel, WheelCommand,
-};
-use gyrostat::{Error, Quat, Real, UnitQuat, Vec3};
+use gyrostat::dynamics::semi_rigid::Arrangement;
+use gyrostat::dynamics::{BodyHamiltonian, FreeRigidBody, Quartic, State};
+use gyrostat::{Real, UnitQuat};
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
+use gyrostat_tools::simulation::{
+    self, Config, Fail, Impulse, MAX_WHEELS, Method, Outcome, Run, Semi, Sim, Spec, TorqueSchedule,
+    WheelSpec, build, f3, max_angle_deg, mean_interval, norm, setup, sub, widen,
+};
 use gyrostat_tools::stream::{self, Csv};
-use gyrostat_tools::{say, say_part};
+use gyrostat_tools::{say, say_part, with_wheels};
 
 use plot::{Figure, Series};
-use torque::{ExternalTorque, Schedule};
 
 const CLI: Cli = Cli {
     name: "simulate",
@@ -52,11 +51,6 @@ const CLI: Cli = Cli {
         Flag::switch("--f32"),
     ],
 };
-
-/// The most `--wheel`s a run takes. The library's wheel count is a compile-time constant; this
-/// tool instantiates it for 0 to 4 wheels (three orthogonal wheels plus a skewed spare, or a
-/// four-wheel pyramid).
-const MAX_WHEELS: usize = 4;
 
 const HELP: &str = "\
 simulate: rigid-body / gyrostat attitude dynamics (gyrostat crate)
@@ -174,21 +168,6 @@ A run that lasts longer than about a second shows its progress on stderr when st
 terminal and stdout is not (the CSV goes to a file or a pipe), and nothing otherwise.
 ";
 
-/// Calls `f::<T, N>(args)` with the wheel count `N` a constant: one instance per count up to
-/// [`MAX_WHEELS`].
-macro_rules! with_wheels {
-    ($n:expr, $f:ident :: <$t:ty> ($($arg:expr),*)) => {
-        match $n {
-            0 => $f::<$t, 0>($($arg),*),
-            1 => $f::<$t, 1>($($arg),*),
-            2 => $f::<$t, 2>($($arg),*),
-            3 => $f::<$t, 3>($($arg),*),
-            4 => $f::<$t, 4>($($arg),*),
-            n => Err(format!("at most {MAX_WHEELS} --wheel, got {n}")),
-        }
-    };
-}
-
 fn main() -> ExitCode {
     let f = match CLI.command_line() {
         Ok(f) => f,
@@ -198,11 +177,12 @@ fn main() -> ExitCode {
     let result = if f.names().all(|n| n == "--plot") {
         default_scenario(f.value("--plot").map(PathBuf::from))
     } else {
-        config(&f).and_then(|cfg| {
+        config(&f).and_then(|(cfg, plot)| {
+            let plot = plot.as_deref();
             if cfg.f32 {
-                with_wheels!(cfg.wheels.len(), run_csv::<f32>(&cfg))
+                with_wheels!(cfg.wheels.len(), run_csv::<f32>(&cfg, plot))
             } else {
-                with_wheels!(cfg.wheels.len(), run_csv::<f64>(&cfg))
+                with_wheels!(cfg.wheels.len(), run_csv::<f64>(&cfg, plot))
             }
         })
     };
@@ -216,69 +196,6 @@ fn main() -> ExitCode {
 // ---------------------------------------------------------------------------------------------
 // Command line
 
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Method {
-    Step(Integrator),
-    Exact,
-}
-
-#[derive(Debug)]
-enum Initial {
-    Omega([f64; 3]),
-    Momentum([f64; 3]),
-}
-
-/// One `--wheel`.
-#[derive(Debug, Clone, Copy)]
-struct WheelSpec {
-    axis: [f64; 3],
-    inertia: f64,
-    speed0: f64,
-}
-
-/// `--wheel-torque` or `--wheel-speed`.
-#[derive(Debug, Clone)]
-enum WheelInput {
-    Torque(Vec<f64>),
-    Speed(Vec<f64>),
-}
-
-#[derive(Debug)]
-struct Config {
-    /// `--inertia` (`None` with `--semi-rigid`).
-    inertia: Option<[f64; 3]>,
-    offdiag: [f64; 3],
-    initial: Initial,
-    spin: [f64; 3],
-    quartic: Option<(bool, f64)>, // (octahedral?, coefficient)
-    /// `--semi-rigid KIND:MASS,OMEGA_V,R0`.
-    semi_rigid: Option<(Arrangement, [f64; 3])>,
-    q0: [f64; 4],
-    wheels: Vec<WheelSpec>,
-    wheel_input: Option<WheelInput>,
-    torque: ExternalTorque,
-    /// Where the torque came from, for the summary.
-    torque_source: String,
-    plot: Option<PathBuf>,
-    dt: f64,
-    steps: u64,
-    every: u64,
-    method: Method,
-    f32: bool,
-}
-
-impl Config {
-    /// `true` when a step needs an input (external or wheel torque).
-    fn has_input(&self) -> bool {
-        self.torque.is_some() || self.wheel_input.is_some()
-    }
-
-    /// `true` for the new physics (wheels, torques) whose monitors are summarised on stderr.
-    fn has_actuators(&self) -> bool {
-        !self.wheels.is_empty() || self.torque.is_some()
-    }
-}
-
 /// `--wheel AX,AY,AZ,INERTIA[,SPEED0]`, the `index`-th (1-based).
 fn parse_wheel(index: usize, s: &str) -> Result<WheelSpec, String> {
     let v = flags::list("--wheel", s)?;
@@ -287,26 +204,7 @@ fn parse_wheel(index: usize, s: &str) -> Result<WheelSpec, String> {
             "--wheel takes AX,AY,AZ,INERTIA[,SPEED0] (4 or 5 comma-separated numbers), got {s:?}"
         ));
     }
-    let axis = [v[0], v[1], v[2]];
-    if axis.iter().all(|&c| c == 0.0) {
-        return Err(format!("--wheel {index}: the axis must not be zero"));
-    }
-    if v[3] <= 0.0 {
-        return Err(format!(
-            "--wheel {index}: the wheel inertia must be > 0, got {}",
-            v[3]
-        ));
-    }
-    Ok(WheelSpec {
-        axis,
-        inertia: v[3],
-        speed0: v.get(4).copied().unwrap_or(0.0),
-    })
-}
-
-fn read_torque_file(path: &str) -> Result<Schedule, String> {
-    let file = std::fs::File::open(path).map_err(|e| format!("--torque-file {path}: {e}"))?;
-    Schedule::parse(stream::Lines::new(file)).map_err(|e| format!("--torque-file {path}: {e}"))
+    WheelSpec::try_new(index, &v)
 }
 
 /// `--semi-rigid KIND:MASS,OMEGA_V,R0`.
@@ -318,19 +216,16 @@ fn semi_rigid(flag: &str, value: &str) -> Result<(Arrangement, [f64; 3]), String
         )
     };
     let (kind, numbers) = value.split_once(':').ok_or_else(usage)?;
-    let kind = match kind.trim() {
-        "octahedral" => Arrangement::Octahedral,
-        "cubic" => Arrangement::Cubic,
-        "tetrahedral" => Arrangement::Tetrahedral,
-        _ => return Err(usage()),
-    };
+    if !matches!(kind.trim(), "octahedral" | "cubic" | "tetrahedral") {
+        return Err(usage());
+    }
     let v = flags::numbers::<3>(flag, numbers, "MASS,OMEGA_V,R0")?;
     if v.iter().any(|&x| x <= 0.0) {
         return Err(format!(
             "{flag}: MASS, OMEGA_V and R0 must be > 0, got {numbers:?}"
         ));
     }
-    Ok((kind, v))
+    simulation::semi_rigid(flag, kind, v)
 }
 
 /// `--quartic octahedral:T4|cubic:T22`: (octahedral?, coefficient).
@@ -339,47 +234,13 @@ fn quartic(flag: &str, value: &str) -> Result<(bool, f64), String> {
         .split_once(':')
         .ok_or_else(|| format!("{flag} takes octahedral:T4 or cubic:T22, got {value:?}"))?;
     let t = flags::number(flag, t)?;
-    match kind.trim() {
-        "octahedral" => Ok((true, t)),
-        "cubic" => Ok((false, t)),
-        other => Err(format!(
-            "{flag}: unknown kind {other:?} (octahedral or cubic)"
-        )),
-    }
+    simulation::quartic(flag, kind, t)
 }
 
-/// `--integrator NAME`.
-fn integrator(flag: &str, value: &str) -> Result<Method, String> {
-    Ok(match value.trim() {
-        "rk4" => Method::Step(Integrator::Rk4),
-        "strang" => Method::Step(Integrator::Strang),
-        "yoshida4" => Method::Step(Integrator::Yoshida4),
-        "suzuki4" => Method::Step(Integrator::Suzuki4),
-        "exact" => Method::Exact,
-        other => {
-            return Err(format!(
-                "{flag}: unknown {other:?} (rk4, strang, yoshida4, suzuki4, exact)"
-            ));
-        }
-    })
-}
-
-/// The configuration of a CSV run, from the flags given.
-fn config(f: &Flags) -> Result<Config, String> {
+/// The configuration of a CSV run and its `--plot`, from the flags given.
+fn config(f: &Flags) -> Result<(Config, Option<PathBuf>), String> {
     let three =
         |fields: &'static str| move |flag: &str, v: &str| flags::numbers::<3>(flag, v, fields);
-    let inertia = f.get("--inertia", three("I1,I2,I3"))?;
-    let offdiag = f.get("--inertia-offdiag", three("I12,I13,I23"))?;
-    let omega = f.get("--omega", three("w1,w2,w3"))?;
-    let momentum = f.get("--momentum", three("J1,J2,J3"))?;
-    let spin = f.get("--spin", three("S1,S2,S3"))?;
-    let quartic = f.get("--quartic", quartic)?;
-    let semi_rigid = f.get("--semi-rigid", semi_rigid)?;
-    let q0 = f.get("--q0", |flag, v| flags::numbers::<4>(flag, v, "w,x,y,z"))?;
-    let dt = f.get("--dt", flags::positive)?;
-    let steps = f.get("--steps", flags::count)?;
-    let every = f.get("--every", flags::at_least_one)?;
-    let method = f.get("--integrator", integrator)?;
     let given_wheels: Vec<&str> = f.values("--wheel").collect();
     if given_wheels.len() > MAX_WHEELS {
         return Err(format!(
@@ -391,124 +252,30 @@ fn config(f: &Flags) -> Result<Config, String> {
         .enumerate()
         .map(|(i, v)| parse_wheel(i + 1, v))
         .collect::<Result<Vec<_>, _>>()?;
-    let wheel_torque = f.get("--wheel-torque", flags::list)?;
-    let wheel_speed = f.get("--wheel-speed", flags::list)?;
-    let torque = f.get("--torque", three("TX,TY,TZ"))?;
-    let torque_file = f.value("--torque-file");
-    let plot = f.value("--plot").map(PathBuf::from);
-    let f32 = f.switch("--f32");
-    let initial = match (omega, momentum) {
-        (Some(w), None) => Initial::Omega(w),
-        (None, Some(j)) => Initial::Momentum(j),
-        (Some(_), Some(_)) => return Err("give either --omega or --momentum, not both".into()),
-        (None, None) => return Err("missing --omega or --momentum".into()),
-    };
-    let dt = dt.ok_or("missing --dt")?;
-    let every = every.unwrap_or(1);
-    let spin = spin.unwrap_or([0.0; 3]);
-    let method = method.ok_or("missing --integrator")?;
-    if semi_rigid.is_some() {
-        for (given, flag) in [
-            (
-                inertia.is_some(),
-                "--inertia (the rotor's rest inertia I0 is the body's)",
-            ),
-            (offdiag.is_some(), "--inertia-offdiag"),
-            (
-                quartic.is_some(),
-                "--quartic (the rotor has its own quartic term)",
-            ),
-            (
-                torque.is_some() || torque_file.is_some(),
-                "--torque and --torque-file (the isotropic |J|^4 turn is exact only without \
-                 external torque)",
-            ),
-        ] {
-            if given {
-                return Err(format!("--semi-rigid conflicts with {flag}"));
-            }
-        }
-        if method == Method::Exact {
-            return Err(
-                "--integrator exact is for torque-free rigid bodies only (no --semi-rigid)".into(),
-            );
-        }
-    }
-    if method == Method::Exact && (spin != [0.0; 3] || quartic.is_some()) {
-        return Err(
-            "--integrator exact is for torque-free rigid bodies only (no --spin, no --quartic)"
-                .into(),
-        );
-    }
-    let q0 = q0.unwrap_or([1.0, 0.0, 0.0, 0.0]);
-    let n = q0.iter().map(|c| c * c).sum::<f64>().sqrt();
-    if (n - 1.0).abs() > 1e-6 {
-        return Err(format!("--q0 must be a unit quaternion (norm {n})"));
-    }
-    let wheel_input = match (wheel_torque, wheel_speed) {
-        (Some(_), Some(_)) => {
-            return Err("give either --wheel-torque or --wheel-speed, not both".into());
-        }
-        (Some(u), None) => Some(("--wheel-torque", WheelInput::Torque(u))),
-        (None, Some(w)) => Some(("--wheel-speed", WheelInput::Speed(w))),
-        (None, None) => None,
-    };
-    let wheel_input = match wheel_input {
-        None => None,
-        Some((flag, input)) => {
-            let len = match &input {
-                WheelInput::Torque(v) | WheelInput::Speed(v) => v.len(),
-            };
-            if wheels.is_empty() {
-                return Err(format!("{flag} needs at least one --wheel"));
-            }
-            if len != wheels.len() {
-                return Err(format!(
-                    "{flag} takes one number per --wheel ({}), got {len}",
-                    wheels.len()
-                ));
-            }
-            Some(input)
-        }
-    };
-    let (torque, torque_source) = match (torque, torque_file) {
-        (Some(_), Some(_)) => return Err("give either --torque or --torque-file, not both".into()),
-        (Some(t), None) => (ExternalTorque::Constant(t), "--torque".to_string()),
-        (None, Some(path)) => (
-            ExternalTorque::Schedule(read_torque_file(path)?),
-            format!("--torque-file {path}"),
-        ),
-        (None, None) => (ExternalTorque::None, String::new()),
-    };
-    if method == Method::Exact && (!wheels.is_empty() || torque.is_some()) {
-        return Err(
-            "--integrator exact is for torque-free rigid bodies only (no --wheel, no --torque, \
-             no --torque-file)"
-                .into(),
-        );
-    }
-    if inertia.is_none() && semi_rigid.is_none() {
-        return Err("missing --inertia".into());
-    }
-    Ok(Config {
-        inertia,
-        offdiag: offdiag.unwrap_or([0.0; 3]),
-        initial,
-        spin,
-        quartic,
-        semi_rigid,
-        q0,
+    let cfg = Spec {
+        inertia: f.get("--inertia", three("I1,I2,I3"))?,
+        inertia_offdiag: f.get("--inertia-offdiag", three("I12,I13,I23"))?,
+        omega: f.get("--omega", three("w1,w2,w3"))?,
+        momentum: f.get("--momentum", three("J1,J2,J3"))?,
+        spin: f.get("--spin", three("S1,S2,S3"))?,
+        quartic: f.get("--quartic", quartic)?,
+        semi_rigid: f.get("--semi-rigid", semi_rigid)?,
+        q0: f.get("--q0", |flag, v| flags::numbers::<4>(flag, v, "w,x,y,z"))?,
+        dt: f.get("--dt", flags::positive)?,
+        steps: f.get("--steps", flags::count)?,
+        every: f.get("--every", flags::at_least_one)?,
+        method: f.get("--integrator", simulation::integrator)?,
         wheels,
-        wheel_input,
-        torque,
-        torque_source,
-        plot,
-        dt,
-        steps: steps.ok_or("missing --steps")?,
-        every,
-        method,
-        f32,
-    })
+        wheel_torque: f.get("--wheel-torque", flags::list)?,
+        wheel_speed: f.get("--wheel-speed", flags::list)?,
+        torque: f.get("--torque", three("TX,TY,TZ"))?,
+        torque_schedule: f
+            .value("--torque-file")
+            .map(|path| TorqueSchedule::File(path.to_string())),
+        f32: f.switch("--f32"),
+    }
+    .try_into_config()?;
+    Ok((cfg, f.value("--plot").map(PathBuf::from)))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -568,73 +335,6 @@ impl Drop for Progress {
     }
 }
 
-// ---------------------------------------------------------------------------------------------
-// CSV run
-
-fn v3<T: Real>(a: [f64; 3]) -> Vec3<T> {
-    Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]))
-}
-
-fn f3<T: Real>(v: Vec3<T>) -> [f64; 3] {
-    v.to_array().map(|c| c.to_f64())
-}
-
-/// A semi-rigid rotor and the basis its quartic is split in (the anisotropic part in the
-/// [`BodyHamiltonian`], the isotropic `t|J|⁴` applied as its exact turn).
-#[derive(Clone, Copy)]
-struct Semi<T> {
-    rotor: SemiRigidRotor<T>,
-    basis: QuarticBasis,
-}
-
-/// The body model of `cfg`.
-struct Model<T> {
-    hamiltonian: BodyHamiltonian<T>,
-    semi: Option<Semi<T>>,
-}
-
-fn build<T: Real>(cfg: &Config) -> Result<Model<T>, String> {
-    if let Some((kind, [m, wv, r0])) = cfg.semi_rigid {
-        let rotor =
-            SemiRigidRotor::try_symmetric(kind, T::from_f64(m), T::from_f64(wv), T::from_f64(r0))
-                .map_err(|e| format!("--semi-rigid: {e}"))?;
-        let basis = kind.natural_basis();
-        let hamiltonian =
-            BodyHamiltonian::try_new(rotor.rest_inertia(), v3(cfg.spin), rotor.quartic(basis))
-                .map_err(|e| format!("--semi-rigid: {e}"))?;
-        return Ok(Model {
-            hamiltonian,
-            semi: Some(Semi { rotor, basis }),
-        });
-    }
-    let moments = cfg.inertia.unwrap_or([0.0; 3]);
-    let inertia = Inertia::try_from_components(v3(moments), v3(cfg.offdiag)).map_err(|e| {
-        format!(
-            "--inertia {:?} with off-diagonal {:?}: {e} (must be symmetric positive definite with \
-             principal moments I_a <= I_b + I_c)",
-            moments, cfg.offdiag
-        )
-    })?;
-    let quartic = match cfg.quartic {
-        None => Quartic::None,
-        Some((true, t)) => Quartic::Octahedral(T::from_f64(t)),
-        Some((false, t)) => Quartic::Cubic(T::from_f64(t)),
-    };
-    let hamiltonian =
-        BodyHamiltonian::try_new(inertia, v3(cfg.spin), quartic).map_err(|e| match e {
-            Error::InvalidArgument => {
-                "--quartic needs a diagonal inertia tensor (the quartic polynomials are defined \
-                 on principal axes); drop --inertia-offdiag"
-                    .to_string()
-            }
-            e => format!("model: {e}"),
-        })?;
-    Ok(Model {
-        hamiltonian,
-        semi: None,
-    })
-}
-
 /// What stderr shows of a semi-rigid rotor: `I₀`, the quartic term and the isotropic term.
 fn describe_semi(cfg: &Config, semi: &Semi<f64>, h: &BodyHamiltonian<f64>) -> String {
     let Some((kind, [m, wv, r0])) = cfg.semi_rigid else {
@@ -663,191 +363,8 @@ fn describe_semi(cfg: &Config, semi: &Semi<f64>, h: &BodyHamiltonian<f64>) -> St
     )
 }
 
-/// The wheels of `cfg`, checked against the body: the tensor without the wheels' axial inertia,
-/// `I − Σ I_w g gᵀ`, must stay positive definite (a wheel cannot hold more axial inertia than
-/// the body it is part of).
-fn wheels<T: Real, const N: usize>(
-    cfg: &Config,
-    inertia: &Inertia<T>,
-) -> Result<[Wheel<T>; N], String> {
-    let mut platform = inertia.tensor().m.map(|row| row.map(|x| x.to_f64()));
-    let mut out = Vec::with_capacity(N);
-    for (i, w) in cfg.wheels.iter().enumerate() {
-        let n = w.axis.iter().map(|c| c * c).sum::<f64>().sqrt();
-        let g = w.axis.map(|c| c / n);
-        for (r, row) in platform.iter_mut().enumerate() {
-            for (c, x) in row.iter_mut().enumerate() {
-                *x -= w.inertia * g[r] * g[c];
-            }
-        }
-        out.push(
-            Wheel::try_new(v3(w.axis), T::from_f64(w.inertia))
-                .map_err(|e| format!("--wheel {}: {e}", i + 1))?,
-        );
-    }
-    // Sylvester's criterion: the leading principal minors are positive.
-    let m = platform;
-    let d1 = m[0][0];
-    let d2 = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-    let d3 = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    if N > 0 && !(d1 > 0.0 && d2 > 0.0 && d3 > 0.0) {
-        return Err(
-            "--wheel: the wheels' axial inertia exceeds the body's (--inertia is the whole \
-             body with the wheels locked, so I - sum Iw g g^T must be positive definite)"
-                .into(),
-        );
-    }
-    out.try_into()
-        .map_err(|_| "internal error: wheel count".to_string())
-}
-
-/// A body, its initial state and (for `--integrator exact`) its closed-form motion.
-struct Sim<T, const N: usize> {
-    body: Gyrostat<T, N>,
-    start: State<T, N>,
-    exact: Option<FreeRigidBody<T>>,
-    semi: Option<Semi<T>>,
-}
-
-fn setup<T: Real, const N: usize>(cfg: &Config) -> Result<Sim<T, N>, String> {
-    let dt = T::from_f64(cfg.dt);
-    if !(dt.is_finite() && dt > T::ZERO) {
-        return Err(format!(
-            "--dt {:?} is not a positive finite {}",
-            cfg.dt,
-            if cfg.f32 { "f32" } else { "f64" }
-        ));
-    }
-    let Model {
-        hamiltonian: model,
-        semi,
-    } = build::<T>(cfg)?;
-    let q0 = UnitQuat::try_new(Quat::from_array(cfg.q0.map(T::from_f64)))
-        .map_err(|e| format!("--q0: {e}"))?;
-    let body = Gyrostat::new(model, wheels::<T, N>(cfg, model.inertia())?);
-    let speeds: [T; N] = core::array::from_fn(|i| T::from_f64(cfg.wheels[i].speed0));
-    let start = match cfg.initial {
-        Initial::Omega(w) => body
-            .try_state_from_omega(q0, v3(w), speeds)
-            .map_err(|e| match e {
-                Error::NotConverged => {
-                    "--omega with --quartic: Newton's method did not converge; give --momentum"
-                        .to_string()
-                }
-                e => format!("--omega with --quartic: no momentum found ({e}); give --momentum"),
-            })?,
-        Initial::Momentum(j) => State {
-            attitude: q0,
-            momentum: v3(j),
-            wheel_speeds: speeds,
-        },
-    };
-    let start = match (&cfg.initial, &semi) {
-        (Initial::Omega(w), Some(semi)) => State {
-            momentum: momentum_with_isotropic(&body, semi, &start, v3(*w))?,
-            ..start
-        },
-        _ => start,
-    };
-    let exact = match cfg.method {
-        Method::Exact => Some(
-            FreeRigidBody::try_new(model.inertia(), &State::new(start.attitude, start.momentum))
-                .map_err(|e| format!("--integrator exact: {e}"))?,
-        ),
-        Method::Step(_) => None,
-    };
-    Ok(Sim {
-        body,
-        start,
-        exact,
-        semi,
-    })
-}
-
-/// The momentum whose full semi-rigid body rate `∇H(J) + 4t|J|²J` is `omega`, by Newton's method
-/// from `start` (the solution without the isotropic term), with the Hessian
-/// `∇²H(J) + 4t(|J|²·1 + 2JJᵀ)`; stopped as [`BodyHamiltonian::try_momentum_from_omega`] is.
-fn momentum_with_isotropic<T: Real, const N: usize>(
-    body: &Gyrostat<T, N>,
-    semi: &Semi<T>,
-    start: &State<T, N>,
-    omega: Vec3<T>,
-) -> Result<Vec3<T>, String> {
-    use gyrostat::dynamics::hamiltonian::{
-        MOMENTUM_SOLVE_MAX_STEPS, MOMENTUM_SOLVE_RESIDUAL, MOMENTUM_SOLVE_STEP_TOLERANCE,
-    };
-    let four_t = T::from_f64(4.0) * semi.rotor.isotropic(semi.basis);
-    let hessian = |j: Vec3<T>| {
-        let ja = j.to_array();
-        let mut hess = body.model().hessian(j);
-        for (r, row) in hess.m.iter_mut().enumerate() {
-            for (c, x) in row.iter_mut().enumerate() {
-                let diag = if r == c { j.norm_squared() } else { T::ZERO };
-                *x += four_t * (diag + T::TWO * ja[r] * ja[c]);
-            }
-        }
-        hess
-    };
-    let residual = |j: Vec3<T>| {
-        let s = State {
-            momentum: j,
-            ..*start
-        };
-        body.omega(&s) + j.scale(four_t * j.norm_squared()) - omega
-    };
-    let fail = || "--omega with --semi-rigid: Newton's method did not converge; give --momentum";
-    let mut j = start.momentum;
-    let mut converged = false;
-    for _ in 0..MOMENTUM_SOLVE_MAX_STEPS {
-        let step = hessian(j).try_inverse().map_err(|_| fail().to_string())? * residual(j);
-        j -= step;
-        if !j.is_finite() {
-            return Err(fail().into());
-        }
-        if step.norm() <= T::from_f64(MOMENTUM_SOLVE_STEP_TOLERANCE) * (T::ONE + j.norm()) {
-            converged = true;
-            break;
-        }
-    }
-    if !converged
-        && residual(j).norm() > T::from_f64(MOMENTUM_SOLVE_RESIDUAL) * (T::ONE + omega.norm())
-    {
-        return Err(fail().into());
-    }
-    // The physical root has ∂ω/∂J positive definite (the energy is a minimum there at fixed
-    // direction); past the quartic model's largest rate Newton can only land on the far branch.
-    let m = hessian(j).m.map(|row| row.map(|x| x.to_f64()));
-    let minors = [
-        m[0][0],
-        m[0][0] * m[1][1] - m[0][1] * m[1][0],
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]),
-    ];
-    if minors.iter().any(|&d| d <= 0.0) {
-        return Err(
-            "--omega with --semi-rigid: this rate is beyond the quartic model's reach (no \
-             momentum with a positive definite Hessian gives it); give a smaller rate or \
-             --momentum"
-                .into(),
-        );
-    }
-    Ok(j)
-}
-
-/// What a run failed on: writing the CSV, or the simulation itself.
-enum Fail {
-    Io(io::Error),
-    Msg(String),
-}
-
-impl From<io::Error> for Fail {
-    fn from(e: io::Error) -> Self {
-        Fail::Io(e)
-    }
-}
+/// What a CSV run failed on: writing the CSV, or the simulation itself.
+type RunFail = Fail<io::Error>;
 
 /// Samples of a run for the plot, in f64.
 #[derive(Default)]
@@ -862,308 +379,96 @@ struct Trajectory {
     lab_balance: Vec<[f64; 3]>,
 }
 
-/// The integrated external torque of a run so far: `∫R(q)τ dt` (lab frame) and `∫|τ| dt`.
-#[derive(Clone, Copy, Default)]
-struct Impulse {
-    lab: [f64; 3],
-    magnitude: f64,
-}
-
-/// The monitors of a run, in f64.
-struct Outcome {
-    trajectory: Trajectory,
-    lab0: [f64; 3],
-    lab_end: [f64; 3],
-    impulse: Impulse,
-    lab_drift_max: f64,
-    norm_drift_max: f64,
-    energy0: f64,
-    energy_end: f64,
-}
-
-fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
 /// One row of samples every this many steps in the plot (about 2000 samples per run).
 fn plot_stride(steps: u64) -> u64 {
     steps.div_ceil(2000).max(1)
 }
 
-impl<T: Real + Display, const N: usize> Sim<T, N> {
-    /// The attitude written out at time `t`: the state's, followed by the isotropic turn of a
-    /// semi-rigid rotor (the exact flow of `t|J|⁴`, which commutes with the rest).
-    fn attitude_at(&self, s: &State<T, N>, t: T) -> UnitQuat<T> {
-        match &self.semi {
-            None => s.attitude,
-            Some(semi) => semi
-                .rotor
-                .isotropic_turn(semi.basis, s.momentum, t)
-                .map_or(s.attitude, |turn| s.attitude * turn),
-        }
+fn write_row<T: Real + Display, const N: usize>(
+    sim: &Sim<T, N>,
+    out: &mut dyn Write,
+    cfg: &Config,
+    k: u64,
+    s: &State<T, N>,
+) -> io::Result<()> {
+    let t = T::from_f64(k as f64 * cfg.dt);
+    let q = sim.attitude_at(s, t);
+    let w = sim.omega(s);
+    let j = s.momentum;
+    let e = sim.energy(s);
+    write!(
+        out,
+        "{t},{},{},{},{},{},{},{},{},{},{},{e}",
+        q.w(),
+        q.x(),
+        q.y(),
+        q.z(),
+        w.x,
+        w.y,
+        w.z,
+        j.x,
+        j.y,
+        j.z
+    )?;
+    for speed in &s.wheel_speeds {
+        write!(out, ",{speed}")?;
     }
+    writeln!(out)
+}
 
-    /// The body rate `∇H(J)`, with `4t|J|²J` of a semi-rigid rotor's isotropic term.
-    fn omega(&self, s: &State<T, N>) -> Vec3<T> {
-        let w = self.body.omega(s);
-        match &self.semi {
-            None => w,
-            Some(semi) => {
-                let four_t = T::from_f64(4.0) * semi.rotor.isotropic(semi.basis);
-                w + s.momentum.scale(four_t * s.momentum.norm_squared())
-            }
-        }
-    }
-
-    /// The energy `H(J)`, with `t|J|⁴` of a semi-rigid rotor's isotropic term.
-    fn energy(&self, s: &State<T, N>) -> T {
-        let e = self.body.energy(s);
-        match &self.semi {
-            None => e,
-            Some(semi) => {
-                let j2 = s.momentum.norm_squared();
-                e + semi.rotor.isotropic(semi.basis) * j2 * j2
-            }
-        }
-    }
-
-    /// The monitored invariants (energy with the isotropic term; `|J|` and the lab momentum
-    /// are those of the state: the isotropic turn is about `J`).
-    fn invariants(&self, s: &State<T, N>) -> Invariants<T> {
-        Invariants {
-            energy: self.energy(s),
-            ..self.body.invariants(s)
-        }
-    }
-
-    /// The state after step `k` (from `(k−1)·dt` to `k·dt`); adds the step's external torque to
-    /// `impulse` (`∫R(q)τ dt` by the trapezoid rule on each piece of constant torque).
-    fn advance(
-        &self,
-        cfg: &Config,
-        state: &State<T, N>,
-        k: u64,
-        impulse: &mut Impulse,
-    ) -> Result<State<T, N>, String> {
-        // The library's checked steps reject a step that turns the body by more than half a
-        // turn (`|w| dt` at either end, `MAX_STEP_ANGLE`) with `StepTooLong`.
-        let fail = |e: Error| format!("step {k}: {e} (the step is too long for these rates?)");
-        let integ = match (cfg.method, &self.exact) {
-            (Method::Exact, Some(x)) => {
-                let s = x.state_at_unchecked(T::from_f64(k as f64 * cfg.dt));
-                return Ok(State {
-                    attitude: s.attitude,
-                    momentum: s.momentum,
-                    wheel_speeds: state.wheel_speeds,
-                });
-            }
-            (Method::Exact, None) => return Err("internal error: no closed form".into()),
-            (Method::Step(integ), _) => integ,
-        };
-        let dt = T::from_f64(cfg.dt);
-        if !cfg.has_input() {
-            return self.body.step(integ, state, dt).map_err(fail);
-        }
-        // The wheel torques are set once per step (a speed command reaches its target at the end
-        // of the whole step even when a torque switch splits it).
-        let wheel_torques = match &cfg.wheel_input {
-            None => [T::ZERO; N],
-            Some(input) => {
-                let v = |x: &[f64]| core::array::from_fn(|i| T::from_f64(x[i]));
-                let command = match input {
-                    WheelInput::Torque(u) => WheelCommand::Torque(v(u)),
-                    WheelInput::Speed(w) => WheelCommand::Speed(v(w)),
-                };
-                self.body
-                    .control(state, dt, Vec3::ZERO, &command)
-                    .wheel_torques
-            }
-        };
-        let (a, b) = ((k - 1) as f64 * cfg.dt, k as f64 * cfg.dt);
-        let pieces = cfg.torque.pieces(a, b);
-        let whole = pieces.len() == 1;
-        let mut s = *state;
-        for (lo, hi, tau) in pieces {
-            let h = if whole { cfg.dt } else { hi - lo };
-            let control = Control {
-                torque: v3::<T>(tau),
-                wheel_torques,
-            };
-            let before = widen(s.attitude);
-            s = self
-                .body
-                .step_with(integ, &s, T::from_f64(lo), T::from_f64(h), control)
-                .map_err(fail)?;
-            if tau != [0.0; 3] {
-                let tau = Vec3::new(tau[0], tau[1], tau[2]);
-                let avg = (before.rotate(tau) + widen(s.attitude).rotate(tau)).scale(0.5 * h);
-                for (acc, x) in impulse.lab.iter_mut().zip(avg.to_array()) {
-                    *acc += x;
+/// Runs `cfg`, writing CSV to `csv` if given and sampling every `stride` steps if given (the
+/// plot's trajectory).
+fn run<T: Real + Display, const N: usize>(
+    sim: &Sim<T, N>,
+    cfg: &Config,
+    mut csv: Option<&mut Csv>,
+    stride: Option<u64>,
+) -> Result<(Outcome, Trajectory), RunFail> {
+    let mut traj = Trajectory::default();
+    let mut progress = Progress::new(cfg.steps);
+    let outcome = sim.run(cfg, |k, s: &State<T, N>, impulse: &Impulse| {
+        if let Some(out) = csv.as_deref_mut() {
+            if k == 0 {
+                write!(out, "t,qw,qx,qy,qz,w1,w2,w3,J1,J2,J3,energy")?;
+                for i in 1..=N {
+                    write!(out, ",wheel{i}")?;
                 }
-                impulse.magnitude += tau.norm() * h;
+                writeln!(out)?;
+                write_row(sim, out, cfg, 0, s)?;
+                out.flush()?;
+            } else if k % cfg.every == 0 {
+                write_row(sim, out, cfg, k, s)?;
+                out.row_done()?;
             }
         }
-        Ok(s)
-    }
-
-    /// Checks that the state after step `k` (0: the initial state) is finite and its attitude
-    /// a unit quaternion, as written: time, attitude, rate, momentum, energy, wheel speeds.
-    fn check(&self, cfg: &Config, k: u64, s: &State<T, N>) -> Result<(), String> {
-        let t = T::from_f64(k as f64 * cfg.dt);
-        let q = self.attitude_at(s, t).to_array();
-        let n2 = q.iter().fold(T::ZERO, |acc, &x| acc + x * x);
-        let (w, e) = (self.omega(s), self.energy(s));
-        // The integrators renormalise the attitude: a norm visibly off 1 is a collapsed step.
-        let unit = (n2 - T::ONE).abs() <= T::from_f64(1e-3);
-        if t.is_finite()
-            && q.iter().all(|x| x.is_finite())
-            && unit
-            && w.is_finite()
-            && s.momentum.is_finite()
-            && e.is_finite()
-            && s.wheel_speeds.iter().all(|x| x.is_finite())
+        if let Some(n) = stride
+            && (k % n == 0 || k == cfg.steps)
         {
-            return Ok(());
-        }
-        let at = if k == 0 {
-            "the initial state".to_string()
-        } else {
-            format!("step {k}: the state")
-        };
-        let g = |x: T| format!("{:.6e}", x.to_f64());
-        let v = |v: Vec3<T>| format!("({}, {}, {})", g(v.x), g(v.y), g(v.z));
-        let speeds: Vec<String> = s.wheel_speeds.iter().map(|&x| g(x)).collect();
-        Err(format!(
-            "{at} is not finite or its attitude not a unit quaternion (t = {}, q = ({}, {}, {}, \
-             {}), w = {}, J = {}, energy = {}{}): the values are too large for {}",
-            g(t),
-            g(q[0]),
-            g(q[1]),
-            g(q[2]),
-            g(q[3]),
-            v(w),
-            v(s.momentum),
-            g(e),
-            if speeds.is_empty() {
-                String::new()
-            } else {
-                format!(", wheels ({})", speeds.join(", "))
-            },
-            if cfg.f32 { "f32" } else { "f64" }
-        ))
-    }
-
-    fn write_row(
-        &self,
-        out: &mut dyn Write,
-        cfg: &Config,
-        k: u64,
-        s: &State<T, N>,
-    ) -> io::Result<()> {
-        let t = T::from_f64(k as f64 * cfg.dt);
-        let q = self.attitude_at(s, t);
-        let w = self.omega(s);
-        let j = s.momentum;
-        let e = self.energy(s);
-        write!(
-            out,
-            "{t},{},{},{},{},{},{},{},{},{},{},{e}",
-            q.w(),
-            q.x(),
-            q.y(),
-            q.z(),
-            w.x,
-            w.y,
-            w.z,
-            j.x,
-            j.y,
-            j.z
-        )?;
-        for speed in &s.wheel_speeds {
-            write!(out, ",{speed}")?;
-        }
-        writeln!(out)
-    }
-
-    /// Runs `cfg`, writing CSV to `csv` if given and sampling every `stride` steps if given.
-    fn run(
-        &self,
-        cfg: &Config,
-        mut csv: Option<&mut Csv>,
-        stride: Option<u64>,
-    ) -> Result<Outcome, Fail> {
-        let mut state = self.start;
-        self.check(cfg, 0, &state).map_err(Fail::Msg)?;
-        let inv0 = self.invariants(&state);
-        let mut monitor = DriftMonitor::new(inv0);
-        let mut impulse = Impulse::default();
-        let mut traj = Trajectory::default();
-        let record = |traj: &mut Trajectory, k: u64, s: &State<T, N>, impulse: &Impulse| {
-            traj.t.push(k as f64 * cfg.dt);
+            let t = k as f64 * cfg.dt;
+            traj.t.push(t);
             traj.attitude
-                .push(widen(self.attitude_at(s, T::from_f64(k as f64 * cfg.dt))));
-            traj.omega.push(f3(self.omega(s)));
+                .push(widen(sim.attitude_at(s, T::from_f64(t))));
+            traj.omega.push(f3(sim.omega(s)));
             traj.momentum.push(f3(s.momentum));
             traj.wheels
                 .push(s.wheel_speeds.iter().map(|w| w.to_f64()).collect());
-            traj.energy.push(self.energy(s).to_f64());
-            let lab = f3(self.body.invariants(s).lab_momentum);
+            traj.energy.push(sim.energy(s).to_f64());
+            let lab = f3(sim.body.invariants(s).lab_momentum);
             traj.lab_balance.push(sub(lab, impulse.lab));
-        };
-        if let Some(out) = csv.as_deref_mut() {
-            write!(out, "t,qw,qx,qy,qz,w1,w2,w3,J1,J2,J3,energy")?;
-            for i in 1..=N {
-                write!(out, ",wheel{i}")?;
-            }
-            writeln!(out)?;
-            self.write_row(out, cfg, 0, &state)?;
-            out.flush()?;
         }
-        if stride.is_some() {
-            record(&mut traj, 0, &state, &impulse);
-        }
-        let mut progress = Progress::new(cfg.steps);
-        for k in 1..=cfg.steps {
-            state = self
-                .advance(cfg, &state, k, &mut impulse)
-                .and_then(|s| self.check(cfg, k, &s).map(|()| s))
-                .map_err(Fail::Msg)?;
-            monitor.record(&self.invariants(&state));
-            if k % cfg.every == 0
-                && let Some(out) = csv.as_deref_mut()
-            {
-                self.write_row(out, cfg, k, &state)?;
-                out.row_done()?;
-            }
-            if let Some(n) = stride
-                && (k % n == 0 || k == cfg.steps)
-            {
-                record(&mut traj, k, &state, &impulse);
-            }
-            progress.tick(k);
-        }
-        if let Some(out) = csv {
-            out.flush()?;
-        }
-        let end = self.invariants(&state);
-        Ok(Outcome {
-            trajectory: traj,
-            lab0: f3(inv0.lab_momentum),
-            lab_end: f3(end.lab_momentum),
-            impulse,
-            lab_drift_max: monitor.worst().lab_momentum.to_f64(),
-            norm_drift_max: monitor.worst().momentum_norm.to_f64(),
-            energy0: inv0.energy.to_f64(),
-            energy_end: end.energy.to_f64(),
-        })
+        progress.tick(k);
+        Ok(())
+    })?;
+    if let Some(out) = csv {
+        out.flush().map_err(Fail::Sink)?;
     }
+    Ok((outcome, traj))
 }
 
-fn run_csv<T: Real + Display, const N: usize>(cfg: &Config) -> Result<(), String> {
+fn run_csv<T: Real + Display, const N: usize>(
+    cfg: &Config,
+    plot: Option<&Path>,
+) -> Result<(), String> {
     let sim = setup::<T, N>(cfg)?;
     if cfg.semi_rigid.is_some() {
         let model = build::<f64>(cfg)?;
@@ -1171,23 +476,23 @@ fn run_csv<T: Real + Display, const N: usize>(cfg: &Config) -> Result<(), String
             say_part!("{}", describe_semi(cfg, semi, &model.hamiltonian));
         }
     }
-    if let Some(path) = &cfg.plot {
+    if let Some(path) = plot {
         // Fail before any output when the plot cannot be written.
         std::fs::File::create(path).map_err(|e| format!("--plot {}: {e}", path.display()))?;
     }
     let mut out = Csv::stdout();
-    let stride = cfg.plot.as_ref().map(|_| plot_stride(cfg.steps));
-    let outcome = match sim.run(cfg, Some(&mut out), stride) {
+    let stride = plot.map(|_| plot_stride(cfg.steps));
+    let (outcome, trajectory) = match run(&sim, cfg, Some(&mut out), stride) {
         Ok(o) => o,
         // A closed pipe (`simulate ... | head`) is not an error of the simulation; the run
         // stops there, and the plot file made empty above goes.
-        Err(Fail::Io(e)) if stream::is_closed_pipe(&e) => {
-            if let Some(path) = &cfg.plot {
+        Err(Fail::Sink(e)) if stream::is_closed_pipe(&e) => {
+            if let Some(path) = plot {
                 let _ = std::fs::remove_file(path);
             }
             return Ok(());
         }
-        Err(Fail::Io(e)) => return Err(format!("writing output: {e}")),
+        Err(Fail::Sink(e)) => return Err(format!("writing output: {e}")),
         Err(Fail::Msg(m)) => {
             // The rows before the failed step stay.
             return match out.flush() {
@@ -1200,8 +505,8 @@ fn run_csv<T: Real + Display, const N: usize>(cfg: &Config) -> Result<(), String
     if cfg.has_actuators() {
         say_part!("{}", summary::<N>(cfg, &outcome));
     }
-    if let Some(path) = &cfg.plot {
-        let figure = csv_figure::<N>(cfg, &outcome)?;
+    if let Some(path) = plot {
+        let figure = csv_figure::<N>(cfg, &trajectory)?;
         plot::write_svg(path, &figure)?;
         say!("simulate: plot written to {}", path.display());
     }
@@ -1277,8 +582,7 @@ fn summary<const N: usize>(cfg: &Config, o: &Outcome) -> String {
 }
 
 /// The figure of a CSV run.
-fn csv_figure<const N: usize>(cfg: &Config, o: &Outcome) -> Result<Figure, String> {
-    let tr = &o.trajectory;
+fn csv_figure<const N: usize>(cfg: &Config, tr: &Trajectory) -> Result<Figure, String> {
     let rel = |x: f64, x0: f64| {
         if x0 != 0.0 {
             (x - x0).abs() / x0.abs()
@@ -1345,12 +649,12 @@ fn csv_figure<const N: usize>(cfg: &Config, o: &Outcome) -> Result<Figure, Strin
         }
     } else if cfg.f32 {
         let reference = setup::<f64, N>(cfg)?;
-        match reference.run(cfg, None, Some(plot_stride(cfg.steps))) {
-            Ok(r) => Some((
+        match run(&reference, cfg, None, Some(plot_stride(cfg.steps))) {
+            Ok((_, r)) => Some((
                 "attitude difference f32 vs the same run in f64".to_string(),
                 vec![Series::new(
                     "f32 - f64",
-                    degrees(&tr.attitude, &|i| r.trajectory.attitude[i]),
+                    degrees(&tr.attitude, &|i| r.attitude[i]),
                 )],
             )),
             Err(_) => None,
@@ -1412,104 +716,16 @@ fn csv_figure<const N: usize>(cfg: &Config, o: &Outcome) -> Result<Figure, Strin
 // ---------------------------------------------------------------------------------------------
 // Default scenario
 
-/// The default initial body rate: mostly about the intermediate axis, off the separatrix (with
-/// these moments the separatrix is |J₁| = |J₃|, the seed's γ_B = 45° of (6.8.10)).
-const DEFAULT_OMEGA0: [f64; 3] = [0.05, 1.0, 0.01];
-
-struct Run {
-    flips: Vec<f64>,
-    energy_drift: f64,
-    norm_drift: f64,
-    lab_drift: f64,
-    attitudes: Vec<UnitQuat<f64>>,
-    /// Per sample (every `every` steps): body rate, body momentum, relative drift of energy,
-    /// |J| and lab momentum.
-    rates: Vec<[f64; 3]>,
-    momenta: Vec<[f64; 3]>,
-    drifts: Vec<[f64; 3]>,
-}
-
-fn simulate_default<T: Real>(integ: Integrator, dt: f64, steps: usize, every: usize) -> Run {
-    let moments = [6.0, 4.0, 3.0];
-    let inertia = Inertia::try_from_principal(v3::<T>(moments)).expect("physical");
-    let body = Gyrostat::rigid(inertia);
-    let mut s = body
-        .try_state_from_omega(UnitQuat::IDENTITY, v3(DEFAULT_OMEGA0), [])
-        .expect("finite");
-    let mut monitor = DriftMonitor::new(body.invariants(&s));
-    let mut flips = Vec::new();
-    let mut attitudes = Vec::new();
-    let (mut rates, mut momenta, mut drifts) = (Vec::new(), Vec::new(), Vec::new());
-    let mut prev = s.momentum.y.to_f64();
-    for k in 1..=steps {
-        s = body.step(integ, &s, T::from_f64(dt)).expect("finite step");
-        let jy = s.momentum.y.to_f64();
-        if (jy > 0.0) != (prev > 0.0) {
-            // Linear interpolation of the zero crossing of J₂.
-            let t = (k as f64 - 1.0 + prev / (prev - jy)) * dt;
-            flips.push(t);
-        }
-        prev = jy;
-        let d = monitor.record(&body.invariants(&s));
-        if k % every == 0 {
-            attitudes.push(widen(s.attitude));
-            rates.push(f3(body.omega(&s)));
-            momenta.push(f3(s.momentum));
-            drifts.push([d.energy, d.momentum_norm, d.lab_momentum].map(|x| x.to_f64()));
-        }
-    }
-    let drift = monitor.worst();
-    Run {
-        flips,
-        energy_drift: drift.energy.to_f64(),
-        norm_drift: drift.momentum_norm.to_f64(),
-        lab_drift: drift.lab_momentum.to_f64(),
-        attitudes,
-        rates,
-        momenta,
-        drifts,
-    }
-}
-
-/// An attitude of any scalar type in f64.
-fn widen<T: Real>(q: UnitQuat<T>) -> UnitQuat<f64> {
-    UnitQuat::new_unchecked(Quat::from_array(q.to_array().map(|c| c.to_f64())))
-}
-
-/// The largest geodesic angle (degrees) between two attitude sequences.
-fn max_angle_deg(a: &[UnitQuat<f64>], b: &[UnitQuat<f64>]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| x.angle_to(*y))
-        .fold(0.0f64, f64::max)
-        .to_degrees()
-}
-
-fn mean_interval(t: &[f64]) -> Option<f64> {
-    if t.len() < 2 {
-        return None;
-    }
-    Some((t[t.len() - 1] - t[0]) / (t.len() - 1) as f64)
-}
-
 fn default_scenario(plot_path: Option<PathBuf>) -> Result<(), String> {
-    let (dt, steps, every) = (0.01, 20_000, 10);
-    let integ = Integrator::Yoshida4;
-    let r32 = simulate_default::<f32>(integ, dt, steps, every);
-    let r64 = simulate_default::<f64>(integ, dt, steps, every);
     // The closed-form solution (Jacobi elliptic functions, Landau–Lifshitz §37) is the
     // reference for the flip interval 2K(m)/λ and for the attitude.
-    let moments = [6.0, 4.0, 3.0];
-    let inertia = Inertia::try_from_principal(v3::<f64>(moments)).map_err(|e| e.to_string())?;
-    let start = Gyrostat::rigid(inertia)
-        .try_state_from_omega(UnitQuat::IDENTITY, v3(DEFAULT_OMEGA0), [])
-        .map_err(|e| e.to_string())?;
-    let exact = FreeRigidBody::try_new(&inertia, &start).map_err(|e| e.to_string())?;
-    let closed = exact.flip_interval();
-    let exact_attitudes: Vec<UnitQuat<f64>> = (1..=steps / every)
-        .map(|k| exact.state_at_unchecked((k * every) as f64 * dt).attitude)
-        .collect();
-    let err_vs_exact = |r: &Run| max_angle_deg(&r.attitudes, &exact_attitudes);
+    let scenario = simulation::default_scenario()?;
+    let (dt, steps, every) = scenario.run;
+    let (r32, r64) = (scenario.f32, scenario.f64);
+    let closed = scenario.flip_interval;
+    let exact_attitudes = &scenario.exact;
+    let inertia = scenario.inertia;
+    let err_vs_exact = |r: &Run| max_angle_deg(&r.attitudes, exact_attitudes);
     let f32_vs_f64 = max_angle_deg(&r32.attitudes, &r64.attitudes);
     let mut text = String::new();
     let fmt_opt = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4} s"));
@@ -1595,7 +811,7 @@ fn default_scenario(plot_path: Option<PathBuf>) -> Result<(), String> {
     let angles = |r: &Run| -> Vec<f64> {
         r.attitudes
             .iter()
-            .zip(&exact_attitudes)
+            .zip(exact_attitudes)
             .map(|(a, b)| a.angle_to(*b).to_degrees())
             .collect()
     };

@@ -3,7 +3,7 @@
 
 use std::io::{self, Read};
 
-use gyrostat_tools::stream::Lines;
+use crate::stream::Lines;
 
 /// The external body-frame torque of a run.
 #[derive(Debug, Clone, PartialEq)]
@@ -77,6 +77,29 @@ impl Schedule {
         }
         if times.is_empty() {
             return Err("no data rows after the header".into());
+        }
+        Ok(Self { times, torques })
+    }
+
+    /// A schedule of rows `(t, torque)`: at least one row, every number finite, times strictly
+    /// ascending.
+    ///
+    /// # Errors
+    /// `row N: reason` (0-based) for the first row that breaks a rule, or `no rows`.
+    pub fn try_new(times: Vec<f64>, torques: Vec<[f64; 3]>) -> Result<Self, String> {
+        if times.is_empty() || times.len() != torques.len() {
+            return Err("no rows (or times and torques of different lengths)".into());
+        }
+        for (i, (t, tau)) in times.iter().zip(&torques).enumerate() {
+            if !(t.is_finite() && tau.iter().all(|x| x.is_finite())) {
+                return Err(format!("row {i}: non-finite value"));
+            }
+            if i > 0 && *t <= times[i - 1] {
+                return Err(format!(
+                    "row {i}: time {t} is not after the previous row's {}",
+                    times[i - 1]
+                ));
+            }
         }
         Ok(Self { times, torques })
     }

@@ -1,0 +1,452 @@
+"""gyrostat: attitude conversions, propagation, gyrostat simulation and attitude estimation on
+numpy arrays, computed by the Rust crate ``gyrostat`` (no_std, panic-free).
+
+Conventions (the crate's, stated once):
+
+* An attitude maps body-frame vectors to the lab frame, ``v_lab = R v_body``; ``R`` has the body
+  axes as columns. This is the active rotation of ``scipy.spatial.transform.Rotation``:
+  ``Rotation.as_matrix()`` and ``Rotation.apply()`` mean the same in both packages.
+* Quaternions are Hamilton. :class:`Rotation` takes and gives them in scipy's order
+  (``x, y, z, w``) unless ``scalar_first=True``; every other function of this package returns
+  them scalar first, ``w, x, y, z``.
+* Body rates and gyro increments are in the body frame, rad/s and rad; angles in rad unless a
+  ``degrees`` argument says otherwise.
+* Euler sequences are scipy's strings: three letters from ``xyz``, uppercase intrinsic
+  (``"ZYX"``: ``R = R_Z(a) R_Y(b) R_X(c)``), lowercase extrinsic.
+
+Every batch call runs in Rust with the GIL released, so a thread pool spreads independent
+calls over cores. A bad row raises :class:`GyrostatError` (a ``ValueError``): its message starts
+with ``row N:`` and its ``row`` attribute is ``N`` (0-based), or ``None`` for a problem of the
+arguments as a whole.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Dict, Iterable, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _gyrostat
+from ._gyrostat import GyrostatError
+
+__all__ = [
+    "GyrostatError",
+    "Rotation",
+    "propagate_increments",
+    "propagate_rates",
+    "Simulation",
+    "simulate",
+    "default_scenario",
+    "Estimate",
+    "estimate",
+    "estimator_defaults",
+]
+
+ArrayLike = npt.ArrayLike
+Array = npt.NDArray[np.float64]
+
+
+def _error(message: str) -> GyrostatError:
+    err = GyrostatError(message)
+    err.row = None
+    return err
+
+
+def _rows(x: ArrayLike, width: int, name: str) -> Tuple[Array, bool]:
+    """``x`` as C-contiguous float64 rows of ``width`` numbers, and whether it was one row."""
+    a = np.asarray(x, dtype=np.float64)
+    if a.ndim == 1 and a.shape[0] == width:
+        return np.ascontiguousarray(a.reshape(1, width)), True
+    if a.ndim == 2 and a.shape[1] == width:
+        return np.ascontiguousarray(a), False
+    raise _error(f"{name}: expected shape ({width},) or (N, {width}), got {a.shape}")
+
+
+def _matrices(x: ArrayLike) -> Tuple[Array, bool]:
+    a = np.asarray(x, dtype=np.float64)
+    if a.shape == (3, 3):
+        return np.ascontiguousarray(a.reshape(1, 9)), True
+    if a.ndim == 3 and a.shape[1:] == (3, 3):
+        return np.ascontiguousarray(a.reshape(a.shape[0], 9)), False
+    raise _error(f"matrix: expected shape (3, 3) or (N, 3, 3), got {a.shape}")
+
+
+class Rotation:
+    """Attitudes, one or many, with the names and conventions of scipy's ``Rotation``.
+
+    Held as unit quaternions (``w, x, y, z``, float64). Build one with a ``from_*`` class method
+    and convert with the ``as_*`` methods; every conversion loops in Rust over all rows with the
+    GIL released. Differences from scipy: a bad row raises :class:`GyrostatError` naming the row
+    (scipy raises without the row or returns NaN), :meth:`as_euler` reports gimbal lock per row
+    (``return_gimbal_lock=True``) instead of a warning, and only three-axis Euler sequences are
+    taken.
+    """
+
+    __slots__ = ("_q", "_single")
+
+    def __init__(self, quat_wxyz: Array, single: bool = False) -> None:
+        """Wraps unit quaternions ``w, x, y, z`` (N, 4) as they are; use the ``from_*`` methods
+        for data (they check and normalise)."""
+        self._q = np.ascontiguousarray(quat_wxyz, dtype=np.float64).reshape(-1, 4)
+        self._single = bool(single)
+
+    def _out(self, a: np.ndarray) -> np.ndarray:
+        return a[0] if self._single else a
+
+    # -- quaternions -------------------------------------------------------------------------
+    @classmethod
+    def from_quat(cls, quat: ArrayLike, *, scalar_first: bool = False) -> "Rotation":
+        """Quaternions of any finite norm, (4,) or (N, 4), each normalised; ``x, y, z, w``
+        unless ``scalar_first``. A non-finite row, or one of norm at or below machine epsilon
+        (2.2e-16: no attitude computation makes one, its direction is noise), raises."""
+        q, single = _rows(quat, 4, "quat")
+        return cls(_gyrostat.quat_from_quat(q, bool(scalar_first)), single)
+
+    def as_quat(self, canonical: bool = False, *, scalar_first: bool = False) -> Array:
+        """The unit quaternions, ``x, y, z, w`` unless ``scalar_first``; with ``canonical`` each
+        is the representative with ``w >= 0`` (ties: first non-zero of x, y, z positive)."""
+        return self._out(_gyrostat.quat_as_quat(self._q, bool(scalar_first), bool(canonical)))
+
+    # -- Euler angles -----------------------------------------------------------------------------
+    @classmethod
+    def from_euler(cls, seq: str, angles: ArrayLike, degrees: bool = False) -> "Rotation":
+        """Euler angles (3,) or (N, 3) in ``seq`` (three letters from xyz: uppercase intrinsic,
+        lowercase extrinsic)."""
+        a, single = _rows(angles, 3, "angles")
+        return cls(_gyrostat.quat_from_euler(seq, a, bool(degrees)), single)
+
+    def as_euler(
+        self, seq: str, degrees: bool = False, *, return_gimbal_lock: bool = False
+    ) -> Union[Array, Tuple[Array, npt.NDArray[np.bool_]]]:
+        """Euler angles in ``seq``: first and third in (-pi, pi], the middle one in
+        [-pi/2, pi/2] (Tait-Bryan) or [0, pi] (proper). At a gimbal lock (the middle angle
+        within 2 eps of its pole) only a combination of the outer angles is determined: the
+        third is set to 0, as scipy does, and no warning is given; with
+        ``return_gimbal_lock=True`` a boolean array marks those rows."""
+        angles, lock = _gyrostat.quat_as_euler(self._q, seq, bool(degrees))
+        if return_gimbal_lock:
+            return self._out(angles), self._out(lock)
+        return self._out(angles)
+
+    # -- rotation vectors and MRPs ---------------------------------------------------------------
+    @classmethod
+    def from_rotvec(cls, rotvec: ArrayLike, degrees: bool = False) -> "Rotation":
+        """Rotation vectors (angle times unit axis), (3,) or (N, 3); in degrees the whole vector
+        is scaled, as in scipy."""
+        v, single = _rows(rotvec, 3, "rotvec")
+        return cls(_gyrostat.quat_from_rotvec(v, bool(degrees)), single)
+
+    def as_rotvec(self, degrees: bool = False) -> Array:
+        """Rotation vectors, angle in [0, pi]."""
+        return self._out(_gyrostat.quat_as_rotvec(self._q, bool(degrees)))
+
+    @classmethod
+    def from_mrp(cls, mrp: ArrayLike) -> "Rotation":
+        """Modified Rodrigues parameters ``axis * tan(angle / 4)``, (3,) or (N, 3)."""
+        p, single = _rows(mrp, 3, "mrp")
+        return cls(_gyrostat.quat_from_mrp(p), single)
+
+    def as_mrp(self) -> Array:
+        """Modified Rodrigues parameters with norm at most 1 (angle at most pi)."""
+        return self._out(_gyrostat.quat_as_mrp(self._q))
+
+    # -- matrices ---------------------------------------------------------------------------------
+    @classmethod
+    def from_matrix(cls, matrix: ArrayLike) -> "Rotation":
+        """Rotation matrices (3, 3) or (N, 3, 3); a matrix that is not orthonormal (beyond
+        1000 eps) is replaced by its nearest rotation (the orthogonal polar factor). A matrix
+        with determinant <= 0 raises."""
+        m, single = _matrices(matrix)
+        return cls(_gyrostat.quat_from_matrix(m), single)
+
+    def as_matrix(self) -> Array:
+        """Rotation matrices (N, 3, 3): the body axes as columns (``v_lab = R v_body``)."""
+        m = _gyrostat.quat_as_matrix(self._q).reshape(-1, 3, 3)
+        return self._out(m)
+
+    # -- the rest of the group --------------------------------------------------------------------
+    @classmethod
+    def identity(cls, num: Optional[int] = None) -> "Rotation":
+        """The identity, one (``num=None``) or ``num`` of them."""
+        n = 1 if num is None else int(num)
+        q = np.zeros((n, 4))
+        q[:, 0] = 1.0
+        return cls(q, num is None)
+
+    @property
+    def single(self) -> bool:
+        """Whether this holds one rotation (not a stack of them)."""
+        return self._single
+
+    def __len__(self) -> int:
+        if self._single:
+            raise TypeError("a single rotation has no len()")
+        return self._q.shape[0]
+
+    def __getitem__(self, index: Any) -> "Rotation":
+        if self._single:
+            raise TypeError("a single rotation is not subscriptable")
+        q = self._q[index]
+        return Rotation(q, q.ndim == 1)
+
+    def __mul__(self, other: "Rotation") -> "Rotation":
+        """Composition: ``(a * b).apply(v) == a.apply(b.apply(v))``."""
+        if not isinstance(other, Rotation):
+            return NotImplemented
+        q = _gyrostat.quat_compose(self._q, other._q)
+        return Rotation(q, self._single and other._single)
+
+    def inv(self) -> "Rotation":
+        """The inverse rotations."""
+        q = self._q.copy()
+        q[:, 1:] *= -1.0
+        return Rotation(q, self._single)
+
+    def apply(self, vectors: ArrayLike, inverse: bool = False) -> Array:
+        """``R v`` (or ``R^T v``) for vectors (3,) or (N, 3), one rotation or vector broadcast
+        against many."""
+        v, single_v = _rows(vectors, 3, "vectors")
+        out = _gyrostat.quat_apply(self._q, v, bool(inverse))
+        return out[0] if (self._single and single_v) else out
+
+    def magnitude(self) -> Union[float, Array]:
+        """The rotation angles, in [0, pi]."""
+        m = _gyrostat.quat_magnitude(self._q)
+        return float(m[0]) if self._single else m
+
+    def __repr__(self) -> str:
+        return f"Rotation.from_quat({self.as_quat(scalar_first=True).tolist()!r}, scalar_first=True)"
+
+
+# -- propagation -------------------------------------------------------------------------------
+
+
+def propagate_increments(
+    increments: ArrayLike,
+    *,
+    rule: str = "coning2",
+    q0: Sequence[float] = (1.0, 0.0, 0.0, 0.0),
+    precision: str = "f64",
+    compensated: bool = False,
+) -> np.ndarray:
+    """Attitudes from gyro increments (N, 3) (rad, body frame, each the integral of the rate
+    over one sample interval), as the ``propagate --input increments`` tool computes them.
+
+    Row ``k`` of the result (N, 4; ``w, x, y, z``, body -> lab) is the attitude after increments
+    ``0..=k``. ``rule``: ``exp`` (no coning correction), ``coning1`` (previous-interval
+    correction), ``coning2``/``coning3``/``coning4`` (one update per 2/3/4 increments; a row
+    inside a group applies the pending increments with the highest-order rule that fits them).
+    ``precision``: ``f64``, ``f32`` (float32 rows) or ``q30`` (Q1.30 fixed point, the firmware's
+    integer code, bit for bit: every number an exact multiple of 2**-30). ``compensated`` carries
+    the attitude's rounding error (f64 and f32). ``q0`` is scalar first, its norm within 1e-3 of
+    1. A non-finite sample, one beyond half a turn, or (q30) beyond 2 rad raises, naming the row.
+    """
+    v, _ = _rows(increments, 3, "increments")
+    return _gyrostat.propagate_increments(
+        v, rule, [float(x) for x in q0], precision, bool(compensated)
+    )
+
+
+def propagate_rates(
+    rates: ArrayLike,
+    dt: float,
+    *,
+    method: str = "magnus4",
+    q0: Sequence[float] = (1.0, 0.0, 0.0, 0.0),
+    precision: str = "f64",
+    compensated: bool = False,
+) -> np.ndarray:
+    """Attitudes from body-rate samples (N, 3) (rad/s, sample ``k`` at time ``k*dt``), as the
+    ``propagate --input rates`` tool computes them: row ``k`` (``w, x, y, z``) is the attitude at
+    time ``k*dt`` (row 0 is ``q0``). ``method``: ``magnus4``, ``cf4`` or ``rk4`` (fourth order
+    between the samples' cubic interpolant). ``precision``: ``f64`` or ``f32``."""
+    v, _ = _rows(rates, 3, "rates")
+    return _gyrostat.propagate_rates(
+        v, float(dt), method, [float(x) for x in q0], precision, bool(compensated)
+    )
+
+
+# -- simulation ---------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """The rows of a ``simulate`` run: step 0 and every ``every``-th step.
+
+    ``t`` (s), ``q`` (N, 4; ``w, x, y, z``, body -> lab), ``omega`` (N, 3; body rate dH/dJ,
+    rad/s), ``momentum`` (N, 3; total body angular momentum J, body plus wheels), ``energy``
+    (N,; H(J)), ``wheel_speeds`` (N, wheels; relative to the body, rad/s); ``monitors``: the
+    lab-frame momentum at the start and the end, its largest relative drift, that of ``|J|``,
+    the energy at the start and the end, the integrated external torque. With ``f32=True`` the
+    numbers are the f32 run's, widened exactly.
+    """
+
+    t: Array
+    q: Array
+    omega: Array
+    momentum: Array
+    energy: Array
+    wheel_speeds: Array
+    integrator: str
+    monitors: Optional[Dict[str, Any]]
+
+
+def simulate(
+    *,
+    dt: float,
+    steps: int,
+    integrator: str,
+    inertia: Optional[Sequence[float]] = None,
+    inertia_offdiag: Optional[Sequence[float]] = None,
+    omega: Optional[Sequence[float]] = None,
+    momentum: Optional[Sequence[float]] = None,
+    spin: Optional[Sequence[float]] = None,
+    quartic: Optional[Tuple[str, float]] = None,
+    semi_rigid: Optional[Tuple[str, float, float, float]] = None,
+    q0: Optional[Sequence[float]] = None,
+    wheels: Iterable[Sequence[float]] = (),
+    wheel_torque: Optional[Sequence[float]] = None,
+    wheel_speed: Optional[Sequence[float]] = None,
+    torque: Optional[Sequence[float]] = None,
+    torque_schedule: Optional[ArrayLike] = None,
+    every: int = 1,
+    f32: bool = False,
+) -> Simulation:
+    """A rigid-body or gyrostat run, the scenarios of the ``simulate`` tool (its flags as keywords,
+    the same checks and the same numbers; ``simulate --help`` describes each).
+
+    ``inertia`` (I1, I2, I3) with ``inertia_offdiag`` (I12, I13, I23), or ``semi_rigid`` =
+    (kind, mass, omega_v, r0) with kind ``octahedral``, ``cubic`` or ``tetrahedral``; ``omega``
+    or ``momentum``; ``spin`` (gyro-rotor momentum); ``quartic`` = (``octahedral`` or ``cubic``,
+    coefficient); ``q0`` (w, x, y, z); ``wheels``: up to four (ax, ay, az, inertia[, speed0]),
+    with ``wheel_torque`` or ``wheel_speed`` (one number per wheel); ``torque`` (body frame, N m)
+    or ``torque_schedule`` (rows t, tx, ty, tz, zero-order hold); ``integrator``: ``rk4``,
+    ``strang``, ``yoshida4``, ``suzuki4`` or ``exact``; ``f32`` runs the core in f32.
+
+    Invalid arguments raise :class:`GyrostatError` before the run. A step the library rejects
+    (too long for the rates, a state no longer finite) raises it too, with the rows before it
+    in the exception's ``partial`` attribute (a :class:`Simulation`).
+    """
+    schedule = None
+    if torque_schedule is not None:
+        schedule, _ = _rows(torque_schedule, 4, "torque_schedule")
+    d = _gyrostat.simulate(
+        inertia=inertia,
+        inertia_offdiag=inertia_offdiag,
+        omega=omega,
+        momentum=momentum,
+        spin=spin,
+        quartic=quartic,
+        semi_rigid=semi_rigid,
+        q0=q0,
+        wheels=[[float(x) for x in w] for w in wheels],
+        wheel_torque=wheel_torque,
+        wheel_speed=wheel_speed,
+        torque=torque,
+        torque_schedule=schedule,
+        dt=dt,
+        steps=steps,
+        every=every,
+        integrator=integrator,
+        f32=f32,
+    )
+    sim = Simulation(
+        t=d["t"],
+        q=d["q"],
+        omega=d["omega"],
+        momentum=d["momentum"],
+        energy=d["energy"],
+        wheel_speeds=d["wheel_speeds"],
+        integrator=d["integrator"],
+        monitors=d["monitors"],
+    )
+    if d["error"] is not None:
+        err = _error(d["error"])
+        err.partial = sim  # type: ignore[attr-defined]
+        raise err
+    return sim
+
+
+def default_scenario() -> Dict[str, Any]:
+    """The built-in scenario of ``simulate``: the body (6, 4, 3) kg m^2 spun at (0.05, 1, 0.01)
+    rad/s near its intermediate axis, 20000 steps of 0.01 s with yoshida4 in f32 and in f64,
+    and the closed form (exact free rigid body). Keys: ``dt``, ``steps``, ``every``,
+    ``inertia``, ``omega0``, ``integrator``, ``t`` (sample times, every 10 steps from step 10),
+    ``flip_interval_closed_form`` (2K(m)/lambda, s), ``q_exact``, and ``f32``/``f64``: dicts
+    with ``flips`` (times), ``flip_interval`` (mean), the largest drifts, the largest attitude
+    error against the closed form (degrees), and per sample ``q``, ``omega``, ``momentum``,
+    ``drift`` (relative energy, |J| and lab-momentum drift)."""
+    return _gyrostat.default_scenario()
+
+
+# -- estimation ---------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """The estimator's output per sample: ``q`` (N, 4; ``w, x, y, z``, sensor -> earth),
+    ``bias`` (N, 3; gyroscope bias, rad/s), ``accel_used``/``mag_used`` (whether the sample
+    corrected the estimate), ``at_rest``, ``attitude_std`` (N, 2; heading and inclination
+    standard deviation, rad)."""
+
+    q: Array
+    bias: Array
+    accel_used: npt.NDArray[np.bool_]
+    mag_used: npt.NDArray[np.bool_]
+    at_rest: npt.NDArray[np.bool_]
+    attitude_std: Array
+
+
+def estimator_defaults() -> Dict[str, float]:
+    """The estimator's default parameters by name (SI units, angles in rad): the keywords
+    :func:`estimate` takes."""
+    return dict(_gyrostat.estimator_defaults())
+
+
+def estimate(
+    t: ArrayLike,
+    gyro: ArrayLike,
+    accel: ArrayLike,
+    mag: Optional[ArrayLike] = None,
+    *,
+    frame: str = "enu",
+    precision: str = "f64",
+    heading_time_constant: Optional[float] = None,
+    skip_errors: bool = False,
+    **params: float,
+) -> Estimate:
+    """Attitude and gyroscope bias from an IMU record: time stamps ``t`` (N,) in s, ``gyro``
+    (N, 3) rad/s, ``accel`` (N, 3) m/s^2 and, for 9D, ``mag`` (N, 3) in any unit, all in the
+    sensor frame. Sample ``k`` is propagated over ``t[k] - t[k-1]`` (the first over the median
+    step; the first usable sample initialises the attitude). ``frame``: ``enu`` (x east,
+    y magnetic north, z up) or ``ned``. ``heading_time_constant`` switches to fixed
+    (complementary) gains. Any other keyword overrides a parameter of
+    :func:`estimator_defaults`. A bad gyroscope sample or time step raises naming the row, or
+    with ``skip_errors`` is skipped (the state unchanged, its row repeats the attitude); a bad
+    accelerometer or magnetometer sample is never an error (``accel_used``/``mag_used`` say
+    so)."""
+    tt = np.ascontiguousarray(np.asarray(t, dtype=np.float64).reshape(-1))
+    g, _ = _rows(gyro, 3, "gyro")
+    a, _ = _rows(accel, 3, "accel")
+    m = None if mag is None else _rows(mag, 3, "mag")[0]
+    d = _gyrostat.estimate(
+        tt,
+        g,
+        a,
+        m,
+        frame,
+        precision,
+        heading_time_constant,
+        [(str(k), float(v)) for k, v in params.items()],
+        bool(skip_errors),
+    )
+    return Estimate(
+        q=d["q"],
+        bias=d["bias"],
+        accel_used=d["accel_used"],
+        mag_used=d["mag_used"],
+        at_rest=d["at_rest"],
+        attitude_std=d["attitude_std"],
+    )

@@ -1,0 +1,281 @@
+//! The attitude-and-bias estimator (`gyrostat::estimation::Estimator`) over arrays of samples
+//! with their time stamps.
+//!
+//! Sample `k` is propagated over `t[k] − t[k−1]`; the first sample over the median step of the
+//! record (the first usable sample initialises the attitude and does not use its step), as the
+//! BROAD runner of host-tests feeds the estimator.
+
+use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use gyrostat::estimation::{EarthFrame, Estimator, Gains, Params, SensorUse};
+use gyrostat::{Real, Vec3};
+
+use crate::{RowError, array2, rows, values};
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(estimate, m)?)?;
+    m.add_function(wrap_pyfunction!(estimator_defaults, m)?)?;
+    Ok(())
+}
+
+/// The scalar parameters by name (the `Params` field, `field_*` and `rest_*` for the field
+/// monitor's and the rest detector's thresholds, `heading_time_constant` for fixed gains).
+const NAMES: [&str; 27] = [
+    "gyro_noise_density",
+    "gyro_scale_noise",
+    "gyro_bias_initial",
+    "gyro_bias_stability",
+    "gyro_bias_time",
+    "gyro_bias_max",
+    "gyro_range",
+    "accel_range",
+    "accel_time_constant",
+    "accel_tilt_noise",
+    "accel_correlation_time",
+    "accel_reject",
+    "mag_heading_noise",
+    "mag_correlation_time",
+    "mag_delay",
+    "mag_disturbance_weight",
+    "field_norm",
+    "field_dip",
+    "field_reference_time_constant",
+    "field_min_undisturbed",
+    "field_new_field_time",
+    "field_new_field_min_rate",
+    "rest_time_constant",
+    "rest_gyro",
+    "rest_accel",
+    "rest_max_bias",
+    "rest_min_duration",
+];
+
+/// The parameter `name` of `p`.
+fn slot<'a, T>(p: &'a mut Params<T>, name: &str) -> Option<&'a mut T> {
+    Some(match name {
+        "gyro_noise_density" => &mut p.gyro_noise_density,
+        "gyro_scale_noise" => &mut p.gyro_scale_noise,
+        "gyro_bias_initial" => &mut p.gyro_bias_initial,
+        "gyro_bias_stability" => &mut p.gyro_bias_stability,
+        "gyro_bias_time" => &mut p.gyro_bias_time,
+        "gyro_bias_max" => &mut p.gyro_bias_max,
+        "gyro_range" => &mut p.gyro_range,
+        "accel_range" => &mut p.accel_range,
+        "accel_time_constant" => &mut p.accel_time_constant,
+        "accel_tilt_noise" => &mut p.accel_tilt_noise,
+        "accel_correlation_time" => &mut p.accel_correlation_time,
+        "accel_reject" => &mut p.accel_reject,
+        "mag_heading_noise" => &mut p.mag_heading_noise,
+        "mag_correlation_time" => &mut p.mag_correlation_time,
+        "mag_delay" => &mut p.mag_delay,
+        "mag_disturbance_weight" => &mut p.mag_disturbance_weight,
+        "field_norm" => &mut p.field.norm,
+        "field_dip" => &mut p.field.dip,
+        "field_reference_time_constant" => &mut p.field.reference_time_constant,
+        "field_min_undisturbed" => &mut p.field.min_undisturbed,
+        "field_new_field_time" => &mut p.field.new_field_time,
+        "field_new_field_min_rate" => &mut p.field.new_field_min_rate,
+        "rest_time_constant" => &mut p.rest.time_constant,
+        "rest_gyro" => &mut p.rest.gyro,
+        "rest_accel" => &mut p.rest.accel,
+        "rest_max_bias" => &mut p.rest.max_bias,
+        "rest_min_duration" => &mut p.rest.min_duration,
+        "rest_bias_noise" => &mut p.rest_bias_noise,
+        _ => return None,
+    })
+}
+
+/// The estimator's default parameters (SI units, angles in rad) by name.
+#[pyfunction]
+fn estimator_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let mut p = Params::<f64>::default();
+    let d = PyDict::new(py);
+    for name in NAMES.iter().chain(&["rest_bias_noise"]) {
+        if let Some(v) = slot(&mut p, name) {
+            d.set_item(*name, *v)?;
+        }
+    }
+    Ok(d)
+}
+
+/// The parameters in `T`: the defaults with `overrides`, `frame` and fixed gains applied.
+fn params<T: Real>(
+    frame: EarthFrame,
+    heading_time_constant: Option<f64>,
+    overrides: &[(String, f64)],
+) -> Result<Params<T>, RowError> {
+    let mut p = Params::<T> {
+        frame,
+        ..Params::default()
+    };
+    if let Some(tau) = heading_time_constant {
+        p.gains = Gains::Fixed {
+            heading_time_constant: T::from_f64(tau),
+        };
+    }
+    for (name, v) in overrides {
+        *slot(&mut p, name).ok_or_else(|| {
+            RowError::call(format!(
+                "unknown estimator parameter {name:?} (estimator_defaults() lists them)"
+            ))
+        })? = T::from_f64(*v);
+    }
+    Ok(p)
+}
+
+/// What `estimate` returns per sample, in f64.
+struct Track {
+    q: Vec<f64>,
+    bias: Vec<f64>,
+    accel_used: Vec<bool>,
+    mag_used: Vec<bool>,
+    at_rest: Vec<bool>,
+    std: Vec<f64>,
+}
+
+/// The median of the positive finite steps of `t` (0.01 s for fewer than two samples).
+fn median_step(t: &[f64]) -> f64 {
+    let mut d: Vec<f64> = t
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|d| d.is_finite() && *d > 0.0)
+        .collect();
+    if d.is_empty() {
+        return 0.01;
+    }
+    d.sort_by(f64::total_cmp);
+    d[d.len() / 2]
+}
+
+fn run<T: Real>(
+    params: Params<T>,
+    t: &[f64],
+    gyro: &[f64],
+    accel: &[f64],
+    mag: Option<&[f64]>,
+    skip_errors: bool,
+) -> Result<Track, RowError> {
+    let mut f = Estimator::try_new(params).map_err(|e| {
+        RowError::call(format!(
+            "estimator parameters: {e} (a noise, time or threshold is NaN, negative or zero)"
+        ))
+    })?;
+    let n = t.len();
+    let v = |a: &[f64], k: usize| {
+        Vec3::new(
+            T::from_f64(a[3 * k]),
+            T::from_f64(a[3 * k + 1]),
+            T::from_f64(a[3 * k + 2]),
+        )
+    };
+    let first = median_step(t);
+    let mut tr = Track {
+        q: Vec::with_capacity(4 * n),
+        bias: Vec::with_capacity(3 * n),
+        accel_used: Vec::with_capacity(n),
+        mag_used: Vec::with_capacity(n),
+        at_rest: Vec::with_capacity(n),
+        std: Vec::with_capacity(2 * n),
+    };
+    for k in 0..n {
+        let dt = if k == 0 { first } else { t[k] - t[k - 1] };
+        let m = mag.map(|m| v(m, k));
+        match f.update(v(gyro, k), v(accel, k), m, T::from_f64(dt)) {
+            Ok(o) => {
+                tr.accel_used.push(o.accel == SensorUse::Used);
+                tr.mag_used.push(o.mag == SensorUse::Used);
+                tr.at_rest.push(o.at_rest);
+            }
+            Err(e) if skip_errors => {
+                let _ = e;
+                tr.accel_used.push(false);
+                tr.mag_used.push(false);
+                tr.at_rest.push(false);
+            }
+            Err(e) => {
+                return Err(RowError::at(
+                    k,
+                    format!(
+                        "{e} (time step {dt:e} s from the time stamps; a step must be finite, \
+                         > 0 and <= 1000 s, the gyroscope sample finite and turning less than \
+                         half a turn in it)"
+                    ),
+                ));
+            }
+        }
+        tr.q.extend(f.attitude().to_array().map(Real::to_f64));
+        tr.bias.extend(f.bias().to_array().map(Real::to_f64));
+        let (h, i) = f.attitude_std();
+        tr.std.extend([h.to_f64(), i.to_f64()]);
+    }
+    Ok(tr)
+}
+
+/// The estimator run over a record: time stamps `t` (s), gyroscope (rad/s), accelerometer
+/// (m/s²) and optionally magnetometer (any unit) rows, sensor frame. Returns a dict of arrays:
+/// `q` (sensor → earth, `w, x, y, z`), `bias` (rad/s), `accel_used`, `mag_used`, `at_rest`,
+/// `attitude_std` (heading, inclination; rad).
+#[pyfunction]
+#[pyo3(signature = (t, gyro, accel, mag, frame, precision, heading_time_constant, params, skip_errors))]
+#[allow(clippy::too_many_arguments)]
+fn estimate<'py>(
+    py: Python<'py>,
+    t: PyReadonlyArray1<'py, f64>,
+    gyro: PyReadonlyArray2<'py, f64>,
+    accel: PyReadonlyArray2<'py, f64>,
+    mag: Option<PyReadonlyArray2<'py, f64>>,
+    frame: &str,
+    precision: &str,
+    heading_time_constant: Option<f64>,
+    params: Vec<(String, f64)>,
+    skip_errors: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let t = values(&t);
+    let g = rows(&gyro, 3, "gyro")?;
+    let a = rows(&accel, 3, "accel")?;
+    let m = match &mag {
+        Some(m) => Some(rows(m, 3, "mag")?),
+        None => None,
+    };
+    let n = t.len();
+    for (name, len) in [("gyro", g.len()), ("accel", a.len())]
+        .into_iter()
+        .chain(m.as_ref().map(|m| ("mag", m.len())))
+    {
+        if len != 3 * n {
+            return Err(
+                RowError::call(format!("{name}: {} rows for {n} time stamps", len / 3)).into(),
+            );
+        }
+    }
+    let frame = match frame {
+        "enu" => EarthFrame::Enu,
+        "ned" => EarthFrame::Ned,
+        other => {
+            return Err(RowError::call(format!("frame: unknown {other:?} (enu, ned)")).into());
+        }
+    };
+    let tr = match precision {
+        "f64" => {
+            let p = self::params::<f64>(frame, heading_time_constant, &params)?;
+            py.detach(|| run(p, &t, &g, &a, m.as_deref(), skip_errors))?
+        }
+        "f32" => {
+            let p = self::params::<f32>(frame, heading_time_constant, &params)?;
+            py.detach(|| run(p, &t, &g, &a, m.as_deref(), skip_errors))?
+        }
+        other => {
+            return Err(RowError::call(format!("precision: unknown {other:?} (f64, f32)")).into());
+        }
+    };
+    let d = PyDict::new(py);
+    d.set_item("q", array2(py, tr.q, 4)?)?;
+    d.set_item("bias", array2(py, tr.bias, 3)?)?;
+    d.set_item("accel_used", PyArray1::from_vec(py, tr.accel_used))?;
+    d.set_item("mag_used", PyArray1::from_vec(py, tr.mag_used))?;
+    d.set_item("at_rest", PyArray1::from_vec(py, tr.at_rest))?;
+    d.set_item("attitude_std", array2(py, tr.std, 2)?)?;
+    Ok(d)
+}
