@@ -11,7 +11,7 @@ use std::fmt::Debug;
 use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 
-use gyrostat::fixed::Q30;
+use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
     RateIntegrator, RateMethod,
@@ -147,10 +147,14 @@ fn increments<T: Real + Debug, A: PropagatedAttitude<T> + From<UnitQuat<T>>>(
 fn increments_q30(input: &[f64], q0: [f64; 4], rule: ConingRule) -> Result<Vec<f64>, RowError> {
     let q0 = initial::<f64>(q0)?;
     let q0 = UnitQuat::<Q30>::try_from_f64(q0).map_err(|e| RowError::call(format!("q0: {e}")))?;
-    let mut integ = IncrementIntegrator::new(q0, rule, Normalization::Fast);
+    // The tool's `--fixed`: each update carries the low bits its rounding dropped, and each
+    // increment's rounding remainder goes into the next one (the firmware's integer code).
+    let mut integ = IncrementIntegrator::new(CarriedAttitude::new(q0), rule, Normalization::Fast);
+    let mut quantizer = IncrementQuantizer::<30>::new();
     let mut out = Vec::with_capacity(input.len() / 3 * 4);
     for (k, r) in input.chunks_exact(3).enumerate() {
-        let v = Vec3::<Q30>::try_from_f64(Vec3::new(r[0], r[1], r[2]))
+        let v = quantizer
+            .try_quantize(Vec3::new(r[0], r[1], r[2]))
             .map_err(|e| RowError::at(k, format!("{e} (Q1.30 holds |value| < 2 rad)")))?;
         integ.push(v).map_err(|e| RowError::at(k, e.to_string()))?;
         out.extend(integ.provisional_attitude().to_f64().to_array());
