@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use gyrostat::rotation::{Dcm, Euler, EulerSequence, GimbalPolicy, Mrp, RotationVector};
 use gyrostat::{Error, Mat3, Quat, UnitQuat, Vec3};
 
-use crate::{RowError, map_index_into, map_into, rows};
+use crate::{RowError, copy_rows, empty_rows, map_index_into, map_into, map_rows, rows, slots};
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(quat_from_quat, m)?)?;
@@ -103,27 +103,15 @@ fn quat_as_quat<'py>(
     let q = rows(&quat, 4, "quat")?;
     if scalar_first && !canonical {
         // The rows as held: a copy.
-        let out = PyArray2::<f64>::zeros(py, [q.len() / 4, 4], false);
-        {
-            let mut rw = out.readwrite();
-            let slots = rw
-                .as_slice_mut()
-                .map_err(|e| RowError::call(format!("output array: {e}")))?;
-            py.detach(|| slots.copy_from_slice(&q));
-        }
-        return Ok(out);
+        return Ok(copy_rows(py, &q, 4));
     }
-    map_into::<4, 4>(py, &q, |r| {
-        let [w, x, y, z] = if canonical {
-            held(r).canonical().to_array()
-        } else {
-            r
-        };
-        Ok(if scalar_first {
-            [w, x, y, z]
-        } else {
+    Ok(match (canonical, scalar_first) {
+        (true, true) => map_rows::<4, 4>(py, &q, |r| held(r).canonical().to_array()),
+        (true, false) => map_rows::<4, 4>(py, &q, |r| {
+            let [w, x, y, z] = held(r).canonical().to_array();
             [x, y, z, w]
-        })
+        }),
+        (false, _) => map_rows::<4, 4>(py, &q, |[w, x, y, z]| [x, y, z, w]),
     })
 }
 
@@ -172,12 +160,17 @@ fn quat_as_euler<'py>(
         1.0
     };
     let n = q.len() / 4;
-    let angles = PyArray2::<f64>::zeros(py, [n, 3], false);
-    let lock = PyArray1::<bool>::zeros(py, [n], false);
+    let angles = empty_rows(py, n, 3);
+    // SAFETY: every element is written below before the array is returned.
+    let lock = unsafe { PyArray1::<bool>::new(py, [n], false) };
     {
-        let (mut a, mut l) = (angles.readwrite(), lock.readwrite());
-        let e = |e: numpy::AsSliceError| RowError::call(format!("output array: {e}"));
-        let (a, l) = (a.as_slice_mut().map_err(e)?, l.as_slice_mut().map_err(e)?);
+        // SAFETY: both arrays are new; these are their only views.
+        let (a, l) = unsafe {
+            (
+                slots(angles.data(), angles.len()),
+                slots(lock.data(), lock.len()),
+            )
+        };
         py.detach(|| {
             for ((r, a), l) in q
                 .chunks_exact(4)
@@ -185,8 +178,10 @@ fn quat_as_euler<'py>(
                 .zip(l.iter_mut())
             {
                 let sol = held([r[0], r[1], r[2], r[3]]).to_euler(s, GimbalPolicy::ZeroThird);
-                a.copy_from_slice(&sol.euler.angles.map(|x| x * k));
-                *l = sol.singularity.is_some();
+                for (a, v) in a.iter_mut().zip(sol.euler.angles) {
+                    a.write(v * k);
+                }
+                l.write(sol.singularity.is_some());
             }
         });
     }
@@ -263,9 +258,9 @@ fn quat_as_mrp<'py>(
     quat: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let q = rows(&quat, 4, "quat")?;
-    map_into::<4, 3>(py, &q, |r| {
-        Ok(Mrp::from_unit_quat(held(r)).vector().to_array())
-    })
+    Ok(map_rows::<4, 3>(py, &q, |r| {
+        Mrp::from_unit_quat(held(r)).vector().to_array()
+    }))
 }
 
 /// Rotation matrices, rows of 9 numbers (row-major): a rotation within `1000·ε` is converted
@@ -300,12 +295,12 @@ fn quat_as_matrix<'py>(
     quat: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let q = rows(&quat, 4, "quat")?;
-    map_into::<4, 9>(py, &q, |r| {
+    Ok(map_rows::<4, 9>(py, &q, |r| {
         let m = held(r).to_rotation_matrix().m;
-        Ok([
+        [
             m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2],
-        ])
-    })
+        ]
+    }))
 }
 
 /// The number of rows of a broadcast of `a` and `b` rows (equal, or one of them 1).
@@ -335,10 +330,10 @@ fn quat_compose<'py>(
     let (qa, qb) = (&*qa, &*qb);
     let row = |q: &[f64], i: usize| held([q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]]);
     let idx = |i: usize| (if na == 1 { 0 } else { i }, if nb == 1 { 0 } else { i });
-    map_index_into::<4>(py, n, |i| {
+    Ok(map_index_into::<4>(py, n, |i| {
         let (ia, ib) = idx(i);
         (row(qa, ia) * row(qb, ib)).renormalize().to_array()
-    })
+    }))
 }
 
 /// `R(q)·v` (or `R(q)ᵀ·v` when `inverse`) for held attitudes and vectors, one row broadcast
@@ -355,7 +350,7 @@ fn quat_apply<'py>(
     let (nq, nv) = (q.len() / 4, v.len() / 3);
     let n = broadcast(nq, nv)?;
     let (q, v) = (&*q, &*v);
-    map_index_into::<3>(py, n, |i| {
+    Ok(map_index_into::<3>(py, n, |i| {
         let (iq, iv) = (if nq == 1 { 0 } else { i }, if nv == 1 { 0 } else { i });
         let a = held([q[4 * iq], q[4 * iq + 1], q[4 * iq + 2], q[4 * iq + 3]]);
         let x = v3([v[3 * iv], v[3 * iv + 1], v[3 * iv + 2]]);
@@ -365,7 +360,7 @@ fn quat_apply<'py>(
             a.rotate(x)
         };
         y.to_array()
-    })
+    }))
 }
 
 /// The rotation angles of held attitudes, in `[0, π]`.
