@@ -1,6 +1,6 @@
-//! The command-line tools of gyrostat (`convert`, `propagate`, `simulate`) and what they share:
-//! one flag dialect and error style ([`flags`]), one stream reader and CSV writer
-//! ([`stream`]), and the scenarios of `simulate` ([`simulation`], with the external torque of
+//! The command-line tools of gyrostat (`convert`, `propagate`, `simulate`, `estimate`) and what
+//! they share: one flag dialect and error style ([`flags`]), one stream reader and CSV writer
+//! ([`stream`]), the units of sensor data on the command line ([`units`]), and the scenarios of `simulate` ([`simulation`], with the external torque of
 //! [`torque`]), which the Python package (`python/`) runs too.
 //!
 //! The tools are binaries of this crate (`src/bin/`); install them with
@@ -16,3 +16,4 @@ pub mod flags;
 pub mod simulation;
 pub mod stream;
 pub mod torque;
+pub mod units;
