@@ -477,11 +477,13 @@ impl Layout {
         let short = [
             "t", "gx", "gy", "gz", "ax", "ay", "az", "mx", "my", "mz", "qw", "qx", "qy", "qz",
         ];
-        let names = if mag.is_some() {
-            short.iter().take(fields.len()).collect::<Vec<_>>()
-        } else {
-            short.iter().take(7).chain(short.iter().skip(10)).collect()
-        };
+        let mut names: Vec<&str> = short.iter().take(7).copied().collect();
+        if mag.is_some() {
+            names.extend(short.iter().skip(7).take(3));
+        }
+        if truth.is_some() {
+            names.extend(short.iter().skip(10));
+        }
         Ok(Layout {
             names: names.into_iter().map(|s| s.to_string()).collect(),
             time: 0,
@@ -574,20 +576,22 @@ fn parse_row<'a>(
             Ok(x)
         } else {
             Err(format!(
-                "column {} ({}): non-finite {what} '{}'",
+                "column {} ({}): non-finite {what} '{}'{}",
                 i + 1,
                 layout.names.get(i).map_or("", String::as_str),
-                field(i)
+                field(i),
+                if what == "gyroscope value" {
+                    " (the estimator cannot propagate across it)"
+                } else {
+                    ""
+                }
             ))
         }
     };
     let t = finite(layout.time, "time stamp")?;
     let mut gyro = [0.0; 3];
     for (g, &i) in gyro.iter_mut().zip(&layout.gyro) {
-        *g = finite(
-            i,
-            "gyroscope value (the estimator cannot propagate across it)",
-        )? * s.gyro;
+        *g = finite(i, "gyroscope value")? * s.gyro;
     }
     let mut accel = [0.0; 3];
     for (a, &i) in accel.iter_mut().zip(&layout.accel) {
