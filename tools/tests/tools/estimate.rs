@@ -843,3 +843,87 @@ fn data_errors_name_the_line() {
     assert_eq!(out.status, Some(1));
     assert!(out.stderr.starts_with("error: /nonexistent/log.csv: "));
 }
+
+/// The campaign's garbage lines (`campaign::garbage`) among valid rows and blank lines, at
+/// random: the run stops at the garbage line with `error: line N`, status 1, and its stdout is
+/// exactly that of a run on the lines before it (the oracle: the same tool on the clean
+/// prefix). Every garbage kind is an error for `estimate`: the time stamp is the first field
+/// (NaN, overflowing text) and the gyroscope the next (-inf).
+#[test]
+fn garbage_stops_the_run_with_what_the_lines_before_give() {
+    use crate::campaign::{BLANKS, garbage};
+    use std::ffi::OsString;
+    let bad = garbage(7);
+    let rows = synthetic(40);
+    let valid_rows: Vec<String> = csv(&rows, None, 1.0, 1.0, None)
+        .lines()
+        .map(str::to_string)
+        .collect();
+    let mut state = 0x5eed_u64;
+    let mut below = |n: usize| {
+        // SplitMix64.
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) % n as u64) as usize
+    };
+    let settings: [&[&str]; 3] = [&[], &["--f32"], &["--frame", "ned"]];
+    let mut tried = 0;
+    for setting in settings {
+        for (kind, line) in &bad {
+            let args: Vec<OsString> = setting.iter().map(OsString::from).collect();
+            let (mut input, mut n, mut k) = (Vec::new(), 0u64, 0usize);
+            // At least one valid row first: the first row fixes the layout.
+            let valid = 1 + below(20);
+            while k < valid {
+                n += 1;
+                if k > 0 && below(4) == 0 {
+                    input.extend_from_slice(BLANKS[below(BLANKS.len())]);
+                } else {
+                    input.extend_from_slice(valid_rows[k].as_bytes());
+                    k += 1;
+                }
+                input.push(b'\n');
+            }
+            let prefix = input.clone();
+            input.extend_from_slice(line);
+            input.push(b'\n');
+            input.extend_from_slice(valid_rows[valid].as_bytes());
+            input.push(b'\n');
+            let what = format!("{setting:?} {kind}");
+            let out = crate::cli::run_raw("estimate", &args, input);
+            let clean = crate::cli::run_raw("estimate", &args, prefix);
+            assert_eq!(clean.status, Some(0), "{what}: {}", clean.stderr);
+            assert_eq!(out.status, Some(1), "{what}: {}", out.stderr);
+            assert!(!out.stderr.contains("panicked"), "{what}: {}", out.stderr);
+            assert!(
+                out.stderr.starts_with(&format!("error: line {}: ", n + 1)),
+                "{what}: {}",
+                out.stderr
+            );
+            assert_eq!(out.stdout, clean.stdout, "{what}");
+            assert_eq!(out.lines().len(), valid + 1, "{what}");
+            tried += 1;
+        }
+    }
+    eprintln!("estimate: {tried} streams");
+}
+
+/// A closed stdout ends a run quietly (status 0); a closed stderr does not turn a usage
+/// error into a panic.
+#[test]
+fn a_closed_pipe_ends_a_run_quietly() {
+    use crate::cli::{Closed, run_closed};
+    let long = csv(&synthetic(20_000), Some(PLAIN), 1.0, 1.0, Some(1.0));
+    for args in [&[][..], &["--f32"][..], &["--help"][..]] {
+        let (code, stderr) = run_closed("estimate", args, &long, Closed::Stdout);
+        assert_eq!(code, Some(0), "{args:?}: {stderr}");
+        assert!(
+            !stderr.contains("panicked") && !stderr.contains("Broken pipe"),
+            "{stderr}"
+        );
+    }
+    let (code, _) = run_closed("estimate", &["--bogus"], "", Closed::Both);
+    assert_eq!(code, Some(2));
+}
