@@ -606,6 +606,25 @@ fn rows_before_initialisation_and_flags() {
     assert_eq!(est[2].flags, ["0", "used", "used", "absent"]);
     assert_eq!(est[3].flags[3], "used");
     assert_eq!(est[4].flags[3], "nonfinite");
+    // With --truth, positional reference columns (11 fields) and no movement column: every
+    // row with a reference is scored, the row without an estimate is MISSING; the level,
+    // unturned estimate of the other two rows against a reference tilted 1° about x.
+    let (s, c) = (0.5f64.to_radians().sin(), 0.5f64.to_radians().cos());
+    let text = format!(
+        "0,0,0,0,0,0,0,{c:?},{s:?},0,0\n0.01,0,0,0,0,0,9.81,{c:?},{s:?},0,0\n\
+         0.02,0,0,0,0,0,9.81,{c:?},{s:?},0,0\n"
+    );
+    let out = run("estimate", &["--truth"], &text);
+    ok(&out);
+    let (total, heading, inclination, n) = summary(&out.stderr);
+    assert_eq!(n, 2);
+    assert!(out.stderr.contains(", MISSING 1"), "{}", out.stderr);
+    assert!(
+        (total - 1.0).abs() < 1e-6 && (inclination - 1.0).abs() < 1e-6,
+        "{}",
+        out.stderr
+    );
+    assert!(heading.abs() < 1e-6, "{}", out.stderr);
     // Saturation by a parameter: a gyroscope range of 1 rad/s clips a 2 rad/s sample.
     let text = "0,0,0,0,0,0,9.81\n0.01,2,0,0,0,0,9.81\n";
     let out = run("estimate", &["--set", "gyro_range=1"], text);
