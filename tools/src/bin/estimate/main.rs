@@ -59,7 +59,7 @@ INPUT: CSV, one sample per line, blank lines skipped (they count for line number
         magnetometer   mx,my,mz | mag_x_uT,... (uT) | Magnetometer X (uT),...      (optional)
         reference      qw,qx,qy,qz | opt_qw,...       (optional, read with --truth only)
         movement       movement  (0/1, BROAD's scored phase; optional, --truth only)
-    (BROAD's names, the short names, and the x-io Fusion log's names.) A unit in a column's
+    (The short names, BROAD's, and the x-io Fusion log's.) A unit in a column's
     name is the data's unit: a unit flag that contradicts it is an error.
     Without a header, the fields are positional: t,gx,gy,gz,ax,ay,az (7 fields),
     + mx,my,mz (10), + qw,qx,qy,qz after them (11 or 14).
