@@ -1,6 +1,8 @@
 //! IMU logs in, attitude estimates out, and BROAD's metric: the data path of the attitude
 //! estimator on recorded data ([`gyrostat::estimation`]), shared by the research runner
-//! (`broad_estimate`), the regression test (`tests/estimation.rs`) and the `estimate` tool.
+//! (`broad_estimate`) and the regression test (`tests/estimation.rs`). The `estimate` tool
+//! (`tools/`) has its own reader and the same metric; its tests check its numbers against this
+//! module and `score.py`.
 //!
 //! - [`read_log`] / [`open_log`]: a CSV log with one header line. Columns are found by name:
 //!   BROAD's (`t_s`, `gyr_x_rad_s`…, `acc_x_m_s2`…, `mag_x_uT`…, `opt_qw`…, `movement`) or the

@@ -9,7 +9,9 @@
 //! - A flag given twice is an error, unless the tool declares it repeatable (`simulate --wheel`,
 //!   one per wheel).
 //! - There are no positional arguments: anything that is not a declared flag (or the value of
-//!   one) is an unknown argument.
+//!   one) is an unknown argument. A tool that reads a file (`estimate [FILE]`) parses with
+//!   [`Cli::parse_with_operands`] instead: there an argument that does not start with `-`, or
+//!   is exactly `-`, is an operand (a file named `-x` is given as `./-x`).
 //! - Every argument must be UTF-8 text.
 //! - `-h` or `--help` where a flag may stand (not as the value of another flag) prints the help on
 //!   stdout and exits with status 0, whatever else the command line holds.
@@ -129,6 +131,28 @@ impl Cli {
     where
         I: IntoIterator<Item = OsString>,
     {
+        self.parse_inner(args, None)
+    }
+
+    /// Like [`Cli::parse`], and the operands (the arguments that are not flags or their values:
+    /// those not starting with `-`, and `-` itself), in order, beside the flags.
+    pub fn parse_with_operands<I>(&self, args: I) -> Result<(Parsed, Vec<String>), String>
+    where
+        I: IntoIterator<Item = OsString>,
+    {
+        let mut operands = Vec::new();
+        let parsed = self.parse_inner(args, Some(&mut operands))?;
+        Ok((parsed, operands))
+    }
+
+    fn parse_inner<I>(
+        &self,
+        args: I,
+        mut operands: Option<&mut Vec<String>>,
+    ) -> Result<Parsed, String>
+    where
+        I: IntoIterator<Item = OsString>,
+    {
         let mut given: Vec<(&'static str, Option<String>)> = Vec::new();
         let mut first_error: Option<String> = None;
         let mut fail = |e: String| {
@@ -153,6 +177,12 @@ impl Cli {
             };
             if arg == "-h" || arg == "--help" {
                 return Ok(Parsed::Help);
+            }
+            if let Some(list) = operands.as_deref_mut()
+                && (arg == "-" || !arg.starts_with('-'))
+            {
+                list.push(arg);
+                continue;
             }
             let (name, inline) = match arg.split_once('=') {
                 Some((name, value)) if name.starts_with("--") => (name, Some(value.to_string())),
@@ -199,7 +229,19 @@ impl Cli {
     /// The flags of this process's command line. `Err` holds the exit status when the run is
     /// over already: the help printed (0), or the error of a bad command line ([`USAGE`]).
     pub fn command_line(&self) -> Result<Flags, ExitCode> {
-        match self.parse(std::env::args_os().skip(1)) {
+        self.finish(self.parse(std::env::args_os().skip(1)))
+    }
+
+    /// [`Cli::command_line`] with the operands (see [`Cli::parse_with_operands`]).
+    pub fn command_line_with_operands(&self) -> Result<(Flags, Vec<String>), ExitCode> {
+        match self.parse_with_operands(std::env::args_os().skip(1)) {
+            Ok((parsed, operands)) => Ok((self.finish(Ok(parsed))?, operands)),
+            Err(reason) => Err(usage_error(&reason)),
+        }
+    }
+
+    fn finish(&self, parsed: Result<Parsed, String>) -> Result<Flags, ExitCode> {
+        match parsed {
             Ok(Parsed::Flags(flags)) => Ok(flags),
             Ok(Parsed::Help) => Err(match print_text(self.help) {
                 Ok(()) => ExitCode::SUCCESS,
@@ -438,6 +480,29 @@ mod tests {
     #[should_panic(expected = "--df is not a declared flag")]
     fn asking_for_an_undeclared_flag_is_a_programming_error() {
         flags(&["--dt", "1"]).value("--df");
+    }
+
+    #[test]
+    fn operands_where_the_tool_takes_them() {
+        let args = ["a.csv", "--dt", "-1", "-", "--f32", "b"].map(OsString::from);
+        let (parsed, ops) = CLI.parse_with_operands(args.clone()).unwrap();
+        let Parsed::Flags(f) = parsed else {
+            panic!("flags")
+        };
+        assert_eq!(ops, ["a.csv", "-", "b"]);
+        assert_eq!(
+            f.value("--dt"),
+            Some("-1"),
+            "a flag's value is not an operand"
+        );
+        assert!(f.switch("--f32"));
+        let e = CLI.parse_with_operands(["-x"].map(OsString::from));
+        assert_eq!(
+            e.err().as_deref(),
+            Some("unknown argument '-x' (see --help)")
+        );
+        // Without operands the same argument is an error.
+        assert!(CLI.parse(args).is_err());
     }
 
     #[test]

@@ -62,7 +62,7 @@ fn error_lines(stderr: &str, prefix: &str) -> Vec<u64> {
 }
 
 /// Garbage lines for a row of `fields` numbers (first the kind, for the report).
-fn garbage(fields: usize) -> Vec<(&'static str, Vec<u8>)> {
+pub(crate) fn garbage(fields: usize) -> Vec<(&'static str, Vec<u8>)> {
     let row = |f: &dyn Fn(usize) -> String| -> Vec<u8> {
         (0..fields)
             .map(f)
@@ -110,7 +110,7 @@ fn garbage(fields: usize) -> Vec<(&'static str, Vec<u8>)> {
 }
 
 /// Blank lines: every tool skips them (and counts them).
-const BLANKS: [&[u8]; 4] = [b"", b"   ", b"\t", b" \r"];
+pub(crate) const BLANKS: [&[u8]; 4] = [b"", b"   ", b"\t", b" \r"];
 
 // ---------------------------------------------------------------------------------------------
 // convert

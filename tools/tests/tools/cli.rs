@@ -6,12 +6,13 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
 
-/// The path of the tool `name` (`convert`, `propagate` or `simulate`).
+/// The path of the tool `name` (`convert`, `propagate`, `simulate` or `estimate`).
 pub fn tool(name: &str) -> PathBuf {
     PathBuf::from(match name {
         "convert" => env!("CARGO_BIN_EXE_convert"),
         "propagate" => env!("CARGO_BIN_EXE_propagate"),
         "simulate" => env!("CARGO_BIN_EXE_simulate"),
+        "estimate" => env!("CARGO_BIN_EXE_estimate"),
         other => panic!("no tool {other}"),
     })
 }

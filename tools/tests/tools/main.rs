@@ -9,12 +9,15 @@
 //! - [`simulate`]: the free rigid body and a gyrostat with wheels and torques against tiny-step
 //!   references, the plot, the error paths.
 //! - [`fixed`]: `propagate --fixed` reproduces the firmware's Q1.30 bits.
+//! - [`estimate`]: convergence on a closed-form motion, BROAD's metric against `score.py` and
+//!   `host_tests::broad`, input dialects, frames, f32, the plot, the error paths.
 //! - [`campaign`]: garbage input, bad flags, overflowing values and closed pipes for all three.
 //! - [`cli`]: the tools as processes (`CARGO_BIN_EXE_*`).
 
 mod campaign;
 mod cli;
 mod convert;
+mod estimate;
 mod fixed;
 mod propagate;
 mod simulate;

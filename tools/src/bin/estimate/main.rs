@@ -1,0 +1,1171 @@
+//! `estimate`: attitude and gyroscope bias from an IMU log (`gyrostat::estimation::Estimator`).
+//!
+//! ```text
+//! estimate [--6d | --9d] [--f32] [--frame enu|ned] [--gyro-unit U] [--accel-unit U]
+//!     [--mag-unit U] [--time-unit U] [--truth] [--plot FILE.svg] [--set NAME=VALUE]... [FILE]
+//! ```
+//! Run with `--help` for the full description of the input and output formats.
+
+mod plot;
+
+use std::fmt::Debug;
+use std::fs::File;
+use std::io::{self, Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use gyrostat::estimation::{EarthFrame, Estimator, Gains, MAX_STEP, Outcome, Params, SensorUse};
+use gyrostat::{Error, Real, Vec3};
+use gyrostat_tools::flags::{self, Cli, Flag, Flags};
+use gyrostat_tools::stream::{self, Csv, Lines};
+use gyrostat_tools::units::{AccelUnit, GyroUnit, MagUnit, TimeUnit};
+
+const CLI: Cli = Cli {
+    name: "estimate",
+    help: HELP,
+    flags: &[
+        Flag::switch("--6d"),
+        Flag::switch("--9d"),
+        Flag::switch("--f32"),
+        Flag::value("--frame"),
+        Flag::value("--gyro-unit"),
+        Flag::value("--accel-unit"),
+        Flag::value("--mag-unit"),
+        Flag::value("--time-unit"),
+        Flag::switch("--truth"),
+        Flag::value("--plot"),
+        Flag::repeated("--set"),
+    ],
+};
+
+const HELP: &str = "\
+estimate: attitude and gyroscope bias from an IMU log (gyrostat's attitude estimator)
+
+USAGE:
+    estimate [--6d | --9d] [--f32] [--frame enu|ned] [--gyro-unit rad/s|deg/s]
+             [--accel-unit m/s^2|g] [--mag-unit uT|nT|G|any] [--time-unit s|ms|us]
+             [--truth] [--plot FILE.svg] [--set NAME=VALUE]... [FILE]
+
+    Reads FILE (standard input without FILE, or with FILE `-`); gzip-compressed input (BROAD's
+    .csv.gz files) is recognised by its first bytes and decompressed. Flags take their value as
+    the next argument or after `=`; a flag given twice is an error (except --set).
+
+INPUT: CSV, one sample per line, blank lines skipped (they count for line numbers).
+    With a header line (the first line that is not all numbers), columns are found by name and
+    others are ignored:
+        time           t | t_s (s) | Time (s)
+        gyroscope      gx,gy,gz | gyr_x_rad_s,... (rad/s) | Gyroscope X (deg/s),...
+        accelerometer  ax,ay,az | acc_x_m_s2,... (m/s^2) | Accelerometer X (g),...
+        magnetometer   mx,my,mz | mag_x_uT,... (uT) | Magnetometer X (uT),...      (optional)
+        reference      qw,qx,qy,qz | opt_qw,...       (optional, read with --truth only)
+        movement       movement  (0/1, BROAD's scored phase; optional, --truth only)
+    (The short names, BROAD's, and the x-io Fusion log's.) A unit in a column's
+    name is the data's unit: a unit flag that contradicts it is an error.
+    Without a header, the fields are positional: t,gx,gy,gz,ax,ay,az (7 fields),
+    + mx,my,mz (10), + qw,qx,qy,qz after them (11 or 14).
+    Every row has as many fields as the header (or the first row). All three magnetometer
+    fields of a row empty: no magnetometer sample in that row. Reference fields empty (qw
+    empty): no reference in that row. The sensor frame is the data's; the estimator takes the
+    accelerometer's specific force (+9.8 m/s^2 up at rest), not gravity.
+
+OPTIONS:
+    --6d, --9d     without / with the magnetometer; default: --9d when the input has
+                   magnetometer columns, else --6d (--9d without them is an error)
+    --f32          run the estimator in f32 (inputs, after the unit conversion, rounded to
+                   f32; the steps are differences of the time stamps taken in f64); the output
+                   prints the f32 values
+    --frame F      the earth frame of the output attitude: enu (default: x east, y magnetic
+                   north, z up; BROAD's frame: its reference rotates the resting accelerometer
+                   onto +z and the magnetometer's horizontal part onto +y) or ned (x magnetic
+                   north, y east, z down)
+    --gyro-unit    rad/s (default) or deg/s
+    --accel-unit   m/s^2 (default) or g (9.80665 m/s^2)
+    --mag-unit     uT, nT, G or any (default): the values are converted to uT before the
+                   estimator. The estimator uses only the field's direction and its norm
+                   relative to a reference it learns from the data, so the unit does not change
+                   the estimate (beyond rounding); the flag states the data's unit and is
+                   checked against a unit-named column (mag_x_uT).
+    --time-unit    s (default), ms or us: the unit of the time stamps
+    --truth        compare with the reference columns (required): prints BROAD's metric to
+                   stderr, `truth: total X deg, heading Y deg, inclination Z deg, n = N`: the RMS
+                   of the angle of q_err = q_est * inv(q_ref) (earth frame), of its heading part
+                   2 atan|z/w| and of its inclination part 2 acos sqrt(w^2 + z^2), over the rows
+                   with a reference and movement == 1 (every row with a reference when there is
+                   no movement column); computed from the numbers as printed, exactly as BROAD's
+                   score.py computes it from the output (`, MISSING K` when K scored rows have no
+                   estimate). The reference is an attitude sensor -> the output's earth frame.
+                   With --6d only the inclination is meaningful (the heading is free).
+    --plot FILE    also write an SVG plot: the estimate's heading (2 atan2(qz, qw)) and
+                   inclination (2 acos sqrt(qw^2 + qz^2), the tilt of the sensor's z axis),
+                   with the reference's when --truth; the error against the reference (total,
+                   heading, inclination; --truth); the bias estimate; the rest and
+                   disturbance flags. About 2000 points per curve (each flag: whether it was
+                   set anywhere in the rows a point stands for).
+    --set NAME=VALUE  an estimator parameter (gyrostat::estimation::Params; SI units, angles
+                   in rad; a value ending in deg or deg/s is converted): gains=kalman,
+                   heading_time_constant (complementary gains), gyro_noise_density,
+                   gyro_scale_noise, gyro_bias_initial, gyro_bias_stability, gyro_bias_time,
+                   gyro_bias_max, gyro_range, accel_range, accel_time_constant,
+                   accel_tilt_noise, accel_correlation_time, accel_reject, mag_heading_noise,
+                   mag_correlation_time, mag_delay, mag_disturbance_weight, field.norm,
+                   field.dip, field.reference_time_constant, field.min_undisturbed,
+                   field.new_field_time, field.new_field_min_rate, rest.time_constant,
+                   rest.gyro, rest.accel, rest.max_bias, rest.min_duration, rest_bias_noise.
+                   Repeatable.
+    --help         print this text
+
+OUTPUT (stdout): the header `t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag`, then one row per
+    input row: `t` as written in the input, the attitude (scalar first, sensor -> earth:
+    v_earth = q v q*) and the gyroscope bias estimate (rad/s, sensor frame; subtract it from
+    the rate) after that row's update, then what the update did: rest 1 when the sensor was at
+    rest (its mean rate measured the bias); gyro `used` or `saturated` (beyond --set
+    gyro_range: clipped); accel and mag `used`, `disturbed` (rejected or, for the field,
+    down-weighted: the low-passed specific force far from gravity, a field whose norm or dip
+    differs from the reference), `nonfinite` or `saturated` or `zero` (ignored), mag `absent`
+    (6D or an empty field). Numbers in the shortest form that round-trips to the same f64 (f32
+    with --f32). The first row with a usable accelerometer sample initialises the attitude
+    (TRIAD from gravity and the field; from gravity alone in 6D, heading zero); rows before it
+    print nan for the attitude and the bias. The step of each update is the difference of its
+    time stamp and the previous row's.
+
+ERRORS (stderr; the rows before them are kept):
+    error: line N: reason    exit status 1, the run stops there: a row with the wrong number
+        of fields, a field that is not a number, a non-finite time stamp or gyroscope value, a
+        time stamp not after the previous one, a step longer than 1000 s, a rate turning more
+        than half a turn in one step, a line that is not UTF-8 text; a header without the time,
+        gyroscope or accelerometer columns. No metric and no plot after an error.
+    error: reason            a bad command line (also --9d without magnetometer columns,
+        --truth without reference columns, a unit flag contradicting a column name): exit
+        status 2, no output; an unreadable FILE: exit status 1.
+    When stdout is closed early (a pipe into `head`), the run stops quietly with status 0.
+";
+
+/// Which sensors the run uses.
+#[derive(Clone, Copy, PartialEq)]
+enum Sensors {
+    Auto,
+    SixD,
+    NineD,
+}
+
+struct Args {
+    file: Option<PathBuf>,
+    sensors: Sensors,
+    f32: bool,
+    truth: bool,
+    plot: Option<PathBuf>,
+    gyro: Option<GyroUnit>,
+    accel: Option<AccelUnit>,
+    mag: Option<MagUnit>,
+    time: Option<TimeUnit>,
+    params: Params<f64>,
+}
+
+/// The arguments of a run, from the flags given.
+fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
+    let sensors = match (f.switch("--6d"), f.switch("--9d")) {
+        (true, true) => return Err("--6d and --9d exclude each other".into()),
+        (true, false) => Sensors::SixD,
+        (false, true) => Sensors::NineD,
+        (false, false) => Sensors::Auto,
+    };
+    let frame = match f.value("--frame").map(str::trim) {
+        None | Some("enu") => EarthFrame::Enu,
+        Some("ned") => EarthFrame::Ned,
+        Some(other) => return Err(format!("--frame must be enu or ned, got '{other}'")),
+    };
+    let mut params = Params::<f64> {
+        frame,
+        ..Params::default()
+    };
+    for kv in f.values("--set") {
+        let (name, value) = kv
+            .split_once('=')
+            .ok_or_else(|| format!("--set: expected NAME=VALUE, got '{kv}'"))?;
+        set_param(&mut params, name.trim(), value.trim()).map_err(|e| format!("--set: {e}"))?;
+    }
+    // The parameters are checked here, so that a bad one is a usage error before any input.
+    Estimator::try_new(params).map_err(|e| format!("--set: the parameters are invalid: {e}"))?;
+    let file = match operands.as_slice() {
+        [] => None,
+        [one] if one == "-" => None,
+        [one] => Some(PathBuf::from(one)),
+        [_, second, ..] => return Err(format!("more than one FILE: '{second}' (see --help)")),
+    };
+    Ok(Args {
+        file,
+        sensors,
+        f32: f.switch("--f32"),
+        truth: f.switch("--truth"),
+        plot: f.value("--plot").map(PathBuf::from),
+        gyro: f.get("--gyro-unit", GyroUnit::parse)?,
+        accel: f.get("--accel-unit", AccelUnit::parse)?,
+        mag: f.get("--mag-unit", MagUnit::parse)?,
+        time: f.get("--time-unit", TimeUnit::parse)?,
+        params,
+    })
+}
+
+/// Sets one parameter of [`Params`] by its field name (SI units; a value ending in `deg` or
+/// `deg/s` is converted to rad or rad/s).
+fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), String> {
+    if name == "gains" {
+        return match value {
+            "kalman" => {
+                p.gains = Gains::Kalman;
+                Ok(())
+            }
+            _ => Err(format!(
+                "gains: only 'kalman' (set heading_time_constant for complementary gains), got '{value}'"
+            )),
+        };
+    }
+    let (number, factor) = match value
+        .strip_suffix("deg/s")
+        .or_else(|| value.strip_suffix("deg"))
+    {
+        Some(n) => (n.trim(), core::f64::consts::PI / 180.0),
+        None => (value, 1.0),
+    };
+    let v = flags::number(name, number)? * factor;
+    let slot = match name {
+        "heading_time_constant" => {
+            p.gains = Gains::Fixed {
+                heading_time_constant: v,
+            };
+            return Ok(());
+        }
+        "gyro_noise_density" => &mut p.gyro_noise_density,
+        "gyro_scale_noise" => &mut p.gyro_scale_noise,
+        "gyro_bias_initial" => &mut p.gyro_bias_initial,
+        "gyro_bias_stability" => &mut p.gyro_bias_stability,
+        "gyro_bias_time" => &mut p.gyro_bias_time,
+        "gyro_bias_max" => &mut p.gyro_bias_max,
+        "gyro_range" => &mut p.gyro_range,
+        "accel_range" => &mut p.accel_range,
+        "accel_time_constant" => &mut p.accel_time_constant,
+        "accel_tilt_noise" => &mut p.accel_tilt_noise,
+        "accel_correlation_time" => &mut p.accel_correlation_time,
+        "accel_reject" => &mut p.accel_reject,
+        "mag_heading_noise" => &mut p.mag_heading_noise,
+        "mag_correlation_time" => &mut p.mag_correlation_time,
+        "mag_delay" => &mut p.mag_delay,
+        "mag_disturbance_weight" => &mut p.mag_disturbance_weight,
+        "field.norm" => &mut p.field.norm,
+        "field.dip" => &mut p.field.dip,
+        "field.reference_time_constant" => &mut p.field.reference_time_constant,
+        "field.min_undisturbed" => &mut p.field.min_undisturbed,
+        "field.new_field_time" => &mut p.field.new_field_time,
+        "field.new_field_min_rate" => &mut p.field.new_field_min_rate,
+        "rest.time_constant" => &mut p.rest.time_constant,
+        "rest.gyro" => &mut p.rest.gyro,
+        "rest.accel" => &mut p.rest.accel,
+        "rest.max_bias" => &mut p.rest.max_bias,
+        "rest.min_duration" => &mut p.rest.min_duration,
+        "rest_bias_noise" => &mut p.rest_bias_noise,
+        _ => return Err(format!("unknown parameter '{name}' (see --help)")),
+    };
+    *slot = v;
+    Ok(())
+}
+
+enum Failure {
+    Usage(String),
+    Row(u64, String),
+    Io(io::Error),
+    Other(String),
+}
+
+impl From<io::Error> for Failure {
+    fn from(e: io::Error) -> Self {
+        Failure::Io(e)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Input: the stream, its columns and its units
+
+/// The input, decompressed when it starts with gzip's magic bytes.
+fn open_input(file: Option<&Path>) -> Result<Box<dyn Read>, Failure> {
+    let mut raw: Box<dyn Read> = match file {
+        Some(path) => Box::new(
+            File::open(path).map_err(|e| Failure::Other(format!("{}: {e}", path.display())))?,
+        ),
+        None => Box::new(io::stdin().lock()),
+    };
+    // The first two bytes decide (a pipe may deliver them in separate reads).
+    let mut magic = Vec::with_capacity(2);
+    while magic.len() < 2 {
+        let mut byte = [0u8; 1];
+        match raw.read(&mut byte) {
+            Ok(0) => break,
+            Ok(_) => magic.extend_from_slice(&byte),
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(Failure::Io(e)),
+        }
+    }
+    let gzip = magic == [0x1f, 0x8b];
+    let whole = io::Cursor::new(magic).chain(raw);
+    Ok(if gzip {
+        Box::new(flate2::read::MultiGzDecoder::new(whole))
+    } else {
+        Box::new(whole)
+    })
+}
+
+/// A group of columns: its names in the header and the unit the names state.
+struct Names<const N: usize, U> {
+    names: [&'static str; N],
+    unit: Option<U>,
+}
+
+const TIME: [Names<1, TimeUnit>; 3] = [
+    Names {
+        names: ["t"],
+        unit: None,
+    },
+    Names {
+        names: ["t_s"],
+        unit: Some(TimeUnit::Second),
+    },
+    Names {
+        names: ["Time (s)"],
+        unit: Some(TimeUnit::Second),
+    },
+];
+const GYRO: [Names<3, GyroUnit>; 3] = [
+    Names {
+        names: ["gx", "gy", "gz"],
+        unit: None,
+    },
+    Names {
+        names: ["gyr_x_rad_s", "gyr_y_rad_s", "gyr_z_rad_s"],
+        unit: Some(GyroUnit::RadPerSecond),
+    },
+    Names {
+        names: [
+            "Gyroscope X (deg/s)",
+            "Gyroscope Y (deg/s)",
+            "Gyroscope Z (deg/s)",
+        ],
+        unit: Some(GyroUnit::DegPerSecond),
+    },
+];
+const ACCEL: [Names<3, AccelUnit>; 3] = [
+    Names {
+        names: ["ax", "ay", "az"],
+        unit: None,
+    },
+    Names {
+        names: ["acc_x_m_s2", "acc_y_m_s2", "acc_z_m_s2"],
+        unit: Some(AccelUnit::MeterPerSecondSquared),
+    },
+    Names {
+        names: [
+            "Accelerometer X (g)",
+            "Accelerometer Y (g)",
+            "Accelerometer Z (g)",
+        ],
+        unit: Some(AccelUnit::StandardGravity),
+    },
+];
+const MAG: [Names<3, MagUnit>; 3] = [
+    Names {
+        names: ["mx", "my", "mz"],
+        unit: None,
+    },
+    Names {
+        names: ["mag_x_uT", "mag_y_uT", "mag_z_uT"],
+        unit: Some(MagUnit::MicroTesla),
+    },
+    Names {
+        names: [
+            "Magnetometer X (uT)",
+            "Magnetometer Y (uT)",
+            "Magnetometer Z (uT)",
+        ],
+        unit: Some(MagUnit::MicroTesla),
+    },
+];
+const TRUTH: [Names<4, ()>; 2] = [
+    Names {
+        names: ["qw", "qx", "qy", "qz"],
+        unit: None,
+    },
+    Names {
+        names: ["opt_qw", "opt_qx", "opt_qy", "opt_qz"],
+        unit: None,
+    },
+];
+
+/// The first group of `options` whose names are all in `head`: their positions and unit.
+fn find<const N: usize, U: Copy>(
+    head: &[&str],
+    options: &[Names<N, U>],
+) -> Option<([usize; N], Option<U>)> {
+    options.iter().find_map(|o| {
+        let mut idx = [0; N];
+        for (slot, name) in idx.iter_mut().zip(o.names) {
+            *slot = head.iter().position(|h| *h == name)?;
+        }
+        Some((idx, o.unit))
+    })
+}
+
+/// Where a row's fields are.
+struct Layout {
+    /// Column names (for messages); positional input has the short names.
+    names: Vec<String>,
+    time: usize,
+    gyro: [usize; 3],
+    accel: [usize; 3],
+    mag: Option<[usize; 3]>,
+    truth: Option<[usize; 4]>,
+    movement: Option<usize>,
+    /// The units the column names state.
+    time_unit: Option<TimeUnit>,
+    gyro_unit: Option<GyroUnit>,
+    accel_unit: Option<AccelUnit>,
+    mag_unit: Option<MagUnit>,
+    /// Whether the first line was a header (not a sample).
+    header: bool,
+}
+
+impl Layout {
+    /// The layout from the first non-blank line (a header, or the first sample).
+    fn from_first_line(text: &str) -> Result<Layout, String> {
+        let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+        let header = fields.iter().any(|f| f.parse::<f64>().is_err());
+        if header {
+            let missing = |what: &str| format!("the header names no {what} columns (see --help)");
+            let (t, time_unit) =
+                find(&fields, &TIME).ok_or_else(|| missing("time (t, t_s or Time (s))"))?;
+            let (gyro, gyro_unit) = find(&fields, &GYRO).ok_or_else(|| missing("gyroscope"))?;
+            let (accel, accel_unit) =
+                find(&fields, &ACCEL).ok_or_else(|| missing("accelerometer"))?;
+            let (mag, mag_unit) = match find(&fields, &MAG) {
+                Some((i, u)) => (Some(i), u),
+                None => (None, None),
+            };
+            return Ok(Layout {
+                names: fields.iter().map(|s| s.to_string()).collect(),
+                time: t[0],
+                gyro,
+                accel,
+                mag,
+                truth: find(&fields, &TRUTH).map(|(i, _)| i),
+                movement: fields.iter().position(|h| *h == "movement"),
+                time_unit,
+                gyro_unit,
+                accel_unit,
+                mag_unit,
+                header: true,
+            });
+        }
+        let (mag, truth) = match fields.len() {
+            7 => (None, None),
+            10 => (Some([7, 8, 9]), None),
+            11 => (None, Some([7, 8, 9, 10])),
+            14 => (Some([7, 8, 9]), Some([10, 11, 12, 13])),
+            n => {
+                return Err(format!(
+                    "expected 7, 10, 11 or 14 comma-separated fields without a header \
+                     (t,gx,gy,gz,ax,ay,az[,mx,my,mz][,qw,qx,qy,qz]), found {n}"
+                ));
+            }
+        };
+        let short = [
+            "t", "gx", "gy", "gz", "ax", "ay", "az", "mx", "my", "mz", "qw", "qx", "qy", "qz",
+        ];
+        let mut names: Vec<&str> = short.iter().take(7).copied().collect();
+        if mag.is_some() {
+            names.extend(short.iter().skip(7).take(3));
+        }
+        if truth.is_some() {
+            names.extend(short.iter().skip(10));
+        }
+        Ok(Layout {
+            names: names.into_iter().map(|s| s.to_string()).collect(),
+            time: 0,
+            gyro: [1, 2, 3],
+            accel: [4, 5, 6],
+            mag,
+            truth,
+            movement: None,
+            time_unit: None,
+            gyro_unit: None,
+            accel_unit: None,
+            mag_unit: None,
+            header: false,
+        })
+    }
+}
+
+/// A unit flag against the unit a column name states: the flag's, the name's, or the default.
+fn unit<U: Copy + PartialEq + Default>(
+    flag: &str,
+    given: Option<U>,
+    named: Option<U>,
+    name: fn(U) -> &'static str,
+    column: &str,
+) -> Result<U, Failure> {
+    match (given, named) {
+        (Some(g), Some(n)) if g != n => Err(Failure::Usage(format!(
+            "{flag} {}: the input's column '{column}' is in {}",
+            name(g),
+            name(n)
+        ))),
+        (Some(u), _) | (None, Some(u)) => Ok(u),
+        (None, None) => Ok(U::default()),
+    }
+}
+
+/// The conversion of the input to SI units.
+struct Scales {
+    time: f64,
+    gyro: f64,
+    accel: f64,
+    mag: f64,
+}
+
+/// One parsed sample.
+struct Sample<'a> {
+    t_text: &'a str,
+    t: f64,
+    gyro: [f64; 3],
+    accel: [f64; 3],
+    mag: Option<[f64; 3]>,
+    truth: Option<[f64; 4]>,
+    scored: bool,
+}
+
+/// Parses one row by `layout` (the reference and movement only when `truth`).
+fn parse_row<'a>(
+    text: &'a str,
+    layout: &Layout,
+    s: &Scales,
+    truth: bool,
+) -> Result<Sample<'a>, String> {
+    let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+    if fields.len() != layout.names.len() {
+        return Err(format!(
+            "expected {} comma-separated fields ({}), found {}",
+            layout.names.len(),
+            if layout.header {
+                "as the header"
+            } else {
+                "as the first row"
+            },
+            fields.len()
+        ));
+    }
+    let field = |i: usize| fields.get(i).copied().unwrap_or("");
+    let number = |i: usize| -> Result<f64, String> {
+        let f = field(i);
+        f.parse::<f64>().map_err(|_| {
+            format!(
+                "column {} ({}): invalid number '{f}'",
+                i + 1,
+                layout.names.get(i).map_or("", String::as_str)
+            )
+        })
+    };
+    let finite = |i: usize, what: &str| -> Result<f64, String> {
+        let x = number(i)?;
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(format!(
+                "column {} ({}): non-finite {what} '{}'{}",
+                i + 1,
+                layout.names.get(i).map_or("", String::as_str),
+                field(i),
+                if what == "gyroscope value" {
+                    " (the estimator cannot propagate across it)"
+                } else {
+                    ""
+                }
+            ))
+        }
+    };
+    let t = finite(layout.time, "time stamp")?;
+    let mut gyro = [0.0; 3];
+    for (g, &i) in gyro.iter_mut().zip(&layout.gyro) {
+        *g = finite(i, "gyroscope value")? * s.gyro;
+    }
+    let mut accel = [0.0; 3];
+    for (a, &i) in accel.iter_mut().zip(&layout.accel) {
+        *a = number(i)? * s.accel;
+    }
+    let mag = match layout.mag {
+        Some(idx) if idx.iter().all(|&i| field(i).is_empty()) => None,
+        Some(idx) => {
+            let mut m = [0.0; 3];
+            for (m, &i) in m.iter_mut().zip(&idx) {
+                *m = number(i)? * s.mag;
+            }
+            Some(m)
+        }
+        None => None,
+    };
+    let truth_q = match layout.truth {
+        Some(idx) if truth && !field(idx[0]).is_empty() => {
+            let mut q = [0.0; 4];
+            for (q, &i) in q.iter_mut().zip(&idx) {
+                *q = finite(i, "reference")?;
+            }
+            Some(q)
+        }
+        _ => None,
+    };
+    let scored = layout.movement.is_none_or(|i| field(i) == "1");
+    Ok(Sample {
+        t_text: field(layout.time),
+        t,
+        gyro,
+        accel,
+        mag,
+        truth: truth_q,
+        scored,
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// The metric and what the plot keeps
+
+/// The error of an estimate against a reference, BROAD's decomposition (score.py's operations
+/// in its order): `(total, heading, inclination)` in rad.
+fn errors(qe: [f64; 4], qo: [f64; 4]) -> [f64; 3] {
+    let sumsq = |q: &[f64; 4]| q.iter().fold(0.0, |s, v| s + v * v);
+    let (ne, no) = (sumsq(&qe).sqrt(), sumsq(&qo).sqrt());
+    let [w1, x1, y1, z1] = qe.map(|v| v / ne);
+    let (w2, x2, y2, z2) = (qo[0] / no, -qo[1] / no, -qo[2] / no, -qo[3] / no);
+    let w = w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2;
+    let z = w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2;
+    [
+        2.0 * w.abs().min(1.0).acos(),
+        if w != 0.0 {
+            2.0 * (z / w).abs().atan()
+        } else {
+            core::f64::consts::PI
+        },
+        2.0 * (w * w + z * z).sqrt().min(1.0).acos(),
+    ]
+}
+
+/// The running sums of the metric.
+#[derive(Default)]
+struct Metric {
+    sums: [f64; 3],
+    n: u64,
+    missing: u64,
+}
+
+/// Heading and inclination of an attitude (degrees): the twist about the earth's z axis and the
+/// angle of the rest (the tilt of the sensor's z axis).
+fn heading_inclination(q: [f64; 4]) -> (f64, f64) {
+    let [w, _, _, z] = if q[0] < 0.0 { q.map(|v| -v) } else { q };
+    let n = (q.iter().map(|v| v * v).sum::<f64>()).sqrt();
+    (
+        (2.0 * z.atan2(w)).to_degrees(),
+        (2.0 * ((w * w + z * z).sqrt() / n).min(1.0).acos()).to_degrees(),
+    )
+}
+
+/// One row as the plot keeps it.
+struct PlotRow {
+    t: f64,
+    est: (f64, f64),
+    reference: (f64, f64),
+    error: [f64; 3],
+    bias: [f64; 3],
+    rest: bool,
+    accel_disturbed: bool,
+    mag_disturbed: bool,
+}
+
+// ---------------------------------------------------------------------------------------------
+// The run
+
+/// The scalar types the estimator runs in, with the text and the value of a printed number.
+trait Scalar: Real + Debug {
+    /// The value a reader of the printed text gets (shortest round-trip form).
+    fn as_printed(self) -> f64;
+}
+
+impl Scalar for f64 {
+    fn as_printed(self) -> f64 {
+        self
+    }
+}
+
+impl Scalar for f32 {
+    fn as_printed(self) -> f64 {
+        format!("{self:?}").parse().unwrap_or(f64::NAN)
+    }
+}
+
+fn use_name(u: SensorUse) -> &'static str {
+    match u {
+        SensorUse::Used => "used",
+        SensorUse::Absent => "absent",
+        SensorUse::NonFinite => "nonfinite",
+        SensorUse::Saturated => "saturated",
+        SensorUse::Disturbed => "disturbed",
+        SensorUse::Zero => "zero",
+    }
+}
+
+fn library_error(e: Error, dt: f64) -> String {
+    match e {
+        Error::StepTooLong => {
+            format!("the rate turns the sensor by more than half a turn in the step of {dt} s")
+        }
+        Error::NonFinite => "a non-finite gyroscope value (in f32: beyond its range)".into(),
+        other => format!("the estimator rejected the sample (step {dt} s): {other}"),
+    }
+}
+
+fn convert_params(p: &Params<f64>) -> Params<f32> {
+    use gyrostat::estimation::{FieldThresholds, RestThresholds};
+    let c = |x: f64| x as f32;
+    Params {
+        frame: p.frame,
+        gains: match p.gains {
+            Gains::Kalman => Gains::Kalman,
+            Gains::Fixed {
+                heading_time_constant,
+            } => Gains::Fixed {
+                heading_time_constant: c(heading_time_constant),
+            },
+        },
+        gyro_noise_density: c(p.gyro_noise_density),
+        gyro_scale_noise: c(p.gyro_scale_noise),
+        gyro_bias_initial: c(p.gyro_bias_initial),
+        gyro_bias_stability: c(p.gyro_bias_stability),
+        gyro_bias_time: c(p.gyro_bias_time),
+        gyro_bias_max: c(p.gyro_bias_max),
+        gyro_range: c(p.gyro_range),
+        accel_range: c(p.accel_range),
+        accel_time_constant: c(p.accel_time_constant),
+        accel_tilt_noise: c(p.accel_tilt_noise),
+        accel_correlation_time: c(p.accel_correlation_time),
+        accel_reject: c(p.accel_reject),
+        mag_heading_noise: c(p.mag_heading_noise),
+        mag_correlation_time: c(p.mag_correlation_time),
+        mag_delay: c(p.mag_delay),
+        mag_disturbance_weight: c(p.mag_disturbance_weight),
+        field: FieldThresholds {
+            norm: c(p.field.norm),
+            dip: c(p.field.dip),
+            reference_time_constant: c(p.field.reference_time_constant),
+            min_undisturbed: c(p.field.min_undisturbed),
+            new_field_time: c(p.field.new_field_time),
+            new_field_min_rate: c(p.field.new_field_min_rate),
+        },
+        rest: RestThresholds {
+            time_constant: c(p.rest.time_constant),
+            gyro: c(p.rest.gyro),
+            accel: c(p.rest.accel),
+            max_bias: c(p.rest.max_bias),
+            min_duration: c(p.rest.min_duration),
+        },
+        rest_bias_noise: c(p.rest_bias_noise),
+    }
+}
+
+/// What a finished run leaves for the summary and the plot.
+struct Done {
+    metric: Option<Metric>,
+    rows: Vec<PlotRow>,
+    six_d: bool,
+}
+
+/// Reads the input, runs the estimator in `T` and prints the rows.
+fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done, Failure> {
+    let mut lines = Lines::new(open_input(args.file.as_deref())?);
+    let mut last_line = 0u64;
+    // The first non-blank line: the header or the first sample.
+    let first = loop {
+        if lines.will_read() {
+            out.flush()?;
+        }
+        let next = lines
+            .next_line()
+            .map_err(|e| Failure::Row(last_line + 1, format!("reading the input: {e}")))?;
+        let Some((n, line)) = next else {
+            return Err(Failure::Other(
+                "empty input: no header and no sample".into(),
+            ));
+        };
+        last_line = n;
+        match line {
+            Ok(text) if text.trim().is_empty() => continue,
+            Ok(text) => break (n, text.to_string()),
+            Err(reason) => return Err(Failure::Row(n, reason)),
+        }
+    };
+    let layout = Layout::from_first_line(&first.1).map_err(|e| Failure::Row(first.0, e))?;
+    let column = |i: usize| layout.names.get(i).cloned().unwrap_or_default();
+    let scales = Scales {
+        time: unit(
+            "--time-unit",
+            args.time,
+            layout.time_unit,
+            TimeUnit::name,
+            &column(layout.time),
+        )?
+        .to_si(),
+        gyro: unit(
+            "--gyro-unit",
+            args.gyro,
+            layout.gyro_unit,
+            GyroUnit::name,
+            &column(layout.gyro[0]),
+        )?
+        .to_si(),
+        accel: unit(
+            "--accel-unit",
+            args.accel,
+            layout.accel_unit,
+            AccelUnit::name,
+            &column(layout.accel[0]),
+        )?
+        .to_si(),
+        mag: match (args.mag, layout.mag_unit) {
+            (Some(MagUnit::Any), _) => 1.0,
+            (given, named) => unit(
+                "--mag-unit",
+                given,
+                named,
+                MagUnit::name,
+                &column(layout.mag.map_or(0, |m| m[0])),
+            )?
+            .to_micro_tesla(),
+        },
+    };
+    let six_d = match (args.sensors, layout.mag.is_some()) {
+        (Sensors::NineD, false) => {
+            return Err(Failure::Usage(
+                "--9d: the input has no magnetometer columns (mx,my,mz or mag_x_uT,...)".into(),
+            ));
+        }
+        (Sensors::SixD, _) | (Sensors::Auto, false) => true,
+        (Sensors::NineD | Sensors::Auto, true) => false,
+    };
+    if args.truth && layout.truth.is_none() {
+        return Err(Failure::Usage(
+            "--truth: the input has no reference columns (qw,qx,qy,qz or opt_qw,...)".into(),
+        ));
+    }
+
+    let mut filter = Estimator::try_new(params)
+        .map_err(|e| Failure::Usage(format!("--set: the parameters are invalid: {e}")))?;
+    let mut metric = args.truth.then(Metric::default);
+    let mut rows = Vec::new();
+    writeln!(out, "t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag")?;
+    let v = |a: [f64; 3]| Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]));
+    let mut prev_t: Option<f64> = None;
+    let mut pending = (!layout.header).then_some(first);
+    loop {
+        let (n, text) = match pending.take() {
+            Some(row) => row,
+            None => {
+                if lines.will_read() {
+                    out.flush()?;
+                }
+                let next = lines
+                    .next_line()
+                    .map_err(|e| Failure::Row(last_line + 1, format!("reading the input: {e}")))?;
+                let Some((n, line)) = next else { break };
+                last_line = n;
+                match line {
+                    Ok(text) if text.trim().is_empty() => continue,
+                    Ok(text) => (n, text.to_string()),
+                    Err(reason) => return Err(Failure::Row(n, reason)),
+                }
+            }
+        };
+        let s = parse_row(&text, &layout, &scales, args.truth).map_err(|e| Failure::Row(n, e))?;
+        // The first row's step is never used (it initialises the attitude or, without a usable
+        // accelerometer sample, waits); any valid step stands in.
+        let dt = match prev_t {
+            None => 1.0,
+            Some(p) => {
+                let dt = (s.t - p) * scales.time;
+                // NaN cannot arise (both stamps are finite), an overflow to ∞ is caught below.
+                if dt <= 0.0 {
+                    return Err(Failure::Row(
+                        n,
+                        format!(
+                            "time stamp {} is not after the previous row's ({p})",
+                            s.t_text
+                        ),
+                    ));
+                }
+                if dt > MAX_STEP {
+                    return Err(Failure::Row(
+                        n,
+                        format!(
+                            "a step of {dt} s since the previous row: longer than {MAX_STEP} s (restart the estimator after a gap)"
+                        ),
+                    ));
+                }
+                dt
+            }
+        };
+        prev_t = Some(s.t);
+        let mag = if six_d { None } else { s.mag.map(v) };
+        let outcome: Outcome = filter
+            .update(v(s.gyro), v(s.accel), mag, T::from_f64(dt))
+            .map_err(|e| Failure::Row(n, library_error(e, dt)))?;
+        let flags = format!(
+            "{},{},{},{}",
+            u8::from(outcome.at_rest),
+            if outcome.gyro_saturated {
+                "saturated"
+            } else {
+                "used"
+            },
+            use_name(outcome.accel),
+            use_name(outcome.mag)
+        );
+        let (q, b) = if filter.is_initialized() {
+            let q = filter.attitude().to_array();
+            let b = filter.bias().to_array();
+            let [w, x, y, z] = q;
+            let [bx, by, bz] = b;
+            writeln!(
+                out,
+                "{},{w:?},{x:?},{y:?},{z:?},{bx:?},{by:?},{bz:?},{flags}",
+                s.t_text
+            )?;
+            (Some(q.map(T::as_printed)), b.map(T::as_printed))
+        } else {
+            writeln!(out, "{},nan,nan,nan,nan,nan,nan,nan,{flags}", s.t_text)?;
+            (None, [f64::NAN; 3])
+        };
+        out.row_done()?;
+        let error = match (q, s.truth) {
+            (Some(q), Some(r)) => Some(errors(q, r)),
+            _ => None,
+        };
+        if let (Some(m), Some(_), true) = (metric.as_mut(), s.truth, s.scored) {
+            match error {
+                Some(e) => {
+                    for (sum, e) in m.sums.iter_mut().zip(e) {
+                        *sum += e * e;
+                    }
+                    m.n += 1;
+                }
+                None => m.missing += 1,
+            }
+        }
+        if args.plot.is_some() {
+            let nan2 = (f64::NAN, f64::NAN);
+            rows.push(PlotRow {
+                t: s.t * scales.time,
+                est: q.map_or(nan2, heading_inclination),
+                reference: s.truth.map_or(nan2, heading_inclination),
+                error: error.map_or([f64::NAN; 3], |e| e.map(f64::to_degrees)),
+                bias: b,
+                rest: outcome.at_rest,
+                accel_disturbed: outcome.accel == SensorUse::Disturbed,
+                mag_disturbed: outcome.mag == SensorUse::Disturbed,
+            });
+        }
+    }
+    Ok(Done {
+        metric,
+        rows,
+        six_d,
+    })
+}
+
+/// The metric line: `truth: total X deg, heading Y deg, inclination Z deg, n = N`.
+fn summary(m: &Metric, six_d: bool) -> String {
+    let rms = |s: f64| {
+        if m.n > 0 {
+            (s / m.n as f64).sqrt().to_degrees()
+        } else {
+            f64::NAN
+        }
+    };
+    let [t, h, i] = m.sums.map(rms);
+    format!(
+        "truth: total {t:.6} deg, heading {h:.6} deg, inclination {i:.6} deg, n = {}{}{}",
+        m.n,
+        if m.missing > 0 {
+            format!(", MISSING {}", m.missing)
+        } else {
+            String::new()
+        },
+        if six_d {
+            " (6D: only the inclination is meaningful)"
+        } else {
+            ""
+        }
+    )
+}
+
+/// The plot of a run: about 2000 points per curve.
+fn figure(args: &Args, done: &Done) -> plot::Figure {
+    use plot::{Figure, Panel, Series};
+    let rows = &done.rows;
+    let stride = rows.len().div_ceil(2000).max(1);
+    let chunks: Vec<&[PlotRow]> = rows.chunks(stride).collect();
+    let first = |f: &dyn Fn(&PlotRow) -> f64| -> Vec<f64> {
+        chunks
+            .iter()
+            .map(|c| c.first().map_or(f64::NAN, f))
+            .collect()
+    };
+    let any = |f: &dyn Fn(&PlotRow) -> bool, level: f64| -> Vec<f64> {
+        chunks
+            .iter()
+            .map(|c| level + if c.iter().any(f) { 0.8 } else { 0.0 })
+            .collect()
+    };
+    let mut attitude = vec![
+        Series {
+            label: "heading",
+            y: first(&|r| r.est.0),
+        },
+        Series {
+            label: "inclination",
+            y: first(&|r| r.est.1),
+        },
+    ];
+    let mut panels = Vec::new();
+    if args.truth {
+        attitude.push(Series {
+            label: "reference heading",
+            y: first(&|r| r.reference.0),
+        });
+        attitude.push(Series {
+            label: "reference inclination",
+            y: first(&|r| r.reference.1),
+        });
+    }
+    panels.push(Panel {
+        caption:
+            "attitude: heading (about the earth z axis) and inclination (tilt of the sensor z axis)"
+                .into(),
+        unit: "degrees",
+        series: attitude,
+    });
+    if args.truth {
+        panels.push(Panel {
+            caption: "error against the reference (BROAD's decomposition)".into(),
+            unit: "degrees",
+            series: vec![
+                Series {
+                    label: "total",
+                    y: first(&|r| r.error[0]),
+                },
+                Series {
+                    label: "heading",
+                    y: first(&|r| r.error[1]),
+                },
+                Series {
+                    label: "inclination",
+                    y: first(&|r| r.error[2]),
+                },
+            ],
+        });
+    }
+    panels.push(Panel {
+        caption: "gyroscope bias estimate (sensor frame)".into(),
+        unit: "deg/s",
+        series: ["bx", "by", "bz"]
+            .iter()
+            .enumerate()
+            .map(|(i, &label)| Series {
+                label,
+                y: first(&|r| r.bias.get(i).copied().unwrap_or(f64::NAN).to_degrees()),
+            })
+            .collect(),
+    });
+    panels.push(Panel {
+        caption: "flags (raised where set): rest, accelerometer disturbed, field disturbed".into(),
+        unit: "",
+        series: vec![
+            Series {
+                label: "rest",
+                y: any(&|r| r.rest, 0.0),
+            },
+            Series {
+                label: "accel disturbed",
+                y: any(&|r| r.accel_disturbed, 1.0),
+            },
+            Series {
+                label: "mag disturbed",
+                y: any(&|r| r.mag_disturbed, 2.0),
+            },
+        ],
+    });
+    Figure {
+        title: format!(
+            "estimate {}: {} rows ({}, {})",
+            args.file
+                .as_deref()
+                .map_or("(stdin)".into(), |p| p.display().to_string()),
+            rows.len(),
+            if done.six_d { "6D" } else { "9D" },
+            if args.f32 { "f32" } else { "f64" }
+        ),
+        t: first(&|r| r.t),
+        panels,
+    }
+}
+
+fn main() -> ExitCode {
+    let args = match CLI
+        .command_line_with_operands()
+        .and_then(|(f, ops)| arguments(&f, ops).map_err(|e| flags::usage_error(&e)))
+    {
+        Ok(a) => a,
+        Err(status) => return status,
+    };
+    let mut out = Csv::stdout();
+    let result = if args.f32 {
+        run::<f32>(&args, convert_params(&args.params), &mut out)
+    } else {
+        run::<f64>(&args, args.params, &mut out)
+    };
+    let flushed = out.flush();
+    let result = match (result, flushed) {
+        (Err(Failure::Io(e)), _) | (Ok(_), Err(e)) if stream::is_closed_pipe(&e) => {
+            return ExitCode::SUCCESS;
+        }
+        (Err(e), _) => Err(e),
+        (Ok(_), Err(e)) => Err(Failure::Io(e)),
+        (Ok(done), Ok(())) => Ok(done),
+    };
+    let done = match result {
+        Ok(done) => done,
+        Err(Failure::Usage(e)) => return flags::usage_error(&e),
+        Err(Failure::Row(n, e)) => {
+            flags::line_error(n, &e);
+            return ExitCode::FAILURE;
+        }
+        Err(Failure::Io(e)) => {
+            flags::error(&format!("reading the input or writing stdout: {e}"));
+            return ExitCode::FAILURE;
+        }
+        Err(Failure::Other(e)) => {
+            flags::error(&e);
+            return ExitCode::FAILURE;
+        }
+    };
+    if let Some(m) = &done.metric {
+        gyrostat_tools::say!("{}", summary(m, done.six_d));
+    }
+    if let Some(path) = &args.plot
+        && let Err(e) = plot::write_svg(path, &figure(&args, &done))
+    {
+        flags::error(&format!("--plot {}: {e}", path.display()));
+        return ExitCode::FAILURE;
+    }
+    ExitCode::SUCCESS
+}
