@@ -631,6 +631,7 @@ unsafe trait Slot: Sized {
     fn tag(&self) -> u32;
     fn set_tag(&mut self, t: u32);
     fn storage(&mut self) -> *mut u8;
+    fn storage_ref(&self) -> *const u8;
 }
 
 macro_rules! slot {
@@ -647,6 +648,9 @@ macro_rules! slot {
             }
             fn storage(&mut self) -> *mut u8 {
                 self._storage.as_mut_ptr().cast()
+            }
+            fn storage_ref(&self) -> *const u8 {
+                self._storage.as_ptr().cast()
             }
         }
     };
@@ -676,9 +680,16 @@ fn state<'a, S: Slot>(s: *mut S) -> Result<&'a mut S::Inner, gyro_status> {
     Ok(unsafe { &mut *s.storage().cast::<S::Inner>() })
 }
 
-/// Reads a state without modifying it (a copy: the states are small plain values).
-fn state_copy<S: Slot>(s: *const S) -> Result<S::Inner, gyro_status> {
-    state(s.cast_mut()).map(|x| x.clone())
+/// A state read without modifying it (through a `const` pointer: no mutable reference made).
+fn state_ref<'a, S: Slot>(s: *const S) -> Result<&'a S::Inner, gyro_status> {
+    ok_ptr(s)?;
+    // SAFETY: checked non-null and aligned.
+    let s = unsafe { &*s };
+    if s.tag() != S::MAGIC {
+        return Err(GYRO_NOT_INITIALIZED);
+    }
+    // SAFETY: the tag says `init` wrote an `Inner` there.
+    Ok(unsafe { &*s.storage_ref().cast::<S::Inner>() })
 }
 
 // --- Rotation conversions ----------------------------------------------------------------------
@@ -1162,7 +1173,7 @@ fn inc_attitude<T: CFloat, S: Slot<Inner = Inc<T>>>(
     out: *mut T::Q,
 ) -> gyro_status {
     status((|| {
-        let st = state_copy(s)?;
+        let st = state_ref(s)?;
         let provisional = flag(provisional)?;
         ok_ptr(out)?;
         let q = match (st, provisional) {
@@ -1366,7 +1377,7 @@ pub unsafe extern "C" fn gyro_increment_integrator_q30_attitude(
     out: *mut gyro_quat_q30,
 ) -> gyro_status {
     status((|| {
-        let st = state_copy(s)?;
+        let st = state_ref(s)?;
         ok_ptr(out)?;
         write(out, q30_out(st.attitude()));
         Ok(())
@@ -1550,7 +1561,7 @@ fn rate_finish<T: CFloat, S: Slot<Inner = Rate<T>>>(
 
 fn rate_attitude<T: CFloat, S: Slot<Inner = Rate<T>>>(s: *const S, out: *mut T::Q) -> gyro_status {
     status((|| {
-        let st = state_copy(s)?;
+        let st = state_ref(s)?;
         ok_ptr(out)?;
         let q = match st {
             Rate::Plain(r) => r.attitude(),
@@ -1952,12 +1963,12 @@ pub unsafe extern "C" fn gyro_gyrostat_f32_state_from_omega(
     out: *mut gyro_gyrostat_state_f32,
 ) -> gyro_status {
     status((|| {
-        let b = state_copy(s)?;
+        let b = state_ref(s)?;
         let q = unit_in::<f32>(read(q)?)?;
         let w = f32::v_in(read(omega)?);
         let ws = read_wheel_array(wheel_speeds)?;
         ok_ptr(out)?;
-        let p = body_omega(&b, q, w, ws)?;
+        let p = body_omega(b, q, w, ws)?;
         write(out, gyro_gyrostat_state_f32::from_rust(p));
         Ok(())
     })())
@@ -1977,12 +1988,12 @@ pub unsafe extern "C" fn gyro_gyrostat_f64_state_from_omega(
     out: *mut gyro_gyrostat_state_f64,
 ) -> gyro_status {
     status((|| {
-        let b = state_copy(s)?;
+        let b = state_ref(s)?;
         let q = unit_in::<f64>(read(q)?)?;
         let w = f64::v_in(read(omega)?);
         let ws = read_wheel_array(wheel_speeds)?;
         ok_ptr(out)?;
-        let p = body_omega(&b, q, w, ws)?;
+        let p = body_omega(b, q, w, ws)?;
         write(out, gyro_gyrostat_state_f64::from_rust(p));
         Ok(())
     })())
@@ -2010,12 +2021,12 @@ pub unsafe extern "C" fn gyro_gyrostat_f32_step(
     out: *mut gyro_gyrostat_state_f32,
 ) -> gyro_status {
     status((|| {
-        let b = state_copy(s)?;
+        let b = state_ref(s)?;
         let x = read(state)?.rust()?;
         let tau = read_opt(torque)?.map_or(Vec3::new(0.0, 0.0, 0.0), f32::v_in);
         let wt = read_wheel_array(wheel_torques)?;
         ok_ptr(out)?;
-        let p = body_step(&b, integrator, x, t, dt, tau, wt)?;
+        let p = body_step(b, integrator, x, t, dt, tau, wt)?;
         write(out, gyro_gyrostat_state_f32::from_rust(p));
         Ok(())
     })())
@@ -2037,12 +2048,12 @@ pub unsafe extern "C" fn gyro_gyrostat_f64_step(
     out: *mut gyro_gyrostat_state_f64,
 ) -> gyro_status {
     status((|| {
-        let b = state_copy(s)?;
+        let b = state_ref(s)?;
         let x = read(state)?.rust()?;
         let tau = read_opt(torque)?.map_or(Vec3::new(0.0, 0.0, 0.0), f64::v_in);
         let wt = read_wheel_array(wheel_torques)?;
         ok_ptr(out)?;
-        let p = body_step(&b, integrator, x, t, dt, tau, wt)?;
+        let p = body_step(b, integrator, x, t, dt, tau, wt)?;
         write(out, gyro_gyrostat_state_f64::from_rust(p));
         Ok(())
     })())
@@ -2138,7 +2149,7 @@ fn est_attitude<T: CFloat, S: Slot<Inner = Estimator<T>>>(
     status((|| {
         ok_opt(attitude)?;
         ok_opt(bias)?;
-        let e = state(s.cast_mut())?;
+        let e = state_ref(s)?;
         write(attitude, T::q_out(e.attitude()));
         write(bias, T::v_out(e.bias()));
         Ok(())
