@@ -635,6 +635,272 @@ typedef struct {
   uint32_t initialized;
 } gyro_estimator_outcome;
 
+/**
+ * The estimator's parameters, f32 (SI units, angles in rad): the library's `Params`, field
+ * for field (see its documentation for each one and for how the defaults were chosen).
+ * `gyro_estimator_f32_default_params` fills it with the defaults.
+ */
+typedef struct {
+  /**
+   * The earth frame of the attitude: `GYRO_FRAME_ENU` or `GYRO_FRAME_NED`.
+   */
+  uint32_t frame;
+  /**
+   * 0: Kalman gains from the covariance (the default); 1: complementary gains, the heading
+   * corrected with the first-order gain `dt/(heading_time_constant + dt)`.
+   */
+  uint32_t fixed_gains;
+  /**
+   * `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
+   */
+  float heading_time_constant;
+  /**
+   * Gyroscope white noise, rad/s/√Hz (angle random walk).
+   */
+  float gyro_noise_density;
+  /**
+   * Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
+   */
+  float gyro_scale_noise;
+  /**
+   * Standard deviation of the gyroscope bias at start, rad/s.
+   */
+  float gyro_bias_initial;
+  /**
+   * How far the bias wanders (rad/s) within `gyro_bias_time`.
+   */
+  float gyro_bias_stability;
+  /**
+   * The time (s) over which the bias wanders by `gyro_bias_stability`.
+   */
+  float gyro_bias_time;
+  /**
+   * The largest bias magnitude per axis, rad/s (estimates are clipped to it).
+   */
+  float gyro_bias_max;
+  /**
+   * The gyroscope's full scale, rad/s (`INFINITY`: none).
+   */
+  float gyro_range;
+  /**
+   * The accelerometer's full scale, m/s² (`INFINITY`: none).
+   */
+  float accel_range;
+  /**
+   * Time constant (s) of the specific force's low-pass filter; 0: each sample as it is.
+   */
+  float accel_time_constant;
+  /**
+   * Standard deviation (rad) of the inclination measured from the accelerometer.
+   */
+  float accel_tilt_noise;
+  /**
+   * Correlation time (s) of that error.
+   */
+  float accel_correlation_time;
+  /**
+   * Largest relative deviation of the low-passed specific force's norm from gravity for the inclination update to use it.
+   */
+  float accel_reject;
+  /**
+   * Standard deviation (rad) of the heading measured from the magnetometer.
+   */
+  float mag_heading_noise;
+  /**
+   * Correlation time (s) of that error.
+   */
+  float mag_correlation_time;
+  /**
+   * Delay (s) of the magnetometer behind the gyroscope.
+   */
+  float mag_delay;
+  /**
+   * Weight of a disturbed field's heading error (0: rejected outright).
+   */
+  float mag_disturbance_weight;
+  /**
+   * Disturbance monitor: the largest relative change of the field's norm.
+   */
+  float field_norm;
+  /**
+   * Disturbance monitor: the largest change of the dip angle, rad.
+   */
+  float field_dip;
+  /**
+   * Disturbance monitor: how slowly (s) the reference follows an undisturbed field.
+   */
+  float field_reference_time_constant;
+  /**
+   * Disturbance monitor: how long (s) the field must be back within the thresholds.
+   */
+  float field_min_undisturbed;
+  /**
+   * Disturbance monitor: how long (s) a new homogeneous field must be seen while turning to replace the reference.
+   */
+  float field_new_field_time;
+  /**
+   * Disturbance monitor: the least rate (rad/s) at which that time counts.
+   */
+  float field_new_field_min_rate;
+  /**
+   * Rest detector: the time constant (s) of the means.
+   */
+  float rest_time_constant;
+  /**
+   * Rest detector: the largest deviation of the rate from its mean at rest, rad/s.
+   */
+  float rest_gyro;
+  /**
+   * Rest detector: the largest deviation of the specific force from its mean at rest, m/s².
+   */
+  float rest_accel;
+  /**
+   * Rest detector: the largest mean rate taken as a bias, rad/s (a steadier turn is motion).
+   */
+  float rest_max_bias;
+  /**
+   * Rest detector: how long (s) the sensor must be still before it counts as at rest.
+   */
+  float rest_min_duration;
+  /**
+   * Standard deviation (rad/s) of the mean rate at rest as a bias measurement.
+   */
+  float rest_bias_noise;
+} gyro_estimator_params_f32;
+
+/**
+ * The estimator's parameters, f64 (SI units, angles in rad): the library's `Params`, field
+ * for field (see its documentation for each one and for how the defaults were chosen).
+ * `gyro_estimator_f64_default_params` fills it with the defaults.
+ */
+typedef struct {
+  /**
+   * The earth frame of the attitude: `GYRO_FRAME_ENU` or `GYRO_FRAME_NED`.
+   */
+  uint32_t frame;
+  /**
+   * 0: Kalman gains from the covariance (the default); 1: complementary gains, the heading
+   * corrected with the first-order gain `dt/(heading_time_constant + dt)`.
+   */
+  uint32_t fixed_gains;
+  /**
+   * `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
+   */
+  double heading_time_constant;
+  /**
+   * Gyroscope white noise, rad/s/√Hz (angle random walk).
+   */
+  double gyro_noise_density;
+  /**
+   * Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
+   */
+  double gyro_scale_noise;
+  /**
+   * Standard deviation of the gyroscope bias at start, rad/s.
+   */
+  double gyro_bias_initial;
+  /**
+   * How far the bias wanders (rad/s) within `gyro_bias_time`.
+   */
+  double gyro_bias_stability;
+  /**
+   * The time (s) over which the bias wanders by `gyro_bias_stability`.
+   */
+  double gyro_bias_time;
+  /**
+   * The largest bias magnitude per axis, rad/s (estimates are clipped to it).
+   */
+  double gyro_bias_max;
+  /**
+   * The gyroscope's full scale, rad/s (`INFINITY`: none).
+   */
+  double gyro_range;
+  /**
+   * The accelerometer's full scale, m/s² (`INFINITY`: none).
+   */
+  double accel_range;
+  /**
+   * Time constant (s) of the specific force's low-pass filter; 0: each sample as it is.
+   */
+  double accel_time_constant;
+  /**
+   * Standard deviation (rad) of the inclination measured from the accelerometer.
+   */
+  double accel_tilt_noise;
+  /**
+   * Correlation time (s) of that error.
+   */
+  double accel_correlation_time;
+  /**
+   * Largest relative deviation of the low-passed specific force's norm from gravity for the inclination update to use it.
+   */
+  double accel_reject;
+  /**
+   * Standard deviation (rad) of the heading measured from the magnetometer.
+   */
+  double mag_heading_noise;
+  /**
+   * Correlation time (s) of that error.
+   */
+  double mag_correlation_time;
+  /**
+   * Delay (s) of the magnetometer behind the gyroscope.
+   */
+  double mag_delay;
+  /**
+   * Weight of a disturbed field's heading error (0: rejected outright).
+   */
+  double mag_disturbance_weight;
+  /**
+   * Disturbance monitor: the largest relative change of the field's norm.
+   */
+  double field_norm;
+  /**
+   * Disturbance monitor: the largest change of the dip angle, rad.
+   */
+  double field_dip;
+  /**
+   * Disturbance monitor: how slowly (s) the reference follows an undisturbed field.
+   */
+  double field_reference_time_constant;
+  /**
+   * Disturbance monitor: how long (s) the field must be back within the thresholds.
+   */
+  double field_min_undisturbed;
+  /**
+   * Disturbance monitor: how long (s) a new homogeneous field must be seen while turning to replace the reference.
+   */
+  double field_new_field_time;
+  /**
+   * Disturbance monitor: the least rate (rad/s) at which that time counts.
+   */
+  double field_new_field_min_rate;
+  /**
+   * Rest detector: the time constant (s) of the means.
+   */
+  double rest_time_constant;
+  /**
+   * Rest detector: the largest deviation of the rate from its mean at rest, rad/s.
+   */
+  double rest_gyro;
+  /**
+   * Rest detector: the largest deviation of the specific force from its mean at rest, m/s².
+   */
+  double rest_accel;
+  /**
+   * Rest detector: the largest mean rate taken as a bias, rad/s (a steadier turn is motion).
+   */
+  double rest_max_bias;
+  /**
+   * Rest detector: how long (s) the sensor must be still before it counts as at rest.
+   */
+  double rest_min_duration;
+  /**
+   * Standard deviation (rad/s) of the mean rate at rest as a bias measurement.
+   */
+  double rest_bias_noise;
+} gyro_estimator_params_f64;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1240,6 +1506,46 @@ gyro_status gyro_estimator_f32_attitude(const gyro_estimator_f32 *s,
 gyro_status gyro_estimator_f64_attitude(const gyro_estimator_f64 *s,
                                         gyro_quat_f64 *attitude,
                                         gyro_vec3_f64 *bias);
+
+/**
+ * The library's default estimator parameters (ENU, Kalman gains; tuned on BROAD without
+ * per-recording tuning) in `out`, to adjust before `gyro_estimator_f32_init_params`.
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_estimator_f32_default_params(gyro_estimator_params_f32 *out);
+
+/**
+ * The default estimator parameters, f64 (see `gyro_estimator_f32_default_params`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_estimator_f64_default_params(gyro_estimator_params_f64 *out);
+
+/**
+ * Starts an estimator with the parameters `params`.
+ *
+ * Errors: `GYRO_NON_FINITE` for a NaN parameter (infinite ranges are allowed);
+ * `GYRO_INVALID_ARGUMENT` for a negative one, a zero time constant that divides, or an
+ * unknown `frame` or `fixed_gains`.
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_estimator_f32_init_params(gyro_estimator_f32 *s,
+                                           const gyro_estimator_params_f32 *params);
+
+/**
+ * Starts an estimator with the parameters `params`, f64 (see
+ * `gyro_estimator_f32_init_params`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_estimator_f64_init_params(gyro_estimator_f64 *s,
+                                           const gyro_estimator_params_f64 *params);
 
 #ifdef __cplusplus
 }  // extern "C"

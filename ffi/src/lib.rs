@@ -38,7 +38,9 @@ use core::ffi::c_char;
 use core::mem::{align_of, size_of};
 
 use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
-use gyrostat::estimation::{EarthFrame, Estimator, Outcome, Params, SensorUse};
+use gyrostat::estimation::{
+    EarthFrame, Estimator, FieldThresholds, Gains, Outcome, Params, RestThresholds, SensorUse,
+};
 use gyrostat::fixed::{CarriedAttitude, Fixed, IncrementQuantizer, IncrementScale, Q30};
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
@@ -2086,6 +2088,252 @@ pub struct gyro_estimator_f64 {
 slot!(gyro_estimator_f32, Estimator<f32>, 0x6779_0401);
 slot!(gyro_estimator_f64, Estimator<f64>, 0x6779_0402);
 
+/// The estimator's parameters, f32 (SI units, angles in rad): the library's `Params`, field
+/// for field (see its documentation for each one and for how the defaults were chosen).
+/// `gyro_estimator_f32_default_params` fills it with the defaults.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct gyro_estimator_params_f32 {
+    /// The earth frame of the attitude: `GYRO_FRAME_ENU` or `GYRO_FRAME_NED`.
+    pub frame: u32,
+    /// 0: Kalman gains from the covariance (the default); 1: complementary gains, the heading
+    /// corrected with the first-order gain `dt/(heading_time_constant + dt)`.
+    pub fixed_gains: u32,
+    /// `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
+    pub heading_time_constant: f32,
+    /// Gyroscope white noise, rad/s/√Hz (angle random walk).
+    pub gyro_noise_density: f32,
+    /// Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
+    pub gyro_scale_noise: f32,
+    /// Standard deviation of the gyroscope bias at start, rad/s.
+    pub gyro_bias_initial: f32,
+    /// How far the bias wanders (rad/s) within `gyro_bias_time`.
+    pub gyro_bias_stability: f32,
+    /// The time (s) over which the bias wanders by `gyro_bias_stability`.
+    pub gyro_bias_time: f32,
+    /// The largest bias magnitude per axis, rad/s (estimates are clipped to it).
+    pub gyro_bias_max: f32,
+    /// The gyroscope's full scale, rad/s (`INFINITY`: none).
+    pub gyro_range: f32,
+    /// The accelerometer's full scale, m/s² (`INFINITY`: none).
+    pub accel_range: f32,
+    /// Time constant (s) of the specific force's low-pass filter; 0: each sample as it is.
+    pub accel_time_constant: f32,
+    /// Standard deviation (rad) of the inclination measured from the accelerometer.
+    pub accel_tilt_noise: f32,
+    /// Correlation time (s) of that error.
+    pub accel_correlation_time: f32,
+    /// Largest relative deviation of the low-passed specific force's norm from gravity for the inclination update to use it.
+    pub accel_reject: f32,
+    /// Standard deviation (rad) of the heading measured from the magnetometer.
+    pub mag_heading_noise: f32,
+    /// Correlation time (s) of that error.
+    pub mag_correlation_time: f32,
+    /// Delay (s) of the magnetometer behind the gyroscope.
+    pub mag_delay: f32,
+    /// Weight of a disturbed field's heading error (0: rejected outright).
+    pub mag_disturbance_weight: f32,
+    /// Disturbance monitor: the largest relative change of the field's norm.
+    pub field_norm: f32,
+    /// Disturbance monitor: the largest change of the dip angle, rad.
+    pub field_dip: f32,
+    /// Disturbance monitor: how slowly (s) the reference follows an undisturbed field.
+    pub field_reference_time_constant: f32,
+    /// Disturbance monitor: how long (s) the field must be back within the thresholds.
+    pub field_min_undisturbed: f32,
+    /// Disturbance monitor: how long (s) a new homogeneous field must be seen while turning to replace the reference.
+    pub field_new_field_time: f32,
+    /// Disturbance monitor: the least rate (rad/s) at which that time counts.
+    pub field_new_field_min_rate: f32,
+    /// Rest detector: the time constant (s) of the means.
+    pub rest_time_constant: f32,
+    /// Rest detector: the largest deviation of the rate from its mean at rest, rad/s.
+    pub rest_gyro: f32,
+    /// Rest detector: the largest deviation of the specific force from its mean at rest, m/s².
+    pub rest_accel: f32,
+    /// Rest detector: the largest mean rate taken as a bias, rad/s (a steadier turn is motion).
+    pub rest_max_bias: f32,
+    /// Rest detector: how long (s) the sensor must be still before it counts as at rest.
+    pub rest_min_duration: f32,
+    /// Standard deviation (rad/s) of the mean rate at rest as a bias measurement.
+    pub rest_bias_noise: f32,
+}
+
+/// The estimator's parameters, f64 (SI units, angles in rad): the library's `Params`, field
+/// for field (see its documentation for each one and for how the defaults were chosen).
+/// `gyro_estimator_f64_default_params` fills it with the defaults.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct gyro_estimator_params_f64 {
+    /// The earth frame of the attitude: `GYRO_FRAME_ENU` or `GYRO_FRAME_NED`.
+    pub frame: u32,
+    /// 0: Kalman gains from the covariance (the default); 1: complementary gains, the heading
+    /// corrected with the first-order gain `dt/(heading_time_constant + dt)`.
+    pub fixed_gains: u32,
+    /// `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
+    pub heading_time_constant: f64,
+    /// Gyroscope white noise, rad/s/√Hz (angle random walk).
+    pub gyro_noise_density: f64,
+    /// Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
+    pub gyro_scale_noise: f64,
+    /// Standard deviation of the gyroscope bias at start, rad/s.
+    pub gyro_bias_initial: f64,
+    /// How far the bias wanders (rad/s) within `gyro_bias_time`.
+    pub gyro_bias_stability: f64,
+    /// The time (s) over which the bias wanders by `gyro_bias_stability`.
+    pub gyro_bias_time: f64,
+    /// The largest bias magnitude per axis, rad/s (estimates are clipped to it).
+    pub gyro_bias_max: f64,
+    /// The gyroscope's full scale, rad/s (`INFINITY`: none).
+    pub gyro_range: f64,
+    /// The accelerometer's full scale, m/s² (`INFINITY`: none).
+    pub accel_range: f64,
+    /// Time constant (s) of the specific force's low-pass filter; 0: each sample as it is.
+    pub accel_time_constant: f64,
+    /// Standard deviation (rad) of the inclination measured from the accelerometer.
+    pub accel_tilt_noise: f64,
+    /// Correlation time (s) of that error.
+    pub accel_correlation_time: f64,
+    /// Largest relative deviation of the low-passed specific force's norm from gravity for the inclination update to use it.
+    pub accel_reject: f64,
+    /// Standard deviation (rad) of the heading measured from the magnetometer.
+    pub mag_heading_noise: f64,
+    /// Correlation time (s) of that error.
+    pub mag_correlation_time: f64,
+    /// Delay (s) of the magnetometer behind the gyroscope.
+    pub mag_delay: f64,
+    /// Weight of a disturbed field's heading error (0: rejected outright).
+    pub mag_disturbance_weight: f64,
+    /// Disturbance monitor: the largest relative change of the field's norm.
+    pub field_norm: f64,
+    /// Disturbance monitor: the largest change of the dip angle, rad.
+    pub field_dip: f64,
+    /// Disturbance monitor: how slowly (s) the reference follows an undisturbed field.
+    pub field_reference_time_constant: f64,
+    /// Disturbance monitor: how long (s) the field must be back within the thresholds.
+    pub field_min_undisturbed: f64,
+    /// Disturbance monitor: how long (s) a new homogeneous field must be seen while turning to replace the reference.
+    pub field_new_field_time: f64,
+    /// Disturbance monitor: the least rate (rad/s) at which that time counts.
+    pub field_new_field_min_rate: f64,
+    /// Rest detector: the time constant (s) of the means.
+    pub rest_time_constant: f64,
+    /// Rest detector: the largest deviation of the rate from its mean at rest, rad/s.
+    pub rest_gyro: f64,
+    /// Rest detector: the largest deviation of the specific force from its mean at rest, m/s².
+    pub rest_accel: f64,
+    /// Rest detector: the largest mean rate taken as a bias, rad/s (a steadier turn is motion).
+    pub rest_max_bias: f64,
+    /// Rest detector: how long (s) the sensor must be still before it counts as at rest.
+    pub rest_min_duration: f64,
+    /// Standard deviation (rad/s) of the mean rate at rest as a bias measurement.
+    pub rest_bias_noise: f64,
+}
+
+/// Conversions between the C parameter structs and `Params`.
+macro_rules! params_io {
+    ($t:ty, $c:ident) => {
+        impl $c {
+            fn to_params(self) -> Result<Params<$t>, gyro_status> {
+                let frame = match self.frame {
+                    GYRO_FRAME_ENU => EarthFrame::Enu,
+                    GYRO_FRAME_NED => EarthFrame::Ned,
+                    _ => return Err(GYRO_INVALID_ARGUMENT),
+                };
+                let gains = match self.fixed_gains {
+                    0 => Gains::Kalman,
+                    1 => Gains::Fixed {
+                        heading_time_constant: self.heading_time_constant,
+                    },
+                    _ => return Err(GYRO_INVALID_ARGUMENT),
+                };
+                Ok(Params {
+                    frame,
+                    gains,
+                    gyro_noise_density: self.gyro_noise_density,
+                    gyro_scale_noise: self.gyro_scale_noise,
+                    gyro_bias_initial: self.gyro_bias_initial,
+                    gyro_bias_stability: self.gyro_bias_stability,
+                    gyro_bias_time: self.gyro_bias_time,
+                    gyro_bias_max: self.gyro_bias_max,
+                    gyro_range: self.gyro_range,
+                    accel_range: self.accel_range,
+                    accel_time_constant: self.accel_time_constant,
+                    accel_tilt_noise: self.accel_tilt_noise,
+                    accel_correlation_time: self.accel_correlation_time,
+                    accel_reject: self.accel_reject,
+                    mag_heading_noise: self.mag_heading_noise,
+                    mag_correlation_time: self.mag_correlation_time,
+                    mag_delay: self.mag_delay,
+                    mag_disturbance_weight: self.mag_disturbance_weight,
+                    rest_bias_noise: self.rest_bias_noise,
+                    field: FieldThresholds {
+                        norm: self.field_norm,
+                        dip: self.field_dip,
+                        reference_time_constant: self.field_reference_time_constant,
+                        min_undisturbed: self.field_min_undisturbed,
+                        new_field_time: self.field_new_field_time,
+                        new_field_min_rate: self.field_new_field_min_rate,
+                    },
+                    rest: RestThresholds {
+                        time_constant: self.rest_time_constant,
+                        gyro: self.rest_gyro,
+                        accel: self.rest_accel,
+                        max_bias: self.rest_max_bias,
+                        min_duration: self.rest_min_duration,
+                    },
+                })
+            }
+            fn from_params(p: &Params<$t>) -> Self {
+                let (fixed_gains, heading_time_constant) = match p.gains {
+                    Gains::Kalman => (0, 0.0),
+                    Gains::Fixed {
+                        heading_time_constant,
+                    } => (1, heading_time_constant),
+                };
+                $c {
+                    frame: match p.frame {
+                        EarthFrame::Enu => GYRO_FRAME_ENU,
+                        EarthFrame::Ned => GYRO_FRAME_NED,
+                    },
+                    fixed_gains,
+                    heading_time_constant,
+                    gyro_noise_density: p.gyro_noise_density,
+                    gyro_scale_noise: p.gyro_scale_noise,
+                    gyro_bias_initial: p.gyro_bias_initial,
+                    gyro_bias_stability: p.gyro_bias_stability,
+                    gyro_bias_time: p.gyro_bias_time,
+                    gyro_bias_max: p.gyro_bias_max,
+                    gyro_range: p.gyro_range,
+                    accel_range: p.accel_range,
+                    accel_time_constant: p.accel_time_constant,
+                    accel_tilt_noise: p.accel_tilt_noise,
+                    accel_correlation_time: p.accel_correlation_time,
+                    accel_reject: p.accel_reject,
+                    mag_heading_noise: p.mag_heading_noise,
+                    mag_correlation_time: p.mag_correlation_time,
+                    mag_delay: p.mag_delay,
+                    mag_disturbance_weight: p.mag_disturbance_weight,
+                    rest_bias_noise: p.rest_bias_noise,
+                    field_norm: p.field.norm,
+                    field_dip: p.field.dip,
+                    field_reference_time_constant: p.field.reference_time_constant,
+                    field_min_undisturbed: p.field.min_undisturbed,
+                    field_new_field_time: p.field.new_field_time,
+                    field_new_field_min_rate: p.field.new_field_min_rate,
+                    rest_time_constant: p.rest.time_constant,
+                    rest_gyro: p.rest.gyro,
+                    rest_accel: p.rest.accel,
+                    rest_max_bias: p.rest.max_bias,
+                    rest_min_duration: p.rest.min_duration,
+                }
+            }
+        }
+    };
+}
+params_io!(f32, gyro_estimator_params_f32);
+params_io!(f64, gyro_estimator_params_f64);
+
 fn est_init<T: CFloat, S: Slot<Inner = Estimator<T>>>(s: *mut S, frame: u32) -> gyro_status {
     status((|| {
         let frame = match frame {
@@ -2244,6 +2492,78 @@ pub unsafe extern "C" fn gyro_estimator_f64_attitude(
     bias: *mut gyro_vec3_f64,
 ) -> gyro_status {
     est_attitude::<f64, _>(s, attitude, bias)
+}
+
+/// The library's default estimator parameters (ENU, Kalman gains; tuned on BROAD without
+/// per-recording tuning) in `out`, to adjust before `gyro_estimator_f32_init_params`.
+///
+/// # Safety
+/// Every pointer is NULL or points to a valid object of its type.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gyro_estimator_f32_default_params(
+    out: *mut gyro_estimator_params_f32,
+) -> gyro_status {
+    status((|| {
+        ok_ptr(out)?;
+        write(
+            out,
+            gyro_estimator_params_f32::from_params(&Params::default()),
+        );
+        Ok(())
+    })())
+}
+
+/// The default estimator parameters, f64 (see `gyro_estimator_f32_default_params`).
+///
+/// # Safety
+/// Every pointer is NULL or points to a valid object of its type.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gyro_estimator_f64_default_params(
+    out: *mut gyro_estimator_params_f64,
+) -> gyro_status {
+    status((|| {
+        ok_ptr(out)?;
+        write(
+            out,
+            gyro_estimator_params_f64::from_params(&Params::default()),
+        );
+        Ok(())
+    })())
+}
+
+/// Starts an estimator with the parameters `params`.
+///
+/// Errors: `GYRO_NON_FINITE` for a NaN parameter (infinite ranges are allowed);
+/// `GYRO_INVALID_ARGUMENT` for a negative one, a zero time constant that divides, or an
+/// unknown `frame` or `fixed_gains`.
+///
+/// # Safety
+/// Every pointer is NULL or points to a valid object of its type.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gyro_estimator_f32_init_params(
+    s: *mut gyro_estimator_f32,
+    params: *const gyro_estimator_params_f32,
+) -> gyro_status {
+    status((|| {
+        let p = read(params)?.to_params()?;
+        init(s, Estimator::try_new(p)?)
+    })())
+}
+
+/// Starts an estimator with the parameters `params`, f64 (see
+/// `gyro_estimator_f32_init_params`).
+///
+/// # Safety
+/// Every pointer is NULL or points to a valid object of its type.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gyro_estimator_f64_init_params(
+    s: *mut gyro_estimator_f64,
+    params: *const gyro_estimator_params_f64,
+) -> gyro_status {
+    status((|| {
+        let p = read(params)?.to_params()?;
+        init(s, Estimator::try_new(p)?)
+    })())
 }
 
 /// Storage sizes of the Rust states (bytes), for the tests that check the header's words leave

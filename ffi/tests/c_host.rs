@@ -515,15 +515,21 @@ fn outcome(o: &Outcome) -> String {
 }
 
 fn estimators(r: &mut Rng, l: &mut Lines) {
+    l.status("est32_params", Ok(()));
     l.status("est32_init", Ok(()));
     l.status("est64_init", Ok(()));
-    let mut e32 = Estimator::<f32>::try_new(Params::default()).unwrap();
+    let mut e32 = Estimator::<f32>::try_new(Params {
+        gyro_range: 0.24,
+        ..Params::default()
+    })
+    .unwrap();
     let mut e64 = Estimator::<f64>::try_new(Params {
         frame: EarthFrame::Ned,
         ..Params::default()
     })
     .unwrap();
     let (mut o32, mut o64) = (Outcome::default(), Outcome::default());
+    let mut saturated = 0u32;
     for k in 0..300 {
         let g32 = r.vec32(0.05, [0.0, 0.0, 0.2]);
         let a32 = r.vec32(0.1, [0.0, 0.5, 9.8]);
@@ -531,6 +537,7 @@ fn estimators(r: &mut Rng, l: &mut Lines) {
         let a64 = r.vec64(0.1, [0.3, 0.0, -9.8]);
         let m64 = r.vec64(1.0, [20.0, 1.0, 40.0]);
         o32 = e32.update(g32, a32, None, 0.01).unwrap();
+        saturated += u32::from(o32.gyro_saturated);
         o64 = e64.update(g64, a64, Some(m64), 0.01).unwrap();
         if k % 100 == 99 {
             l.put("est32", Ok(q(e32.attitude())));
@@ -541,6 +548,8 @@ fn estimators(r: &mut Rng, l: &mut Lines) {
         }
     }
     let _ = (o32, o64);
+    assert!(saturated > 0, "the f32 estimator's gyro range is reached");
+    l.raw(format!("est32_saturated {saturated:08x}"));
     let o = e32.update(Vec3::ZERO, Vec3::ZERO, None, 0.01);
     l.status("zero_accel", err(o.map(|_| ())));
     l.raw(format!("zero_accel_outcome {:x}", sensor(o.unwrap().accel)));

@@ -397,3 +397,97 @@ fn quaternion_inputs_unit_to_rounding_are_taken_bit_for_bit() {
     }
     assert_eq!(out, ID64);
 }
+
+#[test]
+fn estimator_parameters_from_c() {
+    let mut p = gyro_estimator_params_f64::default();
+    let mut a: gyro_estimator_f64 = zeroed();
+    let mut b: gyro_estimator_f64 = zeroed();
+    let g = gyro_vec3_f64 {
+        x: 0.3,
+        y: -0.1,
+        z: 0.2,
+    };
+    let acc = gyro_vec3_f64 {
+        x: 0.5,
+        y: 0.2,
+        z: 9.7,
+    };
+    let (mut qa, mut qb) = (SENTINEL, SENTINEL);
+    let (mut oa, mut ob) = (
+        gyro_estimator_outcome::default(),
+        gyro_estimator_outcome::default(),
+    );
+    unsafe {
+        assert_eq!(gyro_estimator_f64_default_params(&mut p), GYRO_OK);
+        assert_eq!(p.frame, GYRO_FRAME_ENU);
+        assert!(p.gyro_range.is_infinite() && p.gyro_noise_density > 0.0);
+        // The defaults through the struct: the same estimator as gyro_estimator_f64_init.
+        assert_eq!(gyro_estimator_f64_init_params(&mut a, &p), GYRO_OK);
+        assert_eq!(gyro_estimator_f64_init(&mut b, GYRO_FRAME_ENU), GYRO_OK);
+        for k in 0..50 {
+            let dt = 0.01 + 1e-4 * f64::from(k);
+            assert_eq!(
+                gyro_estimator_f64_update(&mut a, &g, &acc, null(), dt, &mut oa),
+                GYRO_OK
+            );
+            assert_eq!(
+                gyro_estimator_f64_update(&mut b, &g, &acc, null(), dt, &mut ob),
+                GYRO_OK
+            );
+        }
+        assert_eq!(
+            gyro_estimator_f64_attitude(&a, &mut qa, null_mut()),
+            GYRO_OK
+        );
+        assert_eq!(
+            gyro_estimator_f64_attitude(&b, &mut qb, null_mut()),
+            GYRO_OK
+        );
+        assert_eq!((qa, oa), (qb, ob));
+        // A parameter takes effect: a gyro range below the rate saturates it.
+        p.gyro_range = 0.25;
+        assert_eq!(gyro_estimator_f64_init_params(&mut a, &p), GYRO_OK);
+        assert_eq!(
+            gyro_estimator_f64_update(&mut a, &g, &acc, null(), 0.01, &mut oa),
+            GYRO_OK
+        );
+        assert_eq!(
+            gyro_estimator_f64_update(&mut a, &g, &acc, null(), 0.01, &mut oa),
+            GYRO_OK
+        );
+        assert_eq!(oa.gyro_saturated, 1);
+        // Bad parameters are refused and leave the struct as it was.
+        let mut c: gyro_estimator_f32 = zeroed();
+        let mut p32 = gyro_estimator_params_f32::default();
+        assert_eq!(gyro_estimator_f32_default_params(&mut p32), GYRO_OK);
+        for (field, value) in [(0, -1.0f32), (1, f32::NAN)] {
+            let mut bad = p32;
+            match field {
+                0 => bad.gyro_noise_density = value,
+                _ => bad.accel_tilt_noise = value,
+            }
+            let want = if value.is_nan() {
+                GYRO_NON_FINITE
+            } else {
+                GYRO_INVALID_ARGUMENT
+            };
+            assert_eq!(gyro_estimator_f32_init_params(&mut c, &bad), want);
+        }
+        let mut bad = p32;
+        bad.fixed_gains = 2;
+        assert_eq!(
+            gyro_estimator_f32_init_params(&mut c, &bad),
+            GYRO_INVALID_ARGUMENT
+        );
+        let mut q32 = ID32;
+        assert_eq!(
+            gyro_estimator_f32_attitude(&c, &mut q32, null_mut()),
+            GYRO_NOT_INITIALIZED
+        );
+        p32.fixed_gains = 1;
+        p32.heading_time_constant = 5.0;
+        p32.frame = GYRO_FRAME_NED;
+        assert_eq!(gyro_estimator_f32_init_params(&mut c, &p32), GYRO_OK);
+    }
+}

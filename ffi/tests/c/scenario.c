@@ -374,9 +374,14 @@ static void bodies(void) {
 }
 
 static void estimators(void) {
-  status_line("est32_init", gyro_estimator_f32_init(&est32, GYRO_FRAME_ENU));
+  /* f32 from a parameter struct: the defaults with a gyro range that some samples reach. */
+  gyro_estimator_params_f32 params;
+  status_line("est32_params", gyro_estimator_f32_default_params(&params));
+  params.gyro_range = 0.24f;
+  status_line("est32_init", gyro_estimator_f32_init_params(&est32, &params));
   status_line("est64_init", gyro_estimator_f64_init(&est64, GYRO_FRAME_NED));
   gyro_estimator_outcome o32 = {0}, o64 = {0};
+  uint32_t saturated = 0;
   for (int k = 0; k < 300; k++) {
     const gyro_vec3_f32 g32 = vec32(0.05f, 0, 0, 0.2f);
     const gyro_vec3_f32 a32 = vec32(0.1f, 0, 0.5f, 9.8f);
@@ -385,6 +390,7 @@ static void estimators(void) {
     const gyro_vec3_f64 m64 = vec64(1.0, 20.0, 1.0, 40.0);
     gyro_status s = gyro_estimator_f32_update(&est32, &g32, &a32, NULL, 0.01f, &o32);
     if (s != GYRO_OK) status_line("est32_update", s);
+    saturated += o32.gyro_saturated;
     s = gyro_estimator_f64_update(&est64, &g64, &a64, &m64, 0.01, &o64);
     if (s != GYRO_OK) status_line("est64_update", s);
     if (k % 100 == 99) {
@@ -402,6 +408,9 @@ static void estimators(void) {
       end();
     }
   }
+  begin("est32_saturated");
+  hex(saturated, 8);
+  end();
   {
     const gyro_vec3_f32 g = {0, 0, 0}, a = {0, 0, 0};
     gyro_estimator_outcome o;
