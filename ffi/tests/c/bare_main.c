@@ -14,18 +14,43 @@ static int semihost(int op, const void *arg) {
   return r0;
 }
 
-static int stdout_handle = -1;
+static int handles[2] = {-1, -1};
 
-/* SYS_OPEN of ":tt" for writing ("w", mode 4) is the host's standard output; SYS_WRITE writes. */
-static void put(const char *line) {
-  if (stdout_handle < 0) {
-    const uint32_t open_args[3] = {(uint32_t)(uintptr_t)":tt", 4, 3};
-    stdout_handle = semihost(0x01 /* SYS_OPEN */, open_args);
+/* SYS_OPEN of ":tt" for writing is the host's standard output (mode 4, "w") or standard error
+ * (mode 8, "a"); SYS_WRITE writes. */
+static void put_to(int err, const char *line) {
+  if (handles[err] < 0) {
+    const uint32_t open_args[3] = {(uint32_t)(uintptr_t)":tt", err ? 8u : 4u, 3};
+    handles[err] = semihost(0x01 /* SYS_OPEN */, open_args);
   }
   uint32_t n = 0;
   while (line[n]) n++;
-  const uint32_t write_args[3] = {(uint32_t)stdout_handle, (uint32_t)(uintptr_t)line, n};
+  const uint32_t write_args[3] = {(uint32_t)handles[err], (uint32_t)(uintptr_t)line, n};
   semihost(0x05 /* SYS_WRITE */, write_args);
+}
+
+static void put(const char *line) { put_to(0, line); }
+
+#define PAINT 0xC0DEC0DEu
+
+/* The stack high-water mark (bytes): the RAM between .bss and the stack was painted at reset;
+ * the lowest word no longer painted is as deep as the stack went. Reported on standard error. */
+static void report_stack(void) {
+  const uint32_t *p = &_ebss;
+  while (p < &_estack && *p == PAINT) p++;
+  uint32_t used = (uint32_t)((uintptr_t)&_estack - (uintptr_t)p);
+  char line[40] = "stack high-water: ";
+  char digits[12];
+  int n = 0, k = 18;
+  do {
+    digits[n++] = (char)('0' + used % 10);
+    used /= 10;
+  } while (used);
+  while (n) line[k++] = digits[--n];
+  const char *tail = " bytes\n";
+  while (*tail) line[k++] = *tail++;
+  line[k] = 0;
+  put_to(1, line);
 }
 
 static void __attribute__((noreturn)) stop(int ok) {
@@ -39,12 +64,18 @@ void reset_handler(void) {
   uint32_t *src = &_sidata, *dst = &_sdata;
   while (dst < &_edata) *dst++ = *src++;
   for (dst = &_sbss; dst < &_ebss;) *dst++ = 0;
+  {
+    uint32_t *sp;
+    __asm__ volatile("mov %0, sp" : "=r"(sp));
+    for (dst = &_ebss; dst < sp - 16;) *dst++ = PAINT;
+  }
 #if defined(__ARM_FP)
   /* CPACR: full access to CP10 and CP11 (the FPU). */
   *(volatile uint32_t *)0xE000ED88u |= 0xFu << 20;
   __asm__ volatile("dsb\n\tisb" ::: "memory");
 #endif
   scenario_run(put);
+  report_stack();
   stop(1);
 }
 
