@@ -97,7 +97,12 @@ impl<T: Real> Covariance<T> {
     pub fn update_heading(&mut self, c: T, r: T) -> T {
         let py = self.row(1);
         let pz = self.row(2);
-        let u: [T; 6] = core::array::from_fn(|j| c * py[j] + pz[j]);
+        // Zipped rather than indexed: no bounds check for the optimiser to remove (at
+        // opt-level "s" it stays, a panicking branch in the C interface's size-optimised build).
+        let mut u = pz;
+        for (uj, &pyj) in u.iter_mut().zip(&py) {
+            *uj = c * pyj + *uj;
+        }
         let s = c * u[1] + u[2] + r;
         let k = u[2] / s;
         for (j, &uj) in u.iter().enumerate() {

@@ -1,0 +1,493 @@
+//! The C interface's contract for bad calls, called from Rust as C calls it: a NULL or
+//! misaligned pointer gives `GYRO_BAD_POINTER`, a state never initialised
+//! `GYRO_NOT_INITIALIZED`, an unknown enumerated value `GYRO_INVALID_ARGUMENT`; an error writes
+//! no output and leaves the state as it was.
+
+use std::mem::MaybeUninit;
+use std::ptr::{null, null_mut};
+
+use gyrostat_ffi::gyro_status::*;
+use gyrostat_ffi::*;
+
+const ID32: gyro_quat_f32 = gyro_quat_f32 {
+    w: 1.0,
+    x: 0.0,
+    y: 0.0,
+    z: 0.0,
+};
+const ID64: gyro_quat_f64 = gyro_quat_f64 {
+    w: 1.0,
+    x: 0.0,
+    y: 0.0,
+    z: 0.0,
+};
+const SENTINEL: gyro_quat_f64 = gyro_quat_f64 {
+    w: 7.0,
+    x: 7.0,
+    y: 7.0,
+    z: 7.0,
+};
+
+/// A state struct as static C storage starts: all zero.
+fn zeroed<T>() -> T {
+    // SAFETY: the state structs are a u32 tag and u64 words; zero is a valid bit pattern.
+    unsafe { MaybeUninit::zeroed().assume_init() }
+}
+
+#[test]
+fn null_pointers_are_a_status() {
+    let mut q = ID64;
+    let v = gyro_vec3_f64 {
+        x: 0.1,
+        y: 0.2,
+        z: 0.3,
+    };
+    let mut m = gyro_mat3_f64::default();
+    let mut e = gyro_euler_f64::default();
+    unsafe {
+        assert_eq!(gyro_quat_normalize_f64(null(), &mut q), GYRO_BAD_POINTER);
+        assert_eq!(gyro_quat_normalize_f64(&ID64, null_mut()), GYRO_BAD_POINTER);
+        assert_eq!(gyro_quat_mul_f64(&ID64, null(), &mut q), GYRO_BAD_POINTER);
+        assert_eq!(
+            gyro_quat_rotate_f64(&ID64, null(), null_mut()),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(gyro_quat_to_dcm_f64(null(), &mut m), GYRO_BAD_POINTER);
+        assert_eq!(
+            gyro_quat_from_dcm_f64(null(), 1e-9, &mut q),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(gyro_quat_from_rotvec_f64(&v, null_mut()), GYRO_BAD_POINTER);
+        assert_eq!(
+            gyro_quat_to_rotvec_f32(null(), null_mut()),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_quat_from_axis_angle_f32(null(), 1.0, null_mut()),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_quat_to_euler_f64(&ID64, null(), GYRO_GIMBAL_ZERO_THIRD, null(), &mut e),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_quat_from_euler_f64(c"ZYX".as_ptr(), null(), &mut q),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_increment_integrator_f32_init(null_mut(), &ID32, 2, 1, 0),
+            GYRO_BAD_POINTER
+        );
+        let mut inc: gyro_increment_integrator_f64 = zeroed();
+        assert_eq!(
+            gyro_increment_integrator_f64_init(&mut inc, null(), 2, 1, 0),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_increment_integrator_f64_init(&mut inc, &ID64, 2, 1, 0),
+            GYRO_OK
+        );
+        assert_eq!(
+            gyro_increment_integrator_f64_push(&mut inc, null(), null_mut(), null_mut()),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_increment_integrator_f64_attitude(&inc, 0, null_mut()),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_rate_integrator_f64_init(null_mut(), &ID64, 0, 1, 0.01, 0),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_gyrostat_f64_init(null_mut(), &v, null(), null(), 0),
+            GYRO_BAD_POINTER
+        );
+        let mut body: gyro_gyrostat_f64 = zeroed();
+        // One wheel announced, none given.
+        assert_eq!(
+            gyro_gyrostat_f64_init(&mut body, &v, null(), null(), 1),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(gyro_estimator_f64_init(null_mut(), 0), GYRO_BAD_POINTER);
+        assert_eq!(
+            gyro_increment_quantizer_q30_quantize(null_mut(), null(), null_mut()),
+            GYRO_BAD_POINTER
+        );
+    }
+}
+
+#[test]
+fn misaligned_pointers_are_a_status() {
+    let buf = [0u64; 8];
+    // One byte into an 8-aligned buffer: misaligned for every struct of the interface.
+    let p = unsafe { (buf.as_ptr() as *const u8).add(1) };
+    let mut q = SENTINEL;
+    unsafe {
+        assert_eq!(
+            gyro_quat_normalize_f64(p as *const gyro_quat_f64, &mut q),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_quat_normalize_f64(&ID64, p as *mut gyro_quat_f64),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_estimator_f64_update(
+                p as *mut gyro_estimator_f64,
+                null(),
+                null(),
+                null(),
+                0.01,
+                null_mut()
+            ),
+            GYRO_BAD_POINTER
+        );
+    }
+    assert_eq!(q, SENTINEL, "no output on an error");
+}
+
+#[test]
+fn uninitialised_states_are_a_status() {
+    let d32 = gyro_vec3_f32::default();
+    let d64 = gyro_vec3_f64::default();
+    let mut q32 = ID32;
+    let mut q64 = SENTINEL;
+    unsafe {
+        let mut inc: gyro_increment_integrator_f32 = zeroed();
+        assert_eq!(
+            gyro_increment_integrator_f32_push(&mut inc, &d32, null_mut(), null_mut()),
+            GYRO_NOT_INITIALIZED
+        );
+        assert_eq!(
+            gyro_increment_integrator_f32_flush(&mut inc, &mut q32),
+            GYRO_NOT_INITIALIZED
+        );
+        let inc30: gyro_increment_integrator_q30 = zeroed();
+        let mut q30 = gyro_quat_q30::default();
+        assert_eq!(
+            gyro_increment_integrator_q30_attitude(&inc30, &mut q30),
+            GYRO_NOT_INITIALIZED
+        );
+        let mut quant: gyro_increment_quantizer_q30 = zeroed();
+        let mut v30 = gyro_vec3_q30::default();
+        assert_eq!(
+            gyro_increment_quantizer_q30_quantize(&mut quant, &[1, 2, 3], &mut v30),
+            GYRO_NOT_INITIALIZED
+        );
+        let rate: gyro_rate_integrator_f64 = zeroed();
+        assert_eq!(
+            gyro_rate_integrator_f64_attitude(&rate, &mut q64),
+            GYRO_NOT_INITIALIZED
+        );
+        let body: gyro_gyrostat_f64 = zeroed();
+        let mut s = gyro_gyrostat_state_f64::default();
+        assert_eq!(
+            gyro_gyrostat_f64_state_from_omega(&body, &ID64, &d64, null(), &mut s),
+            GYRO_NOT_INITIALIZED
+        );
+        let mut est: gyro_estimator_f64 = zeroed();
+        assert_eq!(
+            gyro_estimator_f64_update(&mut est, &d64, &d64, null(), 0.01, null_mut()),
+            GYRO_NOT_INITIALIZED
+        );
+    }
+    assert_eq!(q64, SENTINEL);
+}
+
+#[test]
+fn unknown_enumerated_values_are_invalid_arguments() {
+    let mut inc: gyro_increment_integrator_f32 = zeroed();
+    let mut rate: gyro_rate_integrator_f32 = zeroed();
+    let mut est: gyro_estimator_f32 = zeroed();
+    let mut body: gyro_gyrostat_f32 = zeroed();
+    let mut e = gyro_euler_f32::default();
+    let diag = gyro_vec3_f32 {
+        x: 2.0,
+        y: 3.0,
+        z: 4.0,
+    };
+    unsafe {
+        for (rule, norm, comp) in [(5, 1, 0), (2, 3, 0), (2, 1, 2), (u32::MAX, 1, 0)] {
+            assert_eq!(
+                gyro_increment_integrator_f32_init(&mut inc, &ID32, rule, norm, comp),
+                GYRO_INVALID_ARGUMENT
+            );
+        }
+        assert_eq!(
+            gyro_rate_integrator_f32_init(&mut rate, &ID32, 3, 1, 0.01, 0),
+            GYRO_INVALID_ARGUMENT
+        );
+        assert_eq!(gyro_estimator_f32_init(&mut est, 2), GYRO_INVALID_ARGUMENT);
+        assert_eq!(
+            gyro_quat_to_euler_f32(&ID32, c"ZYX".as_ptr(), 3, null(), &mut e),
+            GYRO_INVALID_ARGUMENT
+        );
+        for bad in [c"ZYXZ", c"zYx", c"ZZY", c"", c"ABC"] {
+            assert_eq!(
+                gyro_quat_to_euler_f32(&ID32, bad.as_ptr(), 1, null(), &mut e),
+                GYRO_INVALID_ARGUMENT,
+                "{bad:?}"
+            );
+        }
+        assert_eq!(
+            gyro_gyrostat_f32_init(&mut body, &diag, null(), null(), 0),
+            GYRO_OK
+        );
+        let mut s = gyro_gyrostat_state_f32 {
+            attitude: ID32,
+            ..Default::default()
+        };
+        let before = s;
+        assert_eq!(
+            gyro_gyrostat_f32_step(&body, 4, &s, 0.0, 0.01, null(), null(), &mut s),
+            GYRO_INVALID_ARGUMENT
+        );
+        assert_eq!(s, before);
+    }
+    // Every failed init left the struct uninitialised.
+    let mut q = ID32;
+    unsafe {
+        assert_eq!(
+            gyro_increment_integrator_f32_attitude(&inc, 0, &mut q),
+            GYRO_NOT_INITIALIZED
+        );
+        assert_eq!(
+            gyro_rate_integrator_f32_attitude(&rate, &mut q),
+            GYRO_NOT_INITIALIZED
+        );
+    }
+}
+
+#[test]
+fn an_error_leaves_the_state_unchanged() {
+    let mut inc: gyro_increment_integrator_f64 = zeroed();
+    let mut est: gyro_estimator_f64 = zeroed();
+    let (mut a, mut b) = (SENTINEL, SENTINEL);
+    let (mut bias_a, mut bias_b) = (gyro_vec3_f64::default(), gyro_vec3_f64::default());
+    let nan = gyro_vec3_f64 {
+        x: f64::NAN,
+        y: 0.0,
+        z: 0.0,
+    };
+    unsafe {
+        assert_eq!(
+            gyro_increment_integrator_f64_init(&mut inc, &ID64, GYRO_CONING_THREE_SAMPLE, 0, 0),
+            GYRO_OK
+        );
+        // Two increments pending of a three-sample group; then a NaN is refused.
+        let d = gyro_vec3_f64 {
+            x: 1e-3,
+            y: -2e-3,
+            z: 5e-4,
+        };
+        for _ in 0..2 {
+            let mut updated = 9;
+            assert_eq!(
+                gyro_increment_integrator_f64_push(&mut inc, &d, &mut updated, null_mut()),
+                GYRO_OK
+            );
+            assert_eq!(updated, 0);
+        }
+        assert_eq!(
+            gyro_increment_integrator_f64_attitude(&inc, 1, &mut a),
+            GYRO_OK
+        );
+        let mut updated = 9;
+        assert_eq!(
+            gyro_increment_integrator_f64_push(&mut inc, &nan, &mut updated, &mut b),
+            GYRO_NON_FINITE
+        );
+        assert_eq!((updated, b), (9, SENTINEL), "no output on an error");
+        assert_eq!(
+            gyro_increment_integrator_f64_attitude(&inc, 1, &mut b),
+            GYRO_OK
+        );
+        assert_eq!(a, b, "the pending increments survive a refused one");
+        // The third increment completes the group.
+        assert_eq!(
+            gyro_increment_integrator_f64_push(&mut inc, &d, &mut updated, &mut b),
+            GYRO_OK
+        );
+        assert_eq!(updated, 1);
+
+        assert_eq!(gyro_estimator_f64_init(&mut est, GYRO_FRAME_ENU), GYRO_OK);
+        let g = gyro_vec3_f64 {
+            x: 0.01,
+            y: 0.0,
+            z: 0.02,
+        };
+        let acc = gyro_vec3_f64 {
+            x: 0.1,
+            y: 0.2,
+            z: 9.8,
+        };
+        let mut o = gyro_estimator_outcome::default();
+        assert_eq!(
+            gyro_estimator_f64_update(&mut est, &g, &acc, null(), 0.01, &mut o),
+            GYRO_OK
+        );
+        assert_eq!(
+            (o.initialized, o.accel, o.mag),
+            (1, GYRO_SENSOR_USED, GYRO_SENSOR_ABSENT)
+        );
+        assert_eq!(
+            gyro_estimator_f64_attitude(&est, &mut a, &mut bias_a),
+            GYRO_OK
+        );
+        for dt in [0.0, -1.0, f64::NAN, 2000.0] {
+            assert_eq!(
+                gyro_estimator_f64_update(&mut est, &g, &acc, null(), dt, &mut o),
+                GYRO_INVALID_ARGUMENT
+            );
+        }
+        assert_eq!(
+            gyro_estimator_f64_update(&mut est, &nan, &acc, null(), 0.01, &mut o),
+            GYRO_NON_FINITE
+        );
+        assert_eq!(
+            gyro_estimator_f64_attitude(&est, &mut b, &mut bias_b),
+            GYRO_OK
+        );
+        assert_eq!((a, bias_a), (b, bias_b));
+    }
+}
+
+#[test]
+fn quaternion_inputs_unit_to_rounding_are_taken_bit_for_bit() {
+    // A unit quaternion whose normalisation would move its last bits: taken as it is.
+    let q = gyro_quat_f64 {
+        w: 0.1,
+        x: 0.7,
+        y: -0.5,
+        z: (1.0f64 - 0.01 - 0.49 - 0.25).sqrt(),
+    };
+    let mut out = SENTINEL;
+    let axis = gyro_vec3_f64 {
+        x: 0.0,
+        y: 0.0,
+        z: 1.0,
+    };
+    let mut zero_turn = SENTINEL;
+    unsafe {
+        assert_eq!(
+            gyro_quat_from_axis_angle_f64(&axis, 0.0, &mut zero_turn),
+            GYRO_OK
+        );
+        assert_eq!(gyro_quat_mul_f64(&q, &zero_turn, &mut out), GYRO_OK);
+    }
+    assert_eq!(out, q);
+    let mut normalised = SENTINEL;
+    unsafe {
+        assert_eq!(gyro_quat_normalize_f64(&q, &mut normalised), GYRO_OK);
+    }
+    assert_ne!(
+        normalised, q,
+        "normalising would have changed the input's bits"
+    );
+    // A far-from-unit one is normalised (scipy's from_quat): (2, 0, 0, 0) is the identity.
+    let two = gyro_quat_f64 {
+        w: 2.0,
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+    };
+    unsafe {
+        assert_eq!(gyro_quat_mul_f64(&two, &ID64, &mut out), GYRO_OK);
+    }
+    assert_eq!(out, ID64);
+}
+
+#[test]
+fn estimator_parameters_from_c() {
+    let mut p = gyro_estimator_params_f64::default();
+    let mut a: gyro_estimator_f64 = zeroed();
+    let mut b: gyro_estimator_f64 = zeroed();
+    let g = gyro_vec3_f64 {
+        x: 0.3,
+        y: -0.1,
+        z: 0.2,
+    };
+    let acc = gyro_vec3_f64 {
+        x: 0.5,
+        y: 0.2,
+        z: 9.7,
+    };
+    let (mut qa, mut qb) = (SENTINEL, SENTINEL);
+    let (mut oa, mut ob) = (
+        gyro_estimator_outcome::default(),
+        gyro_estimator_outcome::default(),
+    );
+    unsafe {
+        assert_eq!(gyro_estimator_f64_default_params(&mut p), GYRO_OK);
+        assert_eq!(p.frame, GYRO_FRAME_ENU);
+        assert!(p.gyro_range.is_infinite() && p.gyro_noise_density > 0.0);
+        // The defaults through the struct: the same estimator as gyro_estimator_f64_init.
+        assert_eq!(gyro_estimator_f64_init_params(&mut a, &p), GYRO_OK);
+        assert_eq!(gyro_estimator_f64_init(&mut b, GYRO_FRAME_ENU), GYRO_OK);
+        for k in 0..50 {
+            let dt = 0.01 + 1e-4 * f64::from(k);
+            assert_eq!(
+                gyro_estimator_f64_update(&mut a, &g, &acc, null(), dt, &mut oa),
+                GYRO_OK
+            );
+            assert_eq!(
+                gyro_estimator_f64_update(&mut b, &g, &acc, null(), dt, &mut ob),
+                GYRO_OK
+            );
+        }
+        assert_eq!(
+            gyro_estimator_f64_attitude(&a, &mut qa, null_mut()),
+            GYRO_OK
+        );
+        assert_eq!(
+            gyro_estimator_f64_attitude(&b, &mut qb, null_mut()),
+            GYRO_OK
+        );
+        assert_eq!((qa, oa), (qb, ob));
+        // A parameter takes effect: a gyro range below the rate saturates it.
+        p.gyro_range = 0.25;
+        assert_eq!(gyro_estimator_f64_init_params(&mut a, &p), GYRO_OK);
+        assert_eq!(
+            gyro_estimator_f64_update(&mut a, &g, &acc, null(), 0.01, &mut oa),
+            GYRO_OK
+        );
+        assert_eq!(
+            gyro_estimator_f64_update(&mut a, &g, &acc, null(), 0.01, &mut oa),
+            GYRO_OK
+        );
+        assert_eq!(oa.gyro_saturated, 1);
+        // Bad parameters are refused and leave the struct as it was.
+        let mut c: gyro_estimator_f32 = zeroed();
+        let mut p32 = gyro_estimator_params_f32::default();
+        assert_eq!(gyro_estimator_f32_default_params(&mut p32), GYRO_OK);
+        for (field, value) in [(0, -1.0f32), (1, f32::NAN)] {
+            let mut bad = p32;
+            match field {
+                0 => bad.gyro_noise_density = value,
+                _ => bad.accel_tilt_noise = value,
+            }
+            let want = if value.is_nan() {
+                GYRO_NON_FINITE
+            } else {
+                GYRO_INVALID_ARGUMENT
+            };
+            assert_eq!(gyro_estimator_f32_init_params(&mut c, &bad), want);
+        }
+        let mut bad = p32;
+        bad.fixed_gains = 2;
+        assert_eq!(
+            gyro_estimator_f32_init_params(&mut c, &bad),
+            GYRO_INVALID_ARGUMENT
+        );
+        let mut q32 = ID32;
+        assert_eq!(
+            gyro_estimator_f32_attitude(&c, &mut q32, null_mut()),
+            GYRO_NOT_INITIALIZED
+        );
+        p32.fixed_gains = 1;
+        p32.heading_time_constant = 5.0;
+        p32.frame = GYRO_FRAME_NED;
+        assert_eq!(gyro_estimator_f32_init_params(&mut c, &p32), GYRO_OK);
+    }
+}
