@@ -708,8 +708,9 @@ impl<T: Real> Estimator<T> {
     }
 
     /// The magnetometer's delay behind the gyroscope in use, s: [`Params::mag_delay`], or, once
-    /// estimated ([`Params::mag_delay_estimation_time`]), the estimate in samples times `dt`
-    /// (the step of the stream).
+    /// estimated ([`Params::mag_delay_estimation_time`]), the estimate in samples times `dt`,
+    /// the step between magnetometer samples (the delay is counted in the updates that carry
+    /// one, as the attitude history is).
     pub fn mag_delay(&self, dt: T) -> T {
         if self.params.mag_delay_estimation_time > T::ZERO
             && self.lag_time >= self.params.mag_delay_estimation_time
