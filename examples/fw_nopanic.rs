@@ -65,8 +65,13 @@ mod firmware {
         let dt = c(0.0035);
         sink(attitude_from_gravity(a));
         sink(attitude_from_gravity_and_field(a, m));
-        if let Ok(mut f) = Estimator::try_new(black_box(Params::<T>::default())) {
-            for _ in 0..black_box(3) {
+        // The online magnetometer delay on (and settling within the loop).
+        let params = Params::<T> {
+            mag_delay_estimation_time: c(0.01),
+            ..Params::default()
+        };
+        if let Ok(mut f) = Estimator::try_new(black_box(params)) {
+            for _ in 0..black_box(12) {
                 sink(f.update_9d(g, a, m, dt));
                 sink(f.update_6d(g, a, dt));
                 sink(f.update_increment(g.scale(dt), a, Some(m), dt));
@@ -77,6 +82,7 @@ mod firmware {
             sink(f.attitude_std());
             sink(f.covariance());
             sink(f.field_reference());
+            sink(f.mag_delay(dt));
         }
     }
 

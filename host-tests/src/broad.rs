@@ -306,6 +306,7 @@ pub fn convert_params(p: &Params<f64>) -> Params<f32> {
         mag_heading_noise: c(p.mag_heading_noise),
         mag_correlation_time: c(p.mag_correlation_time),
         mag_delay: c(p.mag_delay),
+        mag_delay_estimation_time: c(p.mag_delay_estimation_time),
         mag_disturbance_weight: c(p.mag_disturbance_weight),
         field: FieldThresholds {
             norm: c(p.field.norm),
@@ -563,6 +564,7 @@ pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), Str
         "mag_heading_noise" => &mut p.mag_heading_noise,
         "mag_correlation_time" => &mut p.mag_correlation_time,
         "mag_delay" => &mut p.mag_delay,
+        "mag_delay_estimation_time" => &mut p.mag_delay_estimation_time,
         "mag_disturbance_weight" => &mut p.mag_disturbance_weight,
         "field.norm" => &mut p.field.norm,
         "field.dip" => &mut p.field.dip,

@@ -22,7 +22,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 
 /// The scalar parameters by name (the `Params` field, `field_*` and `rest_*` for the field
 /// monitor's and the rest detector's thresholds, `heading_time_constant` for fixed gains).
-const NAMES: [&str; 27] = [
+const NAMES: [&str; 28] = [
     "gyro_noise_density",
     "gyro_scale_noise",
     "gyro_bias_initial",
@@ -38,6 +38,7 @@ const NAMES: [&str; 27] = [
     "mag_heading_noise",
     "mag_correlation_time",
     "mag_delay",
+    "mag_delay_estimation_time",
     "mag_disturbance_weight",
     "field_norm",
     "field_dip",
@@ -70,6 +71,7 @@ fn slot<'a, T>(p: &'a mut Params<T>, name: &str) -> Option<&'a mut T> {
         "mag_heading_noise" => &mut p.mag_heading_noise,
         "mag_correlation_time" => &mut p.mag_correlation_time,
         "mag_delay" => &mut p.mag_delay,
+        "mag_delay_estimation_time" => &mut p.mag_delay_estimation_time,
         "mag_disturbance_weight" => &mut p.mag_disturbance_weight,
         "field_norm" => &mut p.field.norm,
         "field_dip" => &mut p.field.dip,

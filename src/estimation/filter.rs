@@ -78,8 +78,16 @@ pub struct Params<T> {
     /// Correlation time (s) of that error.
     pub mag_correlation_time: T,
     /// Delay (s) of the magnetometer behind the gyroscope: its sample is compared with the
-    /// attitude that long ago (up to [`MAG_HISTORY`] samples).
+    /// attitude that long ago (linear between the two nearest samples' attitudes, up to
+    /// `MAG_HISTORY − 1` samples; [`MAG_HISTORY`]).
     pub mag_delay: T,
+    /// Averaging time `τ_d` (s of rotation in an undisturbed field) of the online estimate of
+    /// the magnetometer's delay; 0 (the default) keeps [`Params::mag_delay`] fixed. A positive
+    /// value starts at [`Params::mag_delay`] and, after `τ_d` of rotation faster than
+    /// [`FieldThresholds::new_field_min_rate`] in an undisturbed field, replaces it by the
+    /// delay (0 to `MAG_HISTORY − 1` samples, fractional) whose earth-frame field heading
+    /// deviates least from its recent mean (see the module docs; [`Estimator::mag_delay`]).
+    pub mag_delay_estimation_time: T,
     /// Weight of a disturbed field's heading error: 0 rejects a disturbed field outright; a
     /// positive `g` uses it with the heading variance increased by `(g·ε·|B|/|B_h|)²`, where
     /// `ε = ||B| − |B|_ref|/|B|_ref + |δ − δ_ref|` bounds the relative size of the disturbance.
@@ -115,6 +123,7 @@ impl<T: Real> Default for Params<T> {
             mag_correlation_time: v(5.0),
             mag_disturbance_weight: v(0.3),
             mag_delay: v(0.0),
+            mag_delay_estimation_time: v(0.0),
             field: FieldThresholds {
                 norm: v(0.1),
                 dip: deg(10.0),
@@ -189,10 +198,25 @@ pub struct Estimator<T> {
     last: Outcome,
     history: [UnitQuat<T>; MAG_HISTORY],
     head: usize,
+    /// How many attitudes `history` (sensor → gyroscope frame) holds (up to [`MAG_HISTORY`]).
+    filled: usize,
+    /// The estimated magnetometer delay, samples (fractional).
+    lag: T,
+    /// Per candidate delay `k` samples: the mean earth-frame field and the mean squared sine
+    /// of its heading deviation from that mean.
+    lag_mean: [Vec3<T>; MAG_HISTORY],
+    lag_residual: [T; MAG_HISTORY],
+    /// Time (s) the delay statistics have been fed.
+    lag_time: T,
 }
 
 /// The number of past attitudes kept for [`Params::mag_delay`].
 pub const MAG_HISTORY: usize = 8;
+
+/// Time constant (s) of the mean earth-frame field against which each candidate delay's
+/// heading deviation is measured: longer than a sample, shorter than the drift of the
+/// gyroscope frame.
+const LAG_MEAN_TIME: f64 = 1.0;
 
 /// The longest step [`Estimator::update`] takes, s: a longer gap is an error (restart the
 /// estimator after it).
@@ -224,6 +248,7 @@ impl<T: Real> Estimator<T> {
             p.mag_correlation_time,
             p.mag_disturbance_weight,
             p.mag_delay,
+            p.mag_delay_estimation_time,
             p.field.norm,
             p.field.dip,
             p.field.reference_time_constant,
@@ -278,6 +303,11 @@ impl<T: Real> Estimator<T> {
             last: Outcome::default(),
             history: [UnitQuat::IDENTITY; MAG_HISTORY],
             head: 0,
+            filled: 0,
+            lag: T::ZERO,
+            lag_mean: [Vec3::ZERO; MAG_HISTORY],
+            lag_residual: [T::ZERO; MAG_HISTORY],
+            lag_time: T::ZERO,
         })
     }
 
@@ -532,19 +562,38 @@ impl<T: Real> Estimator<T> {
 
     fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
         let pr = self.params;
-        let now = self.attitude_enu();
+        let now = self.q_gyro;
         self.head = (self.head + 1) % MAG_HISTORY;
         if let Some(slot) = self.history.get_mut(self.head) {
             *slot = now;
         }
-        let lag = (pr.mag_delay / dt + T::HALF).floor();
+        self.filled = (self.filled + 1).min(MAG_HISTORY);
+        let estimating = pr.mag_delay_estimation_time > T::ZERO;
+        let lag = if estimating && self.lag_time >= pr.mag_delay_estimation_time {
+            self.lag
+        } else {
+            pr.mag_delay / dt
+        };
+        // The field at the fractional delay: linear between the two neighbouring samples'
+        // attitudes (the newest when the history is shorter).
+        let lag = lag.max(T::ZERO).min(T::from_f64((MAG_HISTORY - 1) as f64));
+        let whole = lag.floor();
+        let frac = lag - whole;
         let mut back = 0usize;
-        while back + 1 < MAG_HISTORY && T::from_f64(back as f64 + 0.5) < lag {
+        while back + 1 < self.filled && T::from_f64(back as f64 + 0.5) < whole {
             back += 1;
         }
-        let idx = (self.head + MAG_HISTORY - back) % MAG_HISTORY;
-        let then = self.history.get(idx).copied().unwrap_or(now);
-        let m = then.rotate(mag);
+        let at = |b: usize| {
+            let idx = (self.head + MAG_HISTORY - b.min(MAG_HISTORY - 1)) % MAG_HISTORY;
+            self.history.get(idx).copied().unwrap_or(now).rotate(mag)
+        };
+        let m_gyro = if frac > T::ZERO && back + 1 < self.filled {
+            let (a, b) = (at(back), at(back + 1));
+            a + (b - a).scale(frac)
+        } else {
+            at(back)
+        };
+        let m = self.q_corr.rotate(m_gyro);
         let (norm, dip) = norm_dip(m);
         if !self.field_started {
             self.field = FieldMonitor::new(norm, dip);
@@ -552,6 +601,13 @@ impl<T: Real> Estimator<T> {
         }
         let rate = (gyro - self.bias).norm();
         let disturbed = self.field.update(norm, dip, dt, rate, &pr.field);
+        if estimating
+            && !disturbed
+            && self.filled == MAG_HISTORY
+            && rate >= pr.field.new_field_min_rate
+        {
+            self.estimate_lag(mag, dt);
+        }
         let g = pr.mag_disturbance_weight;
         if disturbed && g <= T::ZERO {
             return SensorUse::Disturbed;
@@ -588,6 +644,80 @@ impl<T: Real> Estimator<T> {
             SensorUse::Disturbed
         } else {
             SensorUse::Used
+        }
+    }
+
+    /// Feeds the delay statistics with one field sample (rotating, undisturbed) and, after
+    /// `τ_d` of them, moves the delay to their minimum (refined by a parabola).
+    fn estimate_lag(&mut self, mag: Vec3<T>, dt: T) {
+        let tau = self.params.mag_delay_estimation_time;
+        let k_mean = dt / (T::from_f64(LAG_MEAN_TIME) + dt);
+        let k_res = dt / (tau + dt);
+        let first = self.lag_time <= T::ZERO;
+        for (b, (mean, res)) in self
+            .lag_mean
+            .iter_mut()
+            .zip(self.lag_residual.iter_mut())
+            .enumerate()
+        {
+            let idx = (self.head + MAG_HISTORY - b) % MAG_HISTORY;
+            let Some(q) = self.history.get(idx) else {
+                continue;
+            };
+            let m = self.q_corr.rotate(q.rotate(mag));
+            if first {
+                *mean = m;
+            }
+            let d = m - *mean;
+            let hm = m.x * m.x + m.y * m.y;
+            let hn = mean.x * mean.x + mean.y * mean.y;
+            let c = m.x * mean.y - m.y * mean.x;
+            let e = if hm * hn > T::ZERO {
+                c * c / (hm * hn)
+            } else {
+                T::ZERO
+            };
+            *mean += d.scale(k_mean);
+            *res += k_res * (e - *res);
+        }
+        self.lag_time += dt;
+        if self.lag_time < tau {
+            return;
+        }
+        // The minimum, refined by the parabola through it and its neighbours.
+        let r = &self.lag_residual;
+        let mut j = 0usize;
+        for (i, v) in r.iter().enumerate() {
+            if r.get(j).is_some_and(|best| v < best) {
+                j = i;
+            }
+        }
+        let mut lag = T::from_f64(j as f64);
+        if let (Some(&a), Some(&b), Some(&c)) = (
+            j.checked_sub(1).and_then(|i| r.get(i)),
+            r.get(j),
+            r.get(j + 1),
+        ) {
+            let curv = a - b - b + c;
+            if curv > T::ZERO {
+                let off = (a - c) * T::HALF / curv;
+                lag += off.max(-T::HALF).min(T::HALF);
+            }
+        }
+        self.lag = lag;
+    }
+
+    /// The magnetometer's delay behind the gyroscope in use, s: [`Params::mag_delay`], or, once
+    /// estimated ([`Params::mag_delay_estimation_time`]), the estimate in samples times `dt`,
+    /// the step between magnetometer samples (the delay is counted in the updates that carry
+    /// one, as the attitude history is).
+    pub fn mag_delay(&self, dt: T) -> T {
+        if self.params.mag_delay_estimation_time > T::ZERO
+            && self.lag_time >= self.params.mag_delay_estimation_time
+        {
+            self.lag * dt
+        } else {
+            self.params.mag_delay
         }
     }
 

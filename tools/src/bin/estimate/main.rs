@@ -107,8 +107,9 @@ OPTIONS:
                    gyro_scale_noise, gyro_bias_initial, gyro_bias_stability, gyro_bias_time,
                    gyro_bias_max, gyro_range, accel_range, accel_time_constant,
                    accel_tilt_noise, accel_correlation_time, accel_reject, mag_heading_noise,
-                   mag_correlation_time, mag_delay, mag_disturbance_weight, field.norm,
-                   field.dip, field.reference_time_constant, field.min_undisturbed,
+                   mag_correlation_time, mag_delay, mag_delay_estimation_time,
+                   mag_disturbance_weight, field.norm, field.dip,
+                   field.reference_time_constant, field.min_undisturbed,
                    field.new_field_time, field.new_field_min_rate, rest.time_constant,
                    rest.gyro, rest.accel, rest.max_bias, rest.min_duration, rest_bias_noise.
                    Repeatable.
@@ -250,6 +251,7 @@ fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), String>
         "mag_heading_noise" => &mut p.mag_heading_noise,
         "mag_correlation_time" => &mut p.mag_correlation_time,
         "mag_delay" => &mut p.mag_delay,
+        "mag_delay_estimation_time" => &mut p.mag_delay_estimation_time,
         "mag_disturbance_weight" => &mut p.mag_disturbance_weight,
         "field.norm" => &mut p.field.norm,
         "field.dip" => &mut p.field.dip,
@@ -754,6 +756,7 @@ fn convert_params(p: &Params<f64>) -> Params<f32> {
         mag_heading_noise: c(p.mag_heading_noise),
         mag_correlation_time: c(p.mag_correlation_time),
         mag_delay: c(p.mag_delay),
+        mag_delay_estimation_time: c(p.mag_delay_estimation_time),
         mag_disturbance_weight: c(p.mag_disturbance_weight),
         field: FieldThresholds {
             norm: c(p.field.norm),
