@@ -82,7 +82,7 @@ pub struct Params<T> {
     /// `MAG_HISTORY − 1` samples; [`MAG_HISTORY`]).
     pub mag_delay: T,
     /// Averaging time `τ_d` (s of rotation in an undisturbed field) of the online estimate of
-    /// the magnetometer's delay; 0 (the default) keeps [`Params::mag_delay`] fixed. A positive
+    /// the magnetometer's delay (default 10 s); 0 keeps [`Params::mag_delay`] fixed. A positive
     /// value starts at [`Params::mag_delay`] and, after `τ_d` of rotation faster than
     /// [`FieldThresholds::new_field_min_rate`] in an undisturbed field, replaces it by the
     /// delay (0 to `MAG_HISTORY − 1` samples, fractional) whose earth-frame field heading
@@ -123,7 +123,7 @@ impl<T: Real> Default for Params<T> {
             mag_correlation_time: v(5.0),
             mag_disturbance_weight: v(0.3),
             mag_delay: v(0.0),
-            mag_delay_estimation_time: v(0.0),
+            mag_delay_estimation_time: v(10.0),
             field: FieldThresholds {
                 norm: v(0.1),
                 dip: deg(10.0),

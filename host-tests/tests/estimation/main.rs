@@ -624,10 +624,12 @@ fn metric_matches_score_py() {
 /// regress; f32 within 0.05° of f64 (the target).
 #[test]
 fn broad_regression() {
-    // (trial, total, heading, inclination) measured when the bounds were set.
+    // (trial, total, heading, inclination) measured with the default parameters when the bounds
+    // were set (the online magnetometer delay on: trial 07 1.719 / 1.391, up from 1.677 / 1.339
+    // with the delay off, trial 32 1.705 / 1.625, down from 1.737 / 1.658; BENCHMARKS.md).
     let cases = [
-        ("07_undisturbed_fast_rotation_B", 1.677, 1.339, 1.009),
-        ("32_disturbed_attached_magnet_1cm", 1.737, 1.658, 0.515),
+        ("07_undisturbed_fast_rotation_B", 1.719, 1.391, 1.009),
+        ("32_disturbed_attached_magnet_1cm", 1.705, 1.625, 0.515),
     ];
     for (stem, total, heading, incl) in cases {
         let log = broad::open_log(&broad::trial_path(stem), Units::SI).unwrap();
