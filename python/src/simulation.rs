@@ -92,7 +92,7 @@ fn run<T: Real, const N: usize>(cfg: &Config) -> Result<Rows, String> {
 #[pyo3(signature = (*, inertia=None, inertia_offdiag=None, omega=None, momentum=None, spin=None,
     quartic=None, semi_rigid=None, q0=None, wheels=Vec::new(), wheel_torque=None,
     wheel_speed=None, torque=None, torque_schedule=None, dt=None, steps=None, every=None,
-    integrator=None, f32=false))]
+    integrator=None, f32=false, compensated=false))]
 #[allow(clippy::too_many_arguments)]
 fn simulate<'py>(
     py: Python<'py>,
@@ -114,6 +114,7 @@ fn simulate<'py>(
     every: Option<i64>,
     integrator: Option<String>,
     f32: bool,
+    compensated: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let call = |m: String| RowError::call(keywords(&m));
     let finite = |name: &str, v: &[f64]| {
@@ -203,6 +204,7 @@ fn simulate<'py>(
         every,
         method,
         f32,
+        compensated,
     }
     .try_into_config()
     .map_err(call)?;
