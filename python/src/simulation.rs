@@ -275,7 +275,11 @@ fn default_scenario(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("flip_interval_closed_form", s.flip_interval)?;
     let flat = |q: &[gyrostat::UnitQuat<f64>]| q.iter().flat_map(|q| q.to_array()).collect();
     d.set_item("q_exact", array2(py, flat(&s.exact), 4)?)?;
-    for (name, r) in [("f32", &s.f32), ("f64", &s.f64)] {
+    for (name, r) in [
+        ("f32", &s.f32),
+        ("f32_compensated", &s.f32_compensated),
+        ("f64", &s.f64),
+    ] {
         let run = PyDict::new(py);
         run.set_item("flips", PyArray1::from_vec(py, r.flips.clone()))?;
         run.set_item(
