@@ -313,6 +313,7 @@ def simulate(
     torque_schedule: Optional[ArrayLike] = None,
     every: int = 1,
     f32: bool = False,
+    compensated: bool = False,
 ) -> Simulation:
     """A rigid-body or gyrostat run, the scenarios of the ``simulate`` tool (its flags as keywords,
     the same checks and the same numbers; ``simulate --help`` describes each).
@@ -323,7 +324,9 @@ def simulate(
     coefficient); ``q0`` (w, x, y, z); ``wheels``: up to four (ax, ay, az, inertia[, speed0]),
     with ``wheel_torque`` or ``wheel_speed`` (one number per wheel); ``torque`` (body frame, N m)
     or ``torque_schedule`` (rows t, tx, ty, tz, zero-order hold); ``integrator``: ``rk4``,
-    ``strang``, ``yoshida4``, ``suzuki4`` or ``exact``; ``f32`` runs the core in f32.
+    ``strang``, ``yoshida4``, ``suzuki4`` or ``exact``; ``f32`` runs the core in f32;
+    ``compensated`` steps a compensated state (each component's rounding error carried into the
+    next step; every integrator but ``exact``), the arrays holding its rounded part.
 
     Invalid arguments raise :class:`GyrostatError` before the run. A step the library rejects
     (too long for the rates, a state no longer finite) raises it too, with the rows before it
@@ -351,6 +354,7 @@ def simulate(
         every=every,
         integrator=integrator,
         f32=f32,
+        compensated=compensated,
     )
     sim = Simulation(
         t=d["t"],
@@ -371,10 +375,12 @@ def simulate(
 
 def default_scenario() -> Dict[str, Any]:
     """The built-in scenario of ``simulate``: the body (6, 4, 3) kg m^2 spun at (0.05, 1, 0.01)
-    rad/s near its intermediate axis, 20000 steps of 0.01 s with yoshida4 in f32 and in f64,
+    rad/s near its intermediate axis, 20000 steps of 0.01 s with yoshida4 in f32 (plain and
+    compensated) and in f64,
     and the closed form (exact free rigid body). Keys: ``dt``, ``steps``, ``every``,
     ``inertia``, ``omega0``, ``integrator``, ``t`` (sample times, every 10 steps from step 10),
-    ``flip_interval_closed_form`` (2K(m)/lambda, s), ``q_exact``, and ``f32``/``f64``: dicts
+    ``flip_interval_closed_form`` (2K(m)/lambda, s), ``q_exact``, and ``f32``, ``f32_compensated``
+    and ``f64``: dicts
     with ``flips`` (times), ``flip_interval`` (mean), the largest drifts, the largest attitude
     error against the closed form (degrees), and per sample ``q``, ``omega``, ``momentum``,
     ``drift`` (relative energy, |J| and lab-momentum drift)."""

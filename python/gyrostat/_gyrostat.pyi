@@ -52,6 +52,7 @@ def simulate(
     every: Optional[int] = None,
     integrator: Optional[str] = None,
     f32: bool = False,
+    compensated: bool = False,
 ) -> Dict[str, Any]: ...
 def default_scenario() -> Dict[str, Any]: ...
 def estimate(

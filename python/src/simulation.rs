@@ -92,7 +92,7 @@ fn run<T: Real, const N: usize>(cfg: &Config) -> Result<Rows, String> {
 #[pyo3(signature = (*, inertia=None, inertia_offdiag=None, omega=None, momentum=None, spin=None,
     quartic=None, semi_rigid=None, q0=None, wheels=Vec::new(), wheel_torque=None,
     wheel_speed=None, torque=None, torque_schedule=None, dt=None, steps=None, every=None,
-    integrator=None, f32=false))]
+    integrator=None, f32=false, compensated=false))]
 #[allow(clippy::too_many_arguments)]
 fn simulate<'py>(
     py: Python<'py>,
@@ -114,6 +114,7 @@ fn simulate<'py>(
     every: Option<i64>,
     integrator: Option<String>,
     f32: bool,
+    compensated: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let call = |m: String| RowError::call(keywords(&m));
     let finite = |name: &str, v: &[f64]| {
@@ -203,6 +204,7 @@ fn simulate<'py>(
         every,
         method,
         f32,
+        compensated,
     }
     .try_into_config()
     .map_err(call)?;
@@ -273,7 +275,11 @@ fn default_scenario(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("flip_interval_closed_form", s.flip_interval)?;
     let flat = |q: &[gyrostat::UnitQuat<f64>]| q.iter().flat_map(|q| q.to_array()).collect();
     d.set_item("q_exact", array2(py, flat(&s.exact), 4)?)?;
-    for (name, r) in [("f32", &s.f32), ("f64", &s.f64)] {
+    for (name, r) in [
+        ("f32", &s.f32),
+        ("f32_compensated", &s.f32_compensated),
+        ("f64", &s.f64),
+    ] {
         let run = PyDict::new(py);
         run.set_item("flips", PyArray1::from_vec(py, r.flips.clone()))?;
         run.set_item(

@@ -95,9 +95,10 @@ def test_torque_schedule_matches_the_tool_file(tmp_path):
 def test_default_scenario_matches_the_tool_and_the_closed_form():
     d = gyrostat.default_scenario()
     text = run_tool("simulate", [])
-    m = re.search(r"flip interval \(mean\)\s+(\S+) s\s+(\S+) s\s+(\S+) s", text)
+    m = re.search(r"flip interval \(mean\)\s+(\S+) s\s+(\S+) s\s+(\S+) s\s+(\S+) s", text)
     assert m, text
-    f32, f64, closed = (float(x) for x in m.groups())
+    f32c, f32, f64, closed = (float(x) for x in m.groups())
+    assert round(d["f32_compensated"]["flip_interval"], 4) == f32c
     assert round(d["f32"]["flip_interval"], 4) == f32
     assert round(d["f64"]["flip_interval"], 4) == f64
     assert round(d["flip_interval_closed_form"], 4) == closed
@@ -105,6 +106,35 @@ def test_default_scenario_matches_the_tool_and_the_closed_form():
     assert abs(d["f64"]["flip_interval"] / d["flip_interval_closed_form"] - 1) < 1e-4
     assert d["f64"]["momentum_norm_drift_max"] < 1e-13
     assert d["q_exact"].shape == d["f64"]["q"].shape == (2000, 4)
+
+
+def test_compensated_matches_the_tool_and_beats_plain_f32():
+    # The same numbers as `simulate --f32 --compensated`, and against the f64 run (the reference
+    # for the rounding): closer than plain f32, |J| within 1.5e-7 (plain f32 drifts ~1e-5).
+    kw = dict(inertia=(5, 3.5, 2), momentum=(-1.2, 0.3, 2.5), dt=0.004, steps=25000, every=250,
+              integrator="yoshida4")
+    flags = ("--inertia 5,3.5,2 --momentum -1.2,0.3,2.5 --dt 0.004 --steps 25000 --every 250 "
+             "--integrator yoshida4 --f32 --compensated").split()
+    lines = run_tool("simulate", flags).strip().splitlines()
+    ref = np.array([[np.float32(x) for x in line.split(",")] for line in lines[1:]],
+                   dtype=np.float64)
+    comp = gyrostat.simulate(f32=True, compensated=True, **kw)
+    assert (columns(comp) == ref).all()
+    plain = gyrostat.simulate(f32=True, **kw)
+    f64 = gyrostat.simulate(**kw)
+
+    def angle(a, b):
+        # The rotation angle of conj(a) b, by atan2 (accurate for small angles).
+        w = (a * b).sum(axis=1)
+        v = a[:, :1] * b[:, 1:] - b[:, :1] * a[:, 1:] - np.cross(a[:, 1:], b[:, 1:])
+        return 2 * np.arctan2(np.linalg.norm(v, axis=1), np.abs(w))
+
+    def drift(s):
+        n = np.linalg.norm(s.momentum, axis=1)
+        return np.abs(n / n[0] - 1).max()
+
+    assert angle(comp.q, f64.q).max() < angle(plain.q, f64.q).max()
+    assert drift(comp) < 1.5e-7 < drift(plain)
 
 
 def test_splitting_keeps_the_momentum_norm():
@@ -131,6 +161,9 @@ def test_errors():
     with pytest.raises(GyrostatError, match="integrator"):
         gyrostat.simulate(inertia=(6, 4, 3), omega=(0, 1, 0), dt=0.01, steps=10,
                           integrator="euler")
+    with pytest.raises(GyrostatError, match="no compensated form"):
+        gyrostat.simulate(inertia=(6, 4, 3), omega=(0, 1, 0.1), dt=0.01, steps=10,
+                          integrator="exact", compensated=True)
     # A step the library rejects (more than half a turn): the rows before it come along.
     with pytest.raises(GyrostatError, match="step 1: step too long") as e:
         gyrostat.simulate(inertia=(6, 4, 3), omega=(0, 400, 0), dt=0.01, steps=10,

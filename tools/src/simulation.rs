@@ -14,8 +14,8 @@
 
 use gyrostat::dynamics::semi_rigid::{Arrangement, QuarticBasis, SemiRigidRotor};
 use gyrostat::dynamics::{
-    BodyHamiltonian, Control, DriftMonitor, FreeRigidBody, Gyrostat, Inertia, Integrator,
-    Invariants, Quartic, State, Wheel, WheelCommand,
+    BodyHamiltonian, CompensatedState, Control, DriftMonitor, FreeRigidBody, Gyrostat, Inertia,
+    Integrator, Invariants, Quartic, State, StepState, Wheel, WheelCommand,
 };
 use gyrostat::{Error, Quat, Real, UnitQuat, Vec3};
 
@@ -224,6 +224,8 @@ pub struct Spec {
     pub method: Option<Method>,
     /// `--f32`.
     pub f32: bool,
+    /// `--compensated`: step a [`CompensatedState`] (every integrator but `exact`).
+    pub compensated: bool,
 }
 
 /// A torque schedule: a file to read (`--torque-file`) or rows at hand.
@@ -271,9 +273,22 @@ pub struct Config {
     pub method: Method,
     /// `--f32`.
     pub f32: bool,
+    /// `--compensated`: the run steps a [`CompensatedState`]; the states handed out are its
+    /// rounded part [`CompensatedState::state`].
+    pub compensated: bool,
 }
 
 impl Config {
+    /// `"f32"` or `"f64"`, with `" compensated"` for a compensated run.
+    pub fn precision(&self) -> &'static str {
+        match (self.f32, self.compensated) {
+            (true, false) => "f32",
+            (true, true) => "f32 compensated",
+            (false, false) => "f64",
+            (false, true) => "f64 compensated",
+        }
+    }
+
     /// `true` when a step needs an input (external or wheel torque).
     pub fn has_input(&self) -> bool {
         self.torque.is_some() || self.wheel_input.is_some()
@@ -311,6 +326,7 @@ impl Spec {
             every,
             method,
             f32,
+            compensated,
         } = self;
         if wheels.len() > MAX_WHEELS {
             return Err(format!(
@@ -329,6 +345,13 @@ impl Spec {
         let every = every.unwrap_or(1);
         let spin = spin.unwrap_or([0.0; 3]);
         let method = method.ok_or("missing --integrator")?;
+        if compensated && method == Method::Exact {
+            return Err(
+                "--compensated needs a stepping integrator (rk4, strang, yoshida4, suzuki4); \
+                 --integrator exact is the closed form, it has no compensated form"
+                    .into(),
+            );
+        }
         if semi_rigid.is_some() {
             for (given, flag) in [
                 (
@@ -436,6 +459,7 @@ impl Spec {
             every,
             method,
             f32,
+            compensated,
         })
     }
 }
@@ -696,6 +720,32 @@ fn momentum_with_isotropic<T: Real, const N: usize>(
     Ok(j)
 }
 
+/// A state a run steps: a plain [`State`] or a [`CompensatedState`] (`--compensated`).
+pub trait Carry<T: Real, const N: usize>: StepState<T, N> + Copy {
+    /// The state starting at `s` (for a compensated state, every low-order part zero).
+    fn from_state(s: State<T, N>) -> Self;
+    /// The state rounded to `T`: the state itself, or [`CompensatedState::state`].
+    fn rounded(&self) -> &State<T, N>;
+}
+
+impl<T: Real, const N: usize> Carry<T, N> for State<T, N> {
+    fn from_state(s: State<T, N>) -> Self {
+        s
+    }
+    fn rounded(&self) -> &State<T, N> {
+        self
+    }
+}
+
+impl<T: Real, const N: usize> Carry<T, N> for CompensatedState<T, N> {
+    fn from_state(s: State<T, N>) -> Self {
+        CompensatedState::new(s)
+    }
+    fn rounded(&self) -> &State<T, N> {
+        self.state()
+    }
+}
+
 /// What a run failed on: the caller's handling of a state (`Sink`), or the simulation itself.
 #[derive(Debug)]
 pub enum Fail<E> {
@@ -791,24 +841,24 @@ impl<T: Real, const N: usize> Sim<T, N> {
 
     /// The state after step `k` (from `(k−1)·dt` to `k·dt`); adds the step's external torque to
     /// `impulse` (`∫R(q)τ dt` by the trapezoid rule on each piece of constant torque).
-    pub fn advance(
+    pub fn advance<S: Carry<T, N>>(
         &self,
         cfg: &Config,
-        state: &State<T, N>,
+        state: &S,
         k: u64,
         impulse: &mut Impulse,
-    ) -> Result<State<T, N>, String> {
+    ) -> Result<S, String> {
         // The library's checked steps reject a step that turns the body by more than half a
         // turn (`|w| dt` at either end, `MAX_STEP_ANGLE`) with `StepTooLong`.
         let fail = |e: Error| format!("step {k}: {e} (the step is too long for these rates?)");
         let integ = match (cfg.method, &self.exact) {
             (Method::Exact, Some(x)) => {
                 let s = x.state_at_unchecked(T::from_f64(k as f64 * cfg.dt));
-                return Ok(State {
+                return Ok(S::from_state(State {
                     attitude: s.attitude,
                     momentum: s.momentum,
-                    wheel_speeds: state.wheel_speeds,
-                });
+                    wheel_speeds: state.rounded().wheel_speeds,
+                }));
             }
             (Method::Exact, None) => return Err("internal error: no closed form".into()),
             (Method::Step(integ), _) => integ,
@@ -828,7 +878,7 @@ impl<T: Real, const N: usize> Sim<T, N> {
                     WheelInput::Speed(w) => WheelCommand::Speed(v(w)),
                 };
                 self.body
-                    .control(state, dt, Vec3::ZERO, &command)
+                    .control(state.rounded(), dt, Vec3::ZERO, &command)
                     .wheel_torques
             }
         };
@@ -842,14 +892,15 @@ impl<T: Real, const N: usize> Sim<T, N> {
                 torque: v3::<T>(tau),
                 wheel_torques,
             };
-            let before = widen(s.attitude);
+            let before = widen(s.rounded().attitude);
             s = self
                 .body
                 .step_with(integ, &s, T::from_f64(lo), T::from_f64(h), control)
                 .map_err(fail)?;
             if tau != [0.0; 3] {
                 let tau = Vec3::new(tau[0], tau[1], tau[2]);
-                let avg = (before.rotate(tau) + widen(s.attitude).rotate(tau)).scale(0.5 * h);
+                let avg =
+                    (before.rotate(tau) + widen(s.rounded().attitude).rotate(tau)).scale(0.5 * h);
                 for (acc, x) in impulse.lab.iter_mut().zip(avg.to_array()) {
                     *acc += x;
                 }
@@ -914,26 +965,43 @@ impl<T: Real, const N: usize> Sim<T, N> {
     /// # Errors
     /// [`Fail::Msg`] for a step the library rejects or a state that is not finite (the states
     /// before it were handed to `each`); [`Fail::Sink`] with the error of `each`.
+    ///
+    /// With [`Config::compensated`] the run steps a [`CompensatedState`] and hands out its
+    /// rounded part [`CompensatedState::state`] (each component the pair's value rounded to
+    /// `T`); the monitors are those of the rounded part.
     pub fn run<E>(
+        &self,
+        cfg: &Config,
+        each: impl FnMut(u64, &State<T, N>, &Impulse) -> Result<(), E>,
+    ) -> Result<Outcome, Fail<E>> {
+        if cfg.compensated {
+            self.run_with::<CompensatedState<T, N>, E>(cfg, each)
+        } else {
+            self.run_with::<State<T, N>, E>(cfg, each)
+        }
+    }
+
+    /// [`Sim::run`] stepping states of type `S`.
+    fn run_with<S: Carry<T, N>, E>(
         &self,
         cfg: &Config,
         mut each: impl FnMut(u64, &State<T, N>, &Impulse) -> Result<(), E>,
     ) -> Result<Outcome, Fail<E>> {
-        let mut state = self.start;
-        self.check(cfg, 0, &state).map_err(Fail::Msg)?;
-        let inv0 = self.invariants(&state);
+        let mut state = S::from_state(self.start);
+        self.check(cfg, 0, state.rounded()).map_err(Fail::Msg)?;
+        let inv0 = self.invariants(state.rounded());
         let mut monitor = DriftMonitor::new(inv0);
         let mut impulse = Impulse::default();
-        each(0, &state, &impulse).map_err(Fail::Sink)?;
+        each(0, state.rounded(), &impulse).map_err(Fail::Sink)?;
         for k in 1..=cfg.steps {
             state = self
                 .advance(cfg, &state, k, &mut impulse)
-                .and_then(|s| self.check(cfg, k, &s).map(|()| s))
+                .and_then(|s| self.check(cfg, k, s.rounded()).map(|()| s))
                 .map_err(Fail::Msg)?;
-            monitor.record(&self.invariants(&state));
-            each(k, &state, &impulse).map_err(Fail::Sink)?;
+            monitor.record(&self.invariants(state.rounded()));
+            each(k, state.rounded(), &impulse).map_err(Fail::Sink)?;
         }
-        let end = self.invariants(&state);
+        let end = self.invariants(state.rounded());
         Ok(Outcome {
             lab0: f3(inv0.lab_momentum),
             lab_end: f3(end.lab_momentum),
@@ -981,7 +1049,8 @@ pub struct Run {
 }
 
 /// The default scenario in `T`: the body of [`DEFAULT_MOMENTS`] spun at [`DEFAULT_OMEGA0`],
-/// `steps` steps of `dt` with `integ`, sampled every `every` steps.
+/// `steps` steps of `dt` with `integ`, sampled every `every` steps; with `compensated` the
+/// steps advance a [`CompensatedState`] and the run records its rounded part.
 ///
 /// # Errors
 /// The library's error of a step (none with the default run: it is part of the tests).
@@ -990,17 +1059,35 @@ pub fn simulate_default<T: Real>(
     dt: f64,
     steps: usize,
     every: usize,
+    compensated: bool,
+) -> Result<Run, Error> {
+    if compensated {
+        simulate_default_with::<T, CompensatedState<T>>(integ, dt, steps, every)
+    } else {
+        simulate_default_with::<T, State<T>>(integ, dt, steps, every)
+    }
+}
+
+/// [`simulate_default`] stepping states of type `S`.
+fn simulate_default_with<T: Real, S: Carry<T, 0>>(
+    integ: Integrator,
+    dt: f64,
+    steps: usize,
+    every: usize,
 ) -> Result<Run, Error> {
     let inertia = Inertia::try_from_principal(v3::<T>(DEFAULT_MOMENTS))?;
     let body = Gyrostat::rigid(inertia);
-    let mut s = body.try_state_from_omega(UnitQuat::IDENTITY, v3(DEFAULT_OMEGA0), [])?;
+    let mut carried =
+        S::from_state(body.try_state_from_omega(UnitQuat::IDENTITY, v3(DEFAULT_OMEGA0), [])?);
+    let mut s = *carried.rounded();
     let mut monitor = DriftMonitor::new(body.invariants(&s));
     let mut flips = Vec::new();
     let mut attitudes = Vec::new();
     let (mut rates, mut momenta, mut drifts) = (Vec::new(), Vec::new(), Vec::new());
     let mut prev = s.momentum.y.to_f64();
     for k in 1..=steps {
-        s = body.step(integ, &s, T::from_f64(dt))?;
+        carried = body.step(integ, &carried, T::from_f64(dt))?;
+        s = *carried.rounded();
         let jy = s.momentum.y.to_f64();
         if (jy > 0.0) != (prev > 0.0) {
             // Linear interpolation of the zero crossing of J₂.
@@ -1030,14 +1117,16 @@ pub fn simulate_default<T: Real>(
 }
 
 /// The built-in scenario of `simulate`: the intermediate-axis flip run with yoshida4 in f32
-/// beside f64, and the closed form (exact free rigid body) as the reference.
+/// (compensated and plain) beside f64, and the closed form (exact free rigid body) as the reference.
 pub struct DefaultScenario {
     /// The step (s), number of steps and sample interval ([`DEFAULT_RUN`]).
     pub run: (f64, usize, usize),
     /// The body's inertia.
     pub inertia: Inertia<f64>,
-    /// The f32 run.
+    /// The f32 run, plain.
     pub f32: Run,
+    /// The f32 run, compensated ([`CompensatedState`]).
+    pub f32_compensated: Run,
     /// The f64 run.
     pub f64: Run,
     /// The closed-form flip interval `2K(m)/λ` (s).
@@ -1054,8 +1143,9 @@ pub fn default_scenario() -> Result<DefaultScenario, String> {
     let (dt, steps, every) = DEFAULT_RUN;
     let integ = Integrator::Yoshida4;
     let e = |e: Error| e.to_string();
-    let r32 = simulate_default::<f32>(integ, dt, steps, every).map_err(e)?;
-    let r64 = simulate_default::<f64>(integ, dt, steps, every).map_err(e)?;
+    let r32 = simulate_default::<f32>(integ, dt, steps, every, false).map_err(e)?;
+    let r32c = simulate_default::<f32>(integ, dt, steps, every, true).map_err(e)?;
+    let r64 = simulate_default::<f64>(integ, dt, steps, every, false).map_err(e)?;
     // The closed-form solution (Jacobi elliptic functions, Landau–Lifshitz §37) is the
     // reference for the flip interval 2K(m)/λ and for the attitude.
     let inertia = Inertia::try_from_principal(v3::<f64>(DEFAULT_MOMENTS)).map_err(e)?;
@@ -1070,6 +1160,7 @@ pub fn default_scenario() -> Result<DefaultScenario, String> {
         run: DEFAULT_RUN,
         inertia,
         f32: r32,
+        f32_compensated: r32c,
         f64: r64,
         flip_interval: exact.flip_interval(),
         exact: exact_attitudes,
