@@ -245,6 +245,7 @@ pub mod linalg;
 pub mod propagation;
 pub mod real;
 pub mod rotation;
+pub mod sensor;
 pub mod step_limit;
 
 pub use error::Error;
