@@ -78,7 +78,7 @@ fn checked_inverse<T: Real>(k: &Mat3<T>) -> Result<Mat3<T>, Error> {
         return Err(Error::InvalidArgument);
     }
     let cond = frobenius(k) * frobenius(&inv);
-    if !(cond <= T::from_f64(MAX_CONDITION)) {
+    if !cond.is_finite() || cond > T::from_f64(MAX_CONDITION) {
         return Err(Error::Singular);
     }
     Ok(inv)
@@ -113,7 +113,7 @@ impl<T: Real> InertialCalibration<T> {
         if !misalignment.is_finite() || !scale.is_finite() || !bias.is_finite() {
             return Err(Error::NonFinite);
         }
-        if !(scale.x > T::ZERO && scale.y > T::ZERO && scale.z > T::ZERO) {
+        if scale.x <= T::ZERO || scale.y <= T::ZERO || scale.z <= T::ZERO {
             return Err(Error::InvalidArgument);
         }
         let k = misalignment * Mat3::from_diagonal(scale);
