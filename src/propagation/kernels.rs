@@ -130,33 +130,39 @@ fn lagrange_at<T: Real, const M: usize>(t: &[T; M], w: &[Vec3<T>; M], x: T) -> V
     acc
 }
 
-/// One Magnus-4 step on rate samples at unequal times: advances over the last interval
-/// `[t[M−2], t[M−1]]` of the `M` samples `(t[i], ω[i])` (`M` = 2, 3 or 4), with the rates at the
-/// interval's Gauss nodes taken from the Lagrange interpolant through all `M` samples (the
-/// [`crate::propagation::rate_samples`] scheme with the weights formed from the actual times).
-/// Not renormalised.
+/// One Magnus-4 step on rate samples at unequal times: advances from `t0` to `t1` with the
+/// rates at the step's Gauss nodes taken from the Lagrange interpolant through the `M` samples
+/// `(times[i], rates[i])` (the [`crate::propagation::rate_samples`] scheme with the weights formed
+/// from the actual times). Not renormalised.
 ///
-/// Order: with four samples the cubic interpolant's error is `O(h⁴)` in `ω` (for a jitter that
-/// keeps the window's intervals comparable), so
-/// the local error is `O(h⁵)` and the method converges with order 4 on a jittered clock as on a
-/// regular one (three samples: order 3, two: order 2; measured in `host-tests/tests/sensor/`).
+/// Use it like the equal-interval integrator: over `[tₖ₋₁, tₖ]` with the window of samples
+/// `k−3 … k` (no look-ahead), and, at the start, the first three intervals with samples `0 … 3`.
+/// Order: the cubic interpolant's error is `O(h⁴)` in `ω` (for a jitter that keeps the window's
+/// intervals comparable), so the local error is `O(h⁵)` and the method converges with order 4 on
+/// a jittered clock as on a regular one (a window of three samples: order 3, of two: order 2;
+/// measured in `host-tests/tests/sensor/`).
 ///
-/// Unchecked: the times must be strictly increasing (repeated times give NaN, see
-/// [`crate::sensor::SampleClock`] for the checks) and the domain of [`magnus4_step`] holds.
-/// `M < 2` returns `q` unchanged.
+/// Unchecked: the times must be distinct (repeated times give NaN; see
+/// [`crate::sensor::SampleClock`] for the checks), `[t0, t1]` inside the window's span
+/// (outside, the interpolant extrapolates, less accurately), and the domain of [`magnus4_step`]
+/// holds. `M = 0` gives a zero rate.
 #[inline]
 pub fn magnus4_step_unequal<T: Real, const M: usize>(
     q: UnitQuat<T>,
-    t: &[T; M],
-    w: &[Vec3<T>; M],
+    times: &[T; M],
+    rates: &[Vec3<T>; M],
+    t0: T,
+    t1: T,
 ) -> UnitQuat<T> {
-    let (Some(&t1), Some(&t0)) = (t.last(), t.iter().rev().nth(1)) else {
-        return q;
-    };
     let h = t1 - t0;
     let g1 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_1);
     let g2 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_2);
-    magnus4_step(q, lagrange_at(t, w, g1), lagrange_at(t, w, g2), h)
+    magnus4_step(
+        q,
+        lagrange_at(times, rates, g1),
+        lagrange_at(times, rates, g2),
+        h,
+    )
 }
 
 /// One Magnus-4 step: `q ⊗ exp(φ)` with φ from [`magnus4_rotation_vector`]. Unchecked, not

@@ -102,7 +102,9 @@ impl AxisRemap {
         for source in perms {
             for bits in 0u8..8 {
                 let negate = [bits & 4 != 0, bits & 2 != 0, bits & 1 != 0];
-                if let (Ok(r), Some(slot)) = (Self::try_new(source, negate), slots.next()) {
+                if let Ok(r) = Self::try_new(source, negate)
+                    && let Some(slot) = slots.next()
+                {
                     *slot = r;
                 }
             }
