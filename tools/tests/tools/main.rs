@@ -10,6 +10,8 @@
 //!   references, the plot, the error paths.
 //! - [`fixed`]: `propagate --fixed` reproduces the firmware's Q1.30 bits.
 //! - [`campaign`]: garbage input, bad flags, overflowing values and closed pipes for all three.
+//! - [`timed`]: `propagate --time-column` and the sensor options on the real Fusion log and on
+//!   jittered synthetic streams.
 //! - [`cli`]: the tools as processes (`CARGO_BIN_EXE_*`).
 
 mod campaign;
@@ -18,3 +20,4 @@ mod convert;
 mod fixed;
 mod propagate;
 mod simulate;
+mod timed;
