@@ -55,31 +55,39 @@ impl AxisRemap {
 
     /// Parses the text form `x,-z,y`: three comma-separated body axes in order x, y, z, each
     /// the sensor axis it is (`x`, `y` or `z`, either case) with an optional sign `+` or `-`;
-    /// spaces around the items are ignored.
+    /// blanks (spaces, tabs) anywhere are ignored.
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for text not of that form or an axis given twice;
     /// [`Error::NotRotation`] for a reflection.
     pub fn try_parse(text: &str) -> Result<Self, Error> {
+        // A byte scanner, not `str::split`: no slicing, so no bounds check on the firmware path.
         let mut source = [Axis::X; 3];
         let mut negate = [false; 3];
-        let mut items = text.split(',');
-        for (s, n) in source.iter_mut().zip(negate.iter_mut()) {
-            let item = items.next().ok_or(Error::InvalidArgument)?.trim();
-            let (neg, name) = match item.as_bytes() {
-                [b'-', rest @ ..] => (true, rest),
-                [b'+', rest @ ..] => (false, rest),
-                rest => (false, rest),
-            };
-            *n = neg;
-            *s = match name {
-                [b'x' | b'X'] => Axis::X,
-                [b'y' | b'Y'] => Axis::Y,
-                [b'z' | b'Z'] => Axis::Z,
+        let mut item = 0usize;
+        let (mut sign, mut axis) = (None, None);
+        for &b in text.as_bytes().iter().chain(core::iter::once(&b',')) {
+            match b {
+                b' ' | b'\t' => {}
+                b'+' | b'-' if sign.is_none() && axis.is_none() => sign = Some(b == b'-'),
+                b'x' | b'X' if axis.is_none() => axis = Some(Axis::X),
+                b'y' | b'Y' if axis.is_none() => axis = Some(Axis::Y),
+                b'z' | b'Z' if axis.is_none() => axis = Some(Axis::Z),
+                b',' => {
+                    let (Some(a), Some(s), Some(n)) =
+                        (axis, source.get_mut(item), negate.get_mut(item))
+                    else {
+                        return Err(Error::InvalidArgument);
+                    };
+                    *s = a;
+                    *n = sign.unwrap_or(false);
+                    item = item.saturating_add(1);
+                    (sign, axis) = (None, None);
+                }
                 _ => return Err(Error::InvalidArgument),
-            };
+            }
         }
-        if items.next().is_some() {
+        if item != 3 {
             return Err(Error::InvalidArgument);
         }
         Self::try_new(source, negate)

@@ -74,8 +74,9 @@ impl ClipLimit {
     /// The clipped axes of a reading.
     #[inline]
     pub fn check(&self, raw: [i16; 3]) -> Clipped {
-        // −limit cannot overflow: limit > 0.
-        let lo = -self.limit;
+        // limit > 0 (checked when built), so the negation is exact; saturating keeps the compiler
+        // from seeing an overflow branch it cannot rule out.
+        let lo = 0i16.saturating_sub(self.limit);
         Clipped {
             axes: raw.map(|r| r >= self.limit || r <= lo),
         }
