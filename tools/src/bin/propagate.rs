@@ -20,7 +20,7 @@ use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
     RateIntegrator, RateMethod,
 };
-use gyrostat::sensor::{AxisRemap, InertialCalibration, Interval, SampleClock};
+use gyrostat::sensor::{AxisRemap, InertialCalibration, Interval, MicrosClock, SampleClock};
 use gyrostat::step_limit::MAX_STEP_ANGLE;
 use gyrostat::{Quat, Real, UnitQuat, Vec3};
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
@@ -46,6 +46,7 @@ const CLI: Cli = Cli {
         Flag::value("--time-unit"),
         Flag::value("--calibration"),
         Flag::value("--remap"),
+        Flag::switch("--time-wrap"),
     ],
 };
 
@@ -134,6 +135,11 @@ TIME COLUMN (--time-column, f64 only): each row starts with its timestamp, `t,x,
                    interpolant through the actual times of samples k-3..k (the first three
                    intervals use samples 0..3; a record of 2 or 3 samples the linear or
                    quadratic interpolant). --t0 is not used.
+    --time-wrap    t is a free-running 32-bit microsecond counter (whole numbers 0..2^32-1, needs
+                   --time-unit us and a whole --gap-factor) that wraps every 2^32 us (71.6 min):
+                   intervals are wrapped differences, the printed t is unwrapped (counted from
+                   the first value; --t0 a counter value too). A wrapped difference of 2^31 us
+                   or more reads as backwards.
     Policy: an interval longer than K*NOMINAL (samples were lost), a repeated timestamp and a
     timestamp before the previous one stop the run with a row error (exit status 1): the
     attitude is never carried silently across them.
@@ -218,6 +224,7 @@ struct Timed {
     time_factor: f64,
     t0: Option<f64>,
     gap_factor: f64,
+    wrap: bool,
 }
 
 /// The arguments of a run, from the flags given.
@@ -267,16 +274,27 @@ fn arguments(f: &Flags) -> Result<Args, String> {
         if gap_factor < 1.0 {
             return Err(format!("--gap-factor: must be >= 1, got {gap_factor}"));
         }
+        let wrap = f.switch("--time-wrap");
+        if wrap && time_factor != Some(1e-6) {
+            return Err("--time-wrap needs --time-unit us (a 32-bit microsecond counter)".into());
+        }
+        if wrap && gap_factor.fract() != 0.0 {
+            return Err(format!(
+                "--gap-factor: must be a whole number with --time-wrap, got {gap_factor}"
+            ));
+        }
         Some(Timed {
             time_factor: time_factor.unwrap_or(1.0),
             t0,
             gap_factor,
+            wrap,
         })
     } else {
         for (given, name) in [
             (time_factor.is_some(), "--time-unit"),
             (t0.is_some(), "--t0"),
             (gap_factor.is_some(), "--gap-factor"),
+            (f.switch("--time-wrap"), "--time-wrap"),
         ] {
             if given {
                 return Err(format!("{name} needs --time-column"));
@@ -735,21 +753,77 @@ fn parse_timed_row(line: &str) -> Result<(f64, Vec3<f64>), String> {
     Ok((t, Vec3::new(x, y, z)))
 }
 
-/// The elapsed time of a timestamp by the clock's policy: a step, or the row error of a gap, a
-/// repeated or a backwards timestamp.
-fn timed_step(clock: &mut SampleClock<f64>, t: f64, n: u64) -> Result<Option<f64>, Failure> {
+/// The clock of the time-column mode: timestamps in seconds, or a wrapping 32-bit microsecond
+/// counter (`--time-wrap`) with the time unwrapped since its first value.
+enum TimedClock {
+    Seconds(SampleClock<f64>, f64),
+    Counter(MicrosClock, u64),
+}
+
+impl TimedClock {
+    /// Starts the first interval at the raw timestamp `t0`.
+    fn restart(&mut self, t0: f64, n: u64) -> Result<(), Failure> {
+        match self {
+            TimedClock::Seconds(c, factor) => c.restart(Some(t0 * *factor)),
+            TimedClock::Counter(c, unwrapped) => {
+                let t = counter(t0).ok_or_else(|| {
+                    Failure::Row(n, format!("--t0 {t0}: not a 32-bit counter value"))
+                })?;
+                c.restart(Some(t));
+                *unwrapped = u64::from(t);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A raw timestamp as a 32-bit counter value (a whole number in `[0, 2^32)`).
+fn counter(t: f64) -> Option<u32> {
+    ((0.0..4_294_967_296.0).contains(&t) && t.fract() == 0.0).then_some(t as u32)
+}
+
+/// The time (s, unwrapped) and the elapsed time of a raw timestamp by the clock's policy: a
+/// step, or the row error of a gap, a repeated or a backwards timestamp.
+fn timed_step(clock: &mut TimedClock, raw: f64, n: u64) -> Result<(f64, Option<f64>), Failure> {
     let row = |e: String| Failure::Row(n, e);
-    match clock
-        .interval(t)
-        .map_err(|e| row(format!("timestamp: {e}")))?
-    {
-        Interval::First => Ok(None),
-        Interval::Step(h) => Ok(Some(h)),
+    let (t, interval, nominal, max) = match clock {
+        TimedClock::Seconds(c, factor) => {
+            let t = raw * *factor;
+            let i = c.interval(t).map_err(|e| row(format!("timestamp: {e}")))?;
+            (t, i, c.nominal(), c.max_step())
+        }
+        TimedClock::Counter(c, unwrapped) => {
+            let value = counter(raw)
+                .ok_or_else(|| row(format!("timestamp {raw}: not a 32-bit counter value")))?;
+            let i = c.interval(value);
+            match i {
+                Interval::First => *unwrapped = u64::from(value),
+                Interval::Step(d) | Interval::Gap(d) => *unwrapped += u64::from(d),
+                _ => {}
+            }
+            let i = match i {
+                Interval::First => Interval::First,
+                Interval::Step(d) => Interval::Step(f64::from(d) * 1e-6),
+                Interval::Gap(d) => Interval::Gap(f64::from(d) * 1e-6),
+                Interval::Repeated => Interval::Repeated,
+                Interval::Backwards(d) => Interval::Backwards(f64::from(d) * 1e-6),
+            };
+            let to_s = |us: u32| f64::from(us) * 1e-6;
+            (
+                *unwrapped as f64 * 1e-6,
+                i,
+                to_s(c.nominal_us()),
+                to_s(c.max_step_us()),
+            )
+        }
+    };
+    match interval {
+        Interval::First => Ok((t, None)),
+        Interval::Step(h) => Ok((t, Some(h))),
         Interval::Gap(h) => Err(row(format!(
             "gap: {h:e} s since the previous sample, more than --gap-factor {} times the nominal \
-             {:e} s (samples lost)",
-            clock.max_step() / clock.nominal(),
-            clock.nominal()
+             {nominal:e} s (samples lost)",
+            max / nominal
         ))),
         Interval::Repeated => Err(row("repeated timestamp".into())),
         Interval::Backwards(d) => Err(row(format!(
@@ -758,11 +832,10 @@ fn timed_step(clock: &mut SampleClock<f64>, t: f64, n: u64) -> Result<Option<f64
     }
 }
 
-/// The next `t,x,y,z` row (t in seconds), skipping blank lines.
+/// The next `t,x,y,z` row (t raw, in the input's unit), skipping blank lines.
 fn next_timed<R: io::Read>(
     lines: &mut Lines<R>,
     out: &mut Csv,
-    time_factor: f64,
 ) -> Result<Option<(u64, f64, Vec3<f64>)>, Failure> {
     loop {
         if lines.will_read() {
@@ -775,7 +848,7 @@ fn next_timed<R: io::Read>(
             Ok(text) if text.trim().is_empty() => continue,
             Ok(text) => {
                 return parse_timed_row(text)
-                    .map(|(t, v)| Some((n, t * time_factor, v)))
+                    .map(|(t, v)| Some((n, t, v)))
                     .map_err(|e| Failure::Row(n, e));
             }
             Err(reason) => return Err(Failure::Row(n, reason)),
@@ -793,8 +866,25 @@ fn run_timed(args: &Args) -> Result<(), Failure> {
     let [w, x, y, z] = args.q0;
     let q0 = UnitQuat::try_from_near_unit(Quat::new(w, x, y, z), 1e-3)
         .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
-    let mut clock = SampleClock::try_with_gap_factor(args.dt, timed.gap_factor)
-        .map_err(|e| Failure::Usage(format!("--dt, --gap-factor: {e}")))?;
+    let mut clock = if timed.wrap {
+        let nominal_us = (args.dt * 1e6).round();
+        if !(1.0..4_294_967_296.0).contains(&nominal_us) || timed.gap_factor >= 4_294_967_296.0 {
+            return Err(Failure::Usage(format!(
+                "--dt {}: with --time-wrap a whole number of microseconds >= 1",
+                args.dt
+            )));
+        }
+        let c = MicrosClock::try_new(nominal_us as u32, timed.gap_factor as u32).map_err(|e| {
+            Failure::Usage(format!(
+                "--dt, --gap-factor: {e} (the gap threshold must stay below 2^31 us)"
+            ))
+        })?;
+        TimedClock::Counter(c, 0)
+    } else {
+        let c = SampleClock::try_with_gap_factor(args.dt, timed.gap_factor)
+            .map_err(|e| Failure::Usage(format!("--dt, --gap-factor: {e}")))?;
+        TimedClock::Seconds(c, timed.time_factor)
+    };
     let mut p = Printer {
         out: Csv::stdout(),
         every: args.every,
@@ -802,11 +892,17 @@ fn run_timed(args: &Args) -> Result<(), Failure> {
     };
     let mut lines = Lines::new(io::stdin().lock());
     let result = match args.algo {
-        Algo::Increments(rule) => {
-            clock.restart(timed.t0.map(|t| t * timed.time_factor));
-            timed_increments(&mut lines, &mut p, &mut clock, q0, rule, args, timed)
-        }
-        Algo::Rates(_) => timed_rates(&mut lines, &mut p, &mut clock, q0, args, timed),
+        Algo::Increments(rule) => match timed.t0 {
+            Some(t0) => clock
+                .restart(t0, 0)
+                .map_err(|e| match e {
+                    Failure::Row(_, m) => Failure::Usage(m),
+                    e => e,
+                })
+                .and_then(|()| timed_increments(&mut lines, &mut p, &mut clock, q0, rule, args)),
+            None => Err(Failure::Usage("--t0 is required".into())),
+        },
+        Algo::Rates(_) => timed_rates(&mut lines, &mut p, &mut clock, q0, args),
     };
     finish(result, &mut p)
 }
@@ -832,26 +928,25 @@ fn within_limit(angle: f64, n: u64) -> Result<(), Failure> {
 fn timed_increments<R: io::Read>(
     lines: &mut Lines<R>,
     p: &mut Printer,
-    clock: &mut SampleClock<f64>,
+    clock: &mut TimedClock,
     q0: UnitQuat<f64>,
     rule: ConingRule,
     args: &Args,
-    timed: &Timed,
 ) -> Result<(), Failure> {
     let mut q = q0;
     let mut pending: Option<(Vec3<f64>, f64)> = None;
     let mut k: u64 = 0;
     let mut last = None; // (k, t, attitude) of the latest sample
     let stop = loop {
-        let (n, t, raw) = match next_timed(lines, &mut p.out, timed.time_factor) {
+        let (n, raw_t, raw) = match next_timed(lines, &mut p.out) {
             Ok(Some(r)) => r,
             Ok(None) => break None,
             Err(e @ Failure::Row(..)) => break Some(e),
             Err(e) => return Err(e),
         };
-        let h = match timed_step(clock, t, n) {
-            Ok(Some(h)) => h,
-            Ok(None) => break Some(Failure::Row(n, "no interval start (--t0)".into())),
+        let (t, h) = match timed_step(clock, raw_t, n) {
+            Ok((t, Some(h))) => (t, h),
+            Ok((_, None)) => break Some(Failure::Row(n, "no interval start (--t0)".into())),
             Err(e) => break Some(e),
         };
         let v = args.sensor.apply(raw, Some(h));
@@ -893,10 +988,9 @@ fn timed_increments<R: io::Read>(
 fn timed_rates<R: io::Read>(
     lines: &mut Lines<R>,
     p: &mut Printer,
-    clock: &mut SampleClock<f64>,
+    clock: &mut TimedClock,
     q0: UnitQuat<f64>,
     args: &Args,
-    timed: &Timed,
 ) -> Result<(), Failure> {
     // The last four samples (t, ω, line); `done` the number of attitudes printed or skipped.
     let mut win: Vec<(f64, Vec3<f64>, u64)> = Vec::with_capacity(5);
@@ -940,15 +1034,16 @@ fn timed_rates<R: io::Read>(
         Ok(())
     };
     let stop = loop {
-        let (n, t, raw) = match next_timed(lines, &mut p.out, timed.time_factor) {
+        let (n, raw_t, raw) = match next_timed(lines, &mut p.out) {
             Ok(Some(r)) => r,
             Ok(None) => break None,
             Err(e @ Failure::Row(..)) => break Some(e),
             Err(e) => return Err(e),
         };
-        if let Err(e) = timed_step(clock, t, n) {
-            break Some(e);
-        }
+        let t = match timed_step(clock, raw_t, n) {
+            Ok((t, _)) => t,
+            Err(e) => break Some(e),
+        };
         win.push((t, args.sensor.apply(raw, None), n));
         if win.len() > 4 {
             win.remove(0);

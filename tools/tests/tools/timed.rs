@@ -549,3 +549,122 @@ fn calibration_file_and_remap() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn wrapping_microsecond_counter() {
+    // A 32-bit µs counter that starts 2.5 s before its wrap; jittered ~1 ms steps for 6 s, so
+    // the stream crosses 2³² µs. Times are whole microseconds.
+    let c = Coning {
+        alpha: 0.05,
+        omega_c: TAU * 2.3,
+    };
+    let start: u64 = (1 << 32) - 2_500_000;
+    let mut us = vec![0u64];
+    let mut s: u64 = 11;
+    while *us.last().unwrap() < 6_000_000 {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        us.push(us.last().unwrap() + 600 + (s >> 33) % 800);
+    }
+    let counter = |k: usize| (start + us[k]) % (1 << 32);
+    assert!(counter(us.len() - 1) < counter(0), "the stream wraps");
+    let q0 = row(&c.attitude(0.0));
+    let sec = |k: usize| us[k] as f64 * 1e-6;
+    // Rates at the counter times.
+    let rates: String = (0..us.len())
+        .map(|k| format!("{},{}\n", counter(k), row(&c.body_rate(sec(k)))))
+        .collect();
+    let args = [
+        "--time-column",
+        "--time-wrap",
+        "--time-unit",
+        "us",
+        "--input",
+        "rates",
+        "--algo",
+        "magnus4",
+        "--dt",
+        "0.001",
+        "--q0",
+        &q0,
+    ];
+    let out = run("propagate", &args, &rates);
+    assert_eq!(out.status, Some(0), "{}", out.stderr);
+    let rows = timed_rows(&out.stdout);
+    assert_eq!(rows.len(), us.len());
+    let t_first = start as f64 * 1e-6;
+    let mut worst = 0.0f64;
+    for (k, (rk, t, q)) in rows.iter().enumerate() {
+        assert_eq!(*rk, k as u64);
+        // The printed time is unwrapped: it keeps growing across the wrap.
+        assert!((t - (t_first + sec(k))).abs() < 1e-9, "{k} {t}");
+        worst = worst.max(quat_angle(*q, c.attitude(sec(k))));
+    }
+    println!("rates across the counter wrap: worst {worst:e} rad");
+    assert!(worst < 5e-9, "{worst:e}");
+    // Increments: --t0 the counter value at the start.
+    let inc: String = (1..us.len())
+        .map(|k| format!("{},{}\n", counter(k), row(&c.increment(sec(k - 1), sec(k)))))
+        .collect();
+    let t0 = counter(0).to_string();
+    let out = run(
+        "propagate",
+        &[
+            "--time-column",
+            "--time-wrap",
+            "--time-unit",
+            "us",
+            "--input",
+            "increments",
+            "--algo",
+            "coning2",
+            "--dt",
+            "0.001",
+            "--t0",
+            &t0,
+            "--q0",
+            &q0,
+        ],
+        &inc,
+    );
+    assert_eq!(out.status, Some(0), "{}", out.stderr);
+    let (_, t, q) = *timed_rows(&out.stdout).last().unwrap();
+    let e = quat_angle(q, c.attitude(sec(us.len() - 1)));
+    assert!((t - (t_first + sec(us.len() - 1))).abs() < 1e-9);
+    println!("coning2 across the counter wrap: {e:e} rad");
+    assert!(e < 1e-8, "{e:e}");
+    // Not a counter value, a counter that steps back, usage errors.
+    let out = run("propagate", &args, "4294967295,0,0,0\n12.5,0,0,0\n");
+    assert_eq!(
+        out.stderr,
+        "error: line 2: timestamp 12.5: not a 32-bit counter value\n"
+    );
+    let out = run("propagate", &args, "100,0,0,0\n50,0,0,0\n");
+    assert!(
+        out.stderr.starts_with("error: line 2: timestamp 4.99"),
+        "{}",
+        out.stderr
+    );
+    let out = run(
+        "propagate",
+        &[
+            "--time-column",
+            "--time-wrap",
+            "--input",
+            "rates",
+            "--algo",
+            "magnus4",
+            "--dt",
+            "0.001",
+        ],
+        "",
+    );
+    assert_eq!(out.status, Some(2));
+    assert!(
+        out.stderr
+            .starts_with("error: --time-wrap needs --time-unit us"),
+        "{}",
+        out.stderr
+    );
+}
