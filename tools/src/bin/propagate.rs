@@ -47,6 +47,8 @@ const CLI: Cli = Cli {
         Flag::value("--calibration"),
         Flag::value("--remap"),
         Flag::switch("--time-wrap"),
+        Flag::value("--gyro-full-scale"),
+        Flag::value("--on-clip"),
     ],
 };
 
@@ -140,6 +142,12 @@ TIME COLUMN (--time-column, f64 only): each row starts with its timestamp, `t,x,
                    intervals are wrapped differences, the printed t is unwrapped (counted from
                    the first value; --t0 a counter value too). A wrapped difference of 2^31 us
                    or more reads as backwards.
+    --gyro-full-scale R  the gyro's full scale in --gyro-unit (rad or deg for increments): a
+                   row with an axis at |value| >= R is clipped (the sensor saturated)
+    --on-clip error|pass|hold   error (default): the row is an error; pass: integrate it as
+                   read; hold: each clipped axis takes its last unclipped rate (times the
+                   row's interval for increments; passed when there is none yet). With pass
+                   or hold, stderr ends with a note of how many rows were clipped.
     Policy: an interval longer than K*NOMINAL (samples were lost), a repeated timestamp and a
     timestamp before the previous one stop the run with a row error (exit status 1): the
     attitude is never carried silently across them.
@@ -225,6 +233,54 @@ struct Timed {
     t0: Option<f64>,
     gap_factor: f64,
     wrap: bool,
+    clip: Option<Clip>,
+}
+
+/// What the time-column mode does with a sample at the gyro's full scale.
+#[derive(Clone, Copy, PartialEq)]
+enum OnClip {
+    Error,
+    Pass,
+    Hold,
+}
+
+/// The clipping check of the time-column mode: an axis whose raw reading (in --gyro-unit)
+/// reaches the full scale is clipped; the policy chooses what the propagation gets.
+struct Clip {
+    full_scale: f64,
+    policy: OnClip,
+    last_rate: [Option<f64>; 3],
+    count: u64,
+}
+
+impl Clip {
+    /// The raw sample the propagation gets (`h` the interval of an increment, `None` for a
+    /// rate), or the row error under `--on-clip error`.
+    fn filter(&mut self, raw: Vec3<f64>, h: Option<f64>) -> Result<Vec3<f64>, String> {
+        let mut out = raw.to_array();
+        let mut clipped = false;
+        for (i, (v, last)) in out.iter_mut().zip(self.last_rate.iter_mut()).enumerate() {
+            let per_s = h.map_or(1.0, |h| 1.0 / h);
+            if v.abs() < self.full_scale {
+                *last = Some(*v * per_s);
+                continue;
+            }
+            clipped = true;
+            match (self.policy, *last) {
+                (OnClip::Error, _) => {
+                    return Err(format!(
+                        "gyro axis {} clipped: |{v}| reaches the full scale {} (--on-clip error)",
+                        ["x", "y", "z"][i],
+                        self.full_scale
+                    ));
+                }
+                (OnClip::Hold, Some(rate)) => *v = rate * h.unwrap_or(1.0),
+                _ => {}
+            }
+        }
+        self.count += u64::from(clipped);
+        Ok(Vec3::from_array(out))
+    }
 }
 
 /// The arguments of a run, from the flags given.
@@ -283,11 +339,31 @@ fn arguments(f: &Flags) -> Result<Args, String> {
                 "--gap-factor: must be a whole number with --time-wrap, got {gap_factor}"
             ));
         }
+        let full_scale = f.get("--gyro-full-scale", flags::positive)?;
+        let policy = match f.value("--on-clip") {
+            None | Some("error") => OnClip::Error,
+            Some("pass") => OnClip::Pass,
+            Some("hold") => OnClip::Hold,
+            Some(o) => {
+                return Err(format!(
+                    "--on-clip: expected error, pass or hold, got '{o}'"
+                ));
+            }
+        };
+        if full_scale.is_none() && f.value("--on-clip").is_some() {
+            return Err("--on-clip needs --gyro-full-scale".into());
+        }
         Some(Timed {
             time_factor: time_factor.unwrap_or(1.0),
             t0,
             gap_factor,
             wrap,
+            clip: full_scale.map(|full_scale| Clip {
+                full_scale,
+                policy,
+                last_rate: [None; 3],
+                count: 0,
+            }),
         })
     } else {
         for (given, name) in [
@@ -295,6 +371,8 @@ fn arguments(f: &Flags) -> Result<Args, String> {
             (t0.is_some(), "--t0"),
             (gap_factor.is_some(), "--gap-factor"),
             (f.switch("--time-wrap"), "--time-wrap"),
+            (f.value("--gyro-full-scale").is_some(), "--gyro-full-scale"),
+            (f.value("--on-clip").is_some(), "--on-clip"),
         ] {
             if given {
                 return Err(format!("{name} needs --time-column"));
@@ -860,6 +938,14 @@ fn next_timed<R: io::Read>(
 /// intervals) or rates at their own times (Magnus-4 on the interpolant through the actual
 /// times), in f64.
 fn run_timed(args: &Args) -> Result<(), Failure> {
+    let mut clip = args.timed.as_ref().and_then(|t| {
+        t.clip.as_ref().map(|c| Clip {
+            full_scale: c.full_scale,
+            policy: c.policy,
+            last_rate: [None; 3],
+            count: 0,
+        })
+    });
     let Some(timed) = &args.timed else {
         return Err(Failure::Usage("--time-column expected".into()));
     };
@@ -899,11 +985,26 @@ fn run_timed(args: &Args) -> Result<(), Failure> {
                     Failure::Row(_, m) => Failure::Usage(m),
                     e => e,
                 })
-                .and_then(|()| timed_increments(&mut lines, &mut p, &mut clock, q0, rule, args)),
+                .and_then(|()| {
+                    timed_increments(&mut lines, &mut p, &mut clock, q0, rule, args, &mut clip)
+                }),
             None => Err(Failure::Usage("--t0 is required".into())),
         },
-        Algo::Rates(_) => timed_rates(&mut lines, &mut p, &mut clock, q0, args),
+        Algo::Rates(_) => timed_rates(&mut lines, &mut p, &mut clock, q0, args, &mut clip),
     };
+    if let Some(c) = &clip
+        && c.count > 0
+    {
+        let what = if c.policy == OnClip::Hold {
+            "each clipped axis held at its last unclipped rate"
+        } else {
+            "passed as read"
+        };
+        eprintln!(
+            "note: {} samples had an axis at the full scale {} ({what})",
+            c.count, c.full_scale
+        );
+    }
     finish(result, &mut p)
 }
 
@@ -932,6 +1033,7 @@ fn timed_increments<R: io::Read>(
     q0: UnitQuat<f64>,
     rule: ConingRule,
     args: &Args,
+    clip: &mut Option<Clip>,
 ) -> Result<(), Failure> {
     let mut q = q0;
     let mut pending: Option<(Vec3<f64>, f64)> = None;
@@ -948,6 +1050,10 @@ fn timed_increments<R: io::Read>(
             Ok((t, Some(h))) => (t, h),
             Ok((_, None)) => break Some(Failure::Row(n, "no interval start (--t0)".into())),
             Err(e) => break Some(e),
+        };
+        let raw = match clip.as_mut().map_or(Ok(raw), |c| c.filter(raw, Some(h))) {
+            Ok(r) => r,
+            Err(e) => break Some(Failure::Row(n, e)),
         };
         let v = args.sensor.apply(raw, Some(h));
         if let Err(e) = within_limit(v.norm(), n) {
@@ -991,6 +1097,7 @@ fn timed_rates<R: io::Read>(
     clock: &mut TimedClock,
     q0: UnitQuat<f64>,
     args: &Args,
+    clip: &mut Option<Clip>,
 ) -> Result<(), Failure> {
     // The last four samples (t, ω, line); `done` the number of attitudes printed or skipped.
     let mut win: Vec<(f64, Vec3<f64>, u64)> = Vec::with_capacity(5);
@@ -1043,6 +1150,10 @@ fn timed_rates<R: io::Read>(
         let t = match timed_step(clock, raw_t, n) {
             Ok((t, _)) => t,
             Err(e) => break Some(e),
+        };
+        let raw = match clip.as_mut().map_or(Ok(raw), |c| c.filter(raw, None)) {
+            Ok(r) => r,
+            Err(e) => break Some(Failure::Row(n, e)),
         };
         win.push((t, args.sensor.apply(raw, None), n));
         if win.len() > 4 {

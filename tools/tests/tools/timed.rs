@@ -668,3 +668,104 @@ fn wrapping_microsecond_counter() {
         out.stderr
     );
 }
+
+#[test]
+fn clipped_rows_by_policy() {
+    // A constant 1 rad/s about x on a jittered clock; rows 10 and 11 read the full scale (the
+    // sensor saturated: the true value is unknown, here the rate stayed 1 rad/s).
+    let ts = jittered(1e-3, 40, 13);
+    let rates: String = ts
+        .iter()
+        .enumerate()
+        .map(|(k, t)| format!("{t},{},0.1,0\n", if k == 10 || k == 11 { 2.0 } else { 1.0 }))
+        .collect();
+    let base = [
+        "--time-column",
+        "--input",
+        "rates",
+        "--algo",
+        "magnus4",
+        "--dt",
+        "0.001",
+        "--gyro-full-scale",
+        "2",
+    ];
+    let out = run("propagate", &base, &rates);
+    assert_eq!(out.status, Some(1));
+    assert_eq!(
+        out.stderr,
+        "error: line 11: gyro axis x clipped: |2| reaches the full scale 2 (--on-clip error)\n"
+    );
+    let t_end = ts[40] - ts[0];
+    // The exact attitude of the constant rate (1, 0.1, 0) over t_end.
+    let w = [1.0f64, 0.1, 0.0];
+    let exact = qexp(scale(w, t_end));
+    let last = |args: &[&str], input: &str| {
+        let out = run("propagate", args, input);
+        assert_eq!(out.status, Some(0), "{}", out.stderr);
+        let (_, _, q) = *timed_rows(&out.stdout).last().unwrap();
+        (q, out.stderr)
+    };
+    let mut hold = base.to_vec();
+    hold.extend(["--on-clip", "hold"]);
+    let (q, err) = last(&hold, &rates);
+    assert!(quat_angle(q, exact) < 1e-14, "{}", quat_angle(q, exact));
+    assert_eq!(
+        err,
+        "note: 2 samples had an axis at the full scale 2 (each clipped axis held at its last unclipped rate)\n"
+    );
+    let mut pass = base.to_vec();
+    pass.extend(["--on-clip", "pass"]);
+    let (q, err) = last(&pass, &rates);
+    assert!(quat_angle(q, exact) > 1e-4);
+    assert_eq!(
+        err,
+        "note: 2 samples had an axis at the full scale 2 (passed as read)\n"
+    );
+    // Increments: the full scale is an angle per row; hold takes the last rate times the row's
+    // own interval.
+    let inc: String = ts
+        .windows(2)
+        .enumerate()
+        .map(|(k, p)| {
+            let h = p[1] - p[0];
+            let x = if k == 20 { 0.0015 } else { h };
+            format!("{},{x},{},0\n", p[1], 0.1 * h)
+        })
+        .collect();
+    let (q, err) = last(
+        &[
+            "--time-column",
+            "--input",
+            "increments",
+            "--algo",
+            "coning2",
+            "--dt",
+            "0.001",
+            "--t0",
+            "0",
+            "--gyro-full-scale",
+            "0.0015",
+            "--on-clip",
+            "hold",
+        ],
+        &inc,
+    );
+    assert!(quat_angle(q, exact) < 1e-14, "{}", quat_angle(q, exact));
+    assert!(err.starts_with("note: 1 samples"), "{err}");
+    let out = run(
+        "propagate",
+        &[
+            "--input",
+            "rates",
+            "--algo",
+            "magnus4",
+            "--dt",
+            "0.001",
+            "--on-clip",
+            "hold",
+        ],
+        "",
+    );
+    assert_eq!(out.stderr, "error: --on-clip needs --time-column\n");
+}
