@@ -332,6 +332,14 @@ mod firmware {
                 }
             }
             sink(micros_to_q30(black_box(u32::MAX)));
+            sink(gyrostat::sensor::timing::unequal_coefficient_q30(
+                black_box(0),
+                black_box(u32::MAX),
+            ));
+            sink(gyrostat::sensor::timing::unequal_coefficient_q30(
+                black_box(900),
+                black_box(1100),
+            ));
             sink(micros_to_seconds::<f32>(black_box(u32::MAX)));
             let m = black_box(Mat3::from_rows(
                 [1.0f32, 0.01, 0.0],

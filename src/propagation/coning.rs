@@ -126,7 +126,8 @@ pub fn two_sample_unequal_coefficient<T: Real>(h1: T, h2: T) -> T {
 /// The 2-sample rule for two increments over unequal sub-intervals `h₁` then `h₂`:
 /// `θ₁ + θ₂ + c · θ₁ × θ₂` with `c` = [`two_sample_unequal_coefficient`]`(h₁, h₂)`
 /// `= (h₁ + h₂)²/(6 h₁ h₂)`, given as `coefficient` so that fixed point can take it precomputed
-/// (in Q1.30 it fits for `h₁/h₂ ∈ (0.102, 9.9)`).
+/// (in Q1.30 it fits for `h₁/h₂ ∈ (0.102, 9.9)`; from microsecond intervals in integer
+/// arithmetic: [`crate::sensor::timing::unequal_coefficient_q30`]).
 ///
 /// Derivation (the order kept): the rotation vector over `[0, T]`, `T = h₁ + h₂`, to second
 /// order in the rates (Bortz, truncated after the single commutator) is

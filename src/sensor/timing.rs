@@ -250,3 +250,44 @@ pub fn micros_to_q30(us: u32) -> Result<Q30, Error> {
     let q = ((u64::from(us) << 30) + 500_000) / 1_000_000;
     Ok(Q30::from_bits(q as i32))
 }
+
+/// The coefficient `(h₁ + h₂)²/(6 h₁ h₂)` of the 2-sample rule for unequal sub-intervals
+/// ([`crate::propagation::coning::two_sample_unequal_terms`]) from two intervals in
+/// microseconds, in Q1.30 and integer arithmetic only (for
+/// [`crate::propagation::kernels::coning2_update_unequal`] with `T = Q30`): an exact quotient
+/// by long division, rounded to nearest (ties up), error ≤ 2⁻³¹.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for an interval of 0 or above 2²⁰ µs (1.05 s);
+/// [`Error::OutOfRange`] when the coefficient reaches 2 (the intervals' ratio outside about
+/// `(0.102, 9.9)`).
+pub fn unequal_coefficient_q30(h1_us: u32, h2_us: u32) -> Result<Q30, Error> {
+    if h1_us == 0 || h2_us == 0 || h1_us > 1 << 20 || h2_us > 1 << 20 {
+        return Err(Error::InvalidArgument);
+    }
+    let s = u64::from(h1_us) + u64::from(h2_us); // ≤ 2²¹
+    let num = s * s; // ≤ 2⁴²
+    let den = 6 * u64::from(h1_us) * u64::from(h2_us); // in [6, 6·2⁴⁰]
+    let (Some(mut q), Some(mut rem)) = (num.checked_div(den), num.checked_rem(den)) else {
+        return Err(Error::InvalidArgument);
+    };
+    if q >= 2 {
+        return Err(Error::OutOfRange);
+    }
+    // 30 fraction bits, 10 per step: rem < den < 2⁴³, so rem·2¹⁰ < 2⁵³.
+    for _ in 0..3 {
+        rem <<= 10;
+        let (Some(d), Some(r)) = (rem.checked_div(den), rem.checked_rem(den)) else {
+            return Err(Error::InvalidArgument);
+        };
+        q = (q << 10) | d;
+        rem = r;
+    }
+    if 2 * rem >= den {
+        q += 1;
+    }
+    if q >= 1 << 31 {
+        return Err(Error::OutOfRange);
+    }
+    Ok(Q30::from_bits(q as i32))
+}

@@ -280,3 +280,37 @@ fn magnus4_on_jittered_rate_samples_is_fourth_order() {
     let reg = magnus_error(&c, 1e-3, 0.0, 1.0);
     assert!(e[2] < 4.0 * reg && e[2] > reg / 4.0, "{} {reg}", e[2]);
 }
+
+#[test]
+fn q30_coefficient_from_microseconds() {
+    use gyrostat::Error;
+    use gyrostat::sensor::timing::unequal_coefficient_q30;
+    let mut rng = Rng::new(44);
+    for _ in 0..200_000 {
+        let h1 = 1 + (rng.uniform() * 1_048_575.0) as u32;
+        let h2 = 1 + (rng.uniform() * 1_048_575.0) as u32;
+        // The exact rational in f64 (numerator and denominator exact below 2⁵³).
+        let (a, b) = (h1 as f64, h2 as f64);
+        let want = (a + b) * (a + b) / (6.0 * a * b);
+        match unequal_coefficient_q30(h1, h2) {
+            Ok(c) => assert!(
+                (c.to_f64() - want).abs() <= 2f64.powi(-31) + 2.0 * f64::EPSILON,
+                "{h1} {h2}"
+            ),
+            Err(e) => assert!(
+                e == Error::OutOfRange && want >= 2.0 - 2f64.powi(-31),
+                "{h1} {h2} {e:?}"
+            ),
+        }
+    }
+    assert_eq!(
+        unequal_coefficient_q30(1000, 1000).unwrap().to_f64(),
+        (2.0f64 / 3.0 * 2f64.powi(30)).round() / 2f64.powi(30)
+    );
+    assert_eq!(unequal_coefficient_q30(0, 5), Err(Error::InvalidArgument));
+    assert_eq!(
+        unequal_coefficient_q30(5, (1 << 20) + 1),
+        Err(Error::InvalidArgument)
+    );
+    assert_eq!(unequal_coefficient_q30(1, 1000), Err(Error::OutOfRange));
+}
