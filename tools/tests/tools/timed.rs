@@ -769,3 +769,71 @@ fn clipped_rows_by_policy() {
     );
     assert_eq!(out.stderr, "error: --on-clip needs --time-column\n");
 }
+
+#[test]
+fn sensor_options_on_the_fixed_clock() {
+    // Without --time-column the sensor options apply too: a constant rate (deg/s, sensor axes)
+    // with a bias in the calibration file and a remap, on a fixed --dt, in f64, f32 and Q1.30.
+    let dir = std::env::temp_dir().join(format!("gyrostat-cal2-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("cal.txt");
+    std::fs::write(&file, "gyro_bias = 0.01, 0, 0   # rad/s\n").unwrap();
+    let fp = file.to_str().unwrap();
+    // Sensor reads x: 1 rad/s + 0.01 bias; body = (sensor z, sensor x, sensor y) ("z,x,y").
+    let w_sensor = [1.01f64, 0.0, 0.2];
+    let line = row(&scale(w_sensor, 360.0 / TAU)) + "\n";
+    let rates = line.repeat(1001);
+    // Body rate: (0.2, 1.0, 0.0) rad/s over 1 s.
+    let exact = qexp([0.2, 1.0, 0.0]);
+    for extra in [&[][..], &["--f32"][..]] {
+        let mut args = vec![
+            "--input",
+            "rates",
+            "--algo",
+            "magnus4",
+            "--dt",
+            "0.001",
+            "--gyro-unit",
+            "deg/s",
+            "--calibration",
+            fp,
+            "--remap",
+            "z,x,y",
+        ];
+        args.extend(extra);
+        let out = run("propagate", &args, &rates);
+        assert_eq!(out.status, Some(0), "{}", out.stderr);
+        let last = numbers(out.stdout.lines().last().unwrap());
+        let e = quat_angle([last[1], last[2], last[3], last[4]], exact);
+        assert!(
+            e < if extra.is_empty() { 1e-12 } else { 1e-5 },
+            "{extra:?} {e:e}"
+        );
+    }
+    // Increments (deg per sample) through --fixed: the bias is subtracted over --dt.
+    let inc = row(&scale(w_sensor, 1e-3 * 360.0 / TAU)) + "\n";
+    let out = run(
+        "propagate",
+        &[
+            "--input",
+            "increments",
+            "--algo",
+            "coning2",
+            "--dt",
+            "0.001",
+            "--gyro-unit",
+            "deg/s",
+            "--calibration",
+            fp,
+            "--remap",
+            "z,x,y",
+            "--fixed",
+        ],
+        &inc.repeat(1000),
+    );
+    assert_eq!(out.status, Some(0), "{}", out.stderr);
+    let last = numbers(out.stdout.lines().last().unwrap());
+    let e = quat_angle([last[1], last[2], last[3], last[4]], exact);
+    assert!(e < 1e-7, "{e:e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
