@@ -261,7 +261,7 @@
 //! |-------------|--------------|
 //! | *(none)*    | everything; math from `libm`, except f32 `sin`/`cos` from gyrostat's own f32 kernel ([`real`]) |
 //! | `micromath` | micromath's fast f32 `sin`/`cos`/`atan2`/`sqrt` instead of libm (see [`real`] for the measured errors) |
-//! | `defmt`     | `defmt::Format` for the foundation types ([`Vec3`], [`Mat3`], [`Complex`], [`Quat`], [`UnitQuat`], [`Su2`]), [`Error`], the propagation types ([`propagation::ConingRule`], [`propagation::Normalization`], [`propagation::RateMethod`], [`propagation::IncrementIntegrator`], [`propagation::ConingAccumulator`], [`propagation::RateIntegrator`]) and the fixed-point types ([`fixed::Fixed`], [`fixed::IncrementScale`]); not the other rotation representations nor the dynamics types |
+//! | `defmt`     | `defmt::Format` for the foundation types ([`Vec3`], [`Mat3`], [`Complex`], [`Quat`], [`UnitQuat`], [`Su2`]), [`Error`], the propagation types ([`propagation::ConingRule`], [`propagation::Normalization`], [`propagation::RateMethod`], [`propagation::IncrementIntegrator`], [`propagation::ConingAccumulator`], [`propagation::RateIntegrator`]) and the fixed-point types ([`fixed::Fixed`], [`fixed::IncrementScale`]), the sensor clocks, calibrations and clipping types ([`sensor::SampleClock`], [`sensor::MicrosClock`], [`sensor::Interval`], [`sensor::InertialCalibration`], [`sensor::MagnetometerCalibration`], [`sensor::ClipGuard`], …); not [`sensor::AxisRemap`], [`sensor::Mounting`], the other rotation representations nor the dynamics types |
 //! | `nalgebra`  | `From`/`Into` nalgebra's `UnitQuaternion`, `Quaternion`, `Vector3`, `Matrix3` (no std) |
 //! | `mint`      | `From`/`Into` mint's types, so glam, cgmath and others convert for free |
 //!

@@ -20,7 +20,6 @@ use crate::{Axis, Dcm, Error, Mat3, Real, Ring, UnitQuat, Vec3};
 
 /// One of the 24 proper signed axis permutations: `body[i] = ±sensor[source[i]]` (see the
 /// [module docs](self)).
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct AxisRemap {
     source: [Axis; 3],
