@@ -36,7 +36,7 @@ mod firmware {
             exit(debug::EXIT_FAILURE);
         }
         let cal = Calibration::measure();
-        let mut table = Table::<80>::empty();
+        let mut table = Table::<96>::empty();
 
         let a = UnitQuat::new_unchecked(Quat::new(0.9f32, 0.1, -0.3, 0.2)).renormalize();
         let b = UnitQuat::new_unchecked(Quat::new(0.5f32, 0.5, 0.5, -0.5));
@@ -386,6 +386,122 @@ mod firmware {
                         .state_at_unchecked(black_box(7.5f32)));
                 }
             }
+        }
+
+        {
+            // The sensor layer per sample (gyrostat::sensor): raw i16 increment registers →
+            // LSB scale → calibration K·(raw − b·dt) → axis remap, in f32 and Q1.30; the clocks;
+            // clipping; the unequal-interval propagation kernels.
+            use gyrostat::Mat3;
+            use gyrostat::fixed::{IncrementQuantizer, IncrementScale, Q30};
+            use gyrostat::propagation::coning::two_sample_unequal_coefficient;
+            use gyrostat::propagation::kernels::{coning2_update_unequal, magnus4_step_unequal};
+            use gyrostat::sensor::timing::micros_to_q30;
+            use gyrostat::sensor::{
+                AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, MicrosClock,
+                RawScale, SampleClock,
+            };
+            let m = Mat3::from_rows(
+                [1.0, 0.004, -0.002],
+                [-0.003, 1.0, 0.001],
+                [0.002, -0.001, 1.0],
+            );
+            let sc = Vec3::new(1.01, 0.995, 1.003);
+            let bias = Vec3::new(0.002, -0.001, 0.0005);
+            let remap = AxisRemap::try_parse("x,-z,y");
+            let cal64 = InertialCalibration::try_new(m, sc, bias);
+            let m32 = Mat3::from_rows(
+                m.m[0].map(|x| x as f32),
+                m.m[1].map(|x| x as f32),
+                m.m[2].map(|x| x as f32),
+            );
+            let cal32 = InertialCalibration::try_new(
+                m32,
+                Vec3::new(1.01f32, 0.995, 1.003),
+                Vec3::new(0.002f32, -0.001, 0.0005),
+            );
+            let lsb32 = RawScale::try_new(1.0653e-6f32);
+            let lsbq = IncrementScale::try_new(1.0653e-6);
+            let raw = [1200i16, -4321, 77];
+            let dtq = Q30::try_from_f64(1e-3);
+            if let (Ok(remap), Ok(cal64), Ok(cal32), Ok(lsb32), Ok(lsbq), Ok(dtq)) =
+                (remap, cal64, cal32, lsb32, lsbq, dtq)
+                && let Ok(calq) = cal64.try_to_q30()
+            {
+                count!(table, "sensor_raw_calibrate_remap_f32", || black_box(remap)
+                    .apply(black_box(&cal32).apply_increment(
+                        black_box(lsb32).apply(black_box(raw)),
+                        black_box(1e-3f32)
+                    )));
+                let quant = IncrementQuantizer::<30>::new();
+                count!(table, "sensor_raw_calibrate_remap_q30", || {
+                    let mut qz = black_box(quant);
+                    let v = qz.quantize_raw(black_box(&lsbq), black_box(raw));
+                    black_box(remap).apply(black_box(&calq).apply_increment(v, black_box(dtq)))
+                });
+            }
+            if let Ok(mut clock) = SampleClock::try_new(0.01f32) {
+                clock.restart(Some(1.0));
+                count!(table, "sensor_sample_clock_interval_f32", || {
+                    let mut c = black_box(clock);
+                    c.interval(black_box(1.0102f32))
+                });
+            }
+            if let Ok(mut mc) = MicrosClock::try_new(1000, 5) {
+                mc.restart(Some(u32::MAX - 400));
+                count!(table, "sensor_micros_clock_interval_to_q30", || {
+                    let mut c = black_box(mc);
+                    let i = c.interval(black_box(612u32));
+                    (i, micros_to_q30(black_box(1013)))
+                });
+            }
+            if let Ok(limit) = ClipLimit::try_new(32000) {
+                let guard = ClipGuard::new(limit, ClipPolicy::HoldLast);
+                count!(table, "sensor_clip_guard_hold_last", || {
+                    let mut g = black_box(guard);
+                    g.filter(black_box([32100i16, -5, 17]))
+                });
+            }
+            let a = UnitQuat::new_unchecked(Quat::new(0.9f32, 0.1, -0.3, 0.2)).renormalize();
+            let t1 = Vec3::new(1.0e-3f32, -2.0e-3, 0.5e-3);
+            let t2 = Vec3::new(1.2e-3f32, -1.9e-3, 0.6e-3);
+            count!(table, "prop_coning2_unequal_with_coefficient_f32", || {
+                let c = two_sample_unequal_coefficient(black_box(0.8e-3f32), black_box(1.3e-3));
+                coning2_update_unequal(black_box(a), black_box(t1), black_box(t2), c)
+            });
+            if let (Ok(aq), Ok(t1q), Ok(t2q), Ok(cq)) = (
+                UnitQuat::<Q30>::try_from_f32(a),
+                Vec3::<Q30>::try_from_f32(t1),
+                Vec3::<Q30>::try_from_f32(t2),
+                Q30::try_from_f64(two_sample_unequal_coefficient(0.8e-3, 1.3e-3)),
+            ) {
+                count!(
+                    table,
+                    "prop_coning2_unequal_q30",
+                    || coning2_update_unequal(
+                        black_box(aq),
+                        black_box(t1q),
+                        black_box(t2q),
+                        black_box(cq)
+                    )
+                );
+            }
+            let times = [0.0f32, 0.9e-3, 2.1e-3, 3.0e-3];
+            let rates = [
+                Vec3::new(1.0f32, -2.0, 0.5),
+                Vec3::new(1.2f32, -1.9, 0.6),
+                Vec3::new(1.4f32, -1.7, 0.7),
+                Vec3::new(1.5f32, -1.4, 0.8),
+            ];
+            count!(table, "prop_magnus4_unequal_4_samples_f32", || {
+                magnus4_step_unequal(
+                    black_box(a),
+                    black_box(&times),
+                    black_box(&rates),
+                    black_box(2.1e-3f32),
+                    black_box(3.0e-3f32),
+                )
+            });
         }
 
         table.print(&cal);

@@ -311,6 +311,124 @@ mod firmware {
                 sink(increment_from_rate(w, h));
             }
         }
+        {
+            // The sensor layer (`gyrostat::sensor`) and the unequal-interval kernels: every
+            // entry point with its typed errors, f32 and Q1.30.
+            use gyrostat::Mat3;
+            use gyrostat::fixed::{IncrementQuantizer, IncrementScale, Q30};
+            use gyrostat::propagation::coning::{
+                two_sample_unequal_coefficient, two_sample_unequal_terms,
+            };
+            use gyrostat::propagation::kernels::{coning2_update_unequal, magnus4_step_unequal};
+            use gyrostat::sensor::timing::{micros_to_q30, micros_to_seconds};
+            use gyrostat::sensor::{
+                AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration,
+                MagnetometerCalibration, MicrosClock, Mounting, RawScale, SampleClock,
+            };
+            if let Ok(mut c) = SampleClock::try_with_gap_factor(black_box(0.01f32), black_box(5.0))
+            {
+                for t in [0.0f32, 0.01, 0.01, 0.005, 0.2, f32::NAN] {
+                    sink(c.interval(black_box(t)));
+                }
+                c.restart(black_box(None));
+            }
+            if let Ok(mut c) = MicrosClock::try_new(black_box(1000), black_box(5)) {
+                for t in [u32::MAX, 3, 3, 1, 1 << 31] {
+                    sink(c.interval(black_box(t)));
+                }
+            }
+            sink(micros_to_q30(black_box(u32::MAX)));
+            sink(gyrostat::sensor::timing::unequal_coefficient_q30(
+                black_box(0),
+                black_box(u32::MAX),
+            ));
+            sink(gyrostat::sensor::timing::unequal_coefficient_q30(
+                black_box(900),
+                black_box(1100),
+            ));
+            sink(micros_to_seconds::<f32>(black_box(u32::MAX)));
+            let m = black_box(Mat3::from_rows(
+                [1.0f32, 0.01, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+            ));
+            let s = black_box(Vec3::new(1.0f32, 1.01, 0.99));
+            if let Ok(cal) = InertialCalibration::try_new(m, s, v) {
+                sink(cal.try_apply(v));
+                sink(cal.apply_increment(v, black_box(1e-3)));
+                sink(cal.raw_from_corrected(v));
+            }
+            if let Ok(cal) = InertialCalibration::try_new(m.scale(0.5f64 as f32), s, v) {
+                sink(cal.apply(v));
+            }
+            if let Ok(cal64) = InertialCalibration::try_new(
+                black_box(Mat3::<f64>::IDENTITY),
+                black_box(Vec3::new(1.0, 1.0, 1.0)),
+                black_box(Vec3::new(0.01, 0.0, 0.0)),
+            ) && let (Ok(calq), Ok(scale), Ok(dt)) = (
+                cal64.try_to_q30(),
+                IncrementScale::try_new(black_box(1e-6)),
+                Q30::try_from_f64(black_box(1e-3)),
+            ) {
+                let mut quant = IncrementQuantizer::<30>::new();
+                let inc = quant.quantize_raw(&scale, black_box([i16::MIN, 0, i16::MAX]));
+                sink(calq.apply_increment(inc, dt));
+                if let Ok(r) = AxisRemap::try_parse(black_box("-y,x,z")) {
+                    sink(r.apply(inc));
+                }
+            }
+            if let Ok(mag) = MagnetometerCalibration::try_new(m, v) {
+                sink(mag.try_apply(black_box(Vec3::new(f32::MAX, 0.0, 1.0))));
+                sink(mag.raw_from_corrected(v));
+            }
+            for text in ["x,-z,y", "y,x,z", "x,x,z", "", "q,r,s,t"] {
+                if let Ok(r) = AxisRemap::try_parse(black_box(text)) {
+                    sink(r.apply(v));
+                    sink(r.inverse());
+                    let mount: Mounting<f32> = r.into();
+                    sink(mount.to_body(v));
+                    sink(mount.body_attitude(q));
+                    sink(mount.sensor_attitude(q));
+                }
+            }
+            sink(AxisRemap::all());
+            for policy in [ClipPolicy::Pass, ClipPolicy::HoldLast, ClipPolicy::Reject] {
+                if let Ok(limit) = ClipLimit::try_new(black_box(30000)) {
+                    let mut g = ClipGuard::new(limit, black_box(policy));
+                    sink(g.filter(black_box([i16::MIN, 5, i16::MAX])));
+                    sink(g.filter(black_box([1, 5, 2])));
+                }
+            }
+            if let Ok(sc) = RawScale::try_new(black_box(1e-3f32)) {
+                sink(sc.apply(black_box([i16::MIN, 0, i16::MAX])));
+            }
+            let d = black_box(Vec3::new(1e-3f32, -2e-3, 5e-4));
+            let c = two_sample_unequal_coefficient(black_box(1e-3f32), black_box(0.0));
+            sink(two_sample_unequal_terms(d, d, c));
+            sink(coning2_update_unequal(q, d, d, c));
+            if let (Ok(qq), Ok(dq)) = (
+                UnitQuat::<Q30>::try_from_f32(q),
+                Vec3::<Q30>::try_from_f32(d),
+            ) {
+                sink(coning2_update_unequal(qq, dq, dq, black_box(Q30::MAX)));
+            }
+            let times = black_box([0.0f32, 1e-3, 1e-3, 3e-3]);
+            let rates = black_box([d, d, v, v]);
+            sink(magnus4_step_unequal(
+                q,
+                &times,
+                &rates,
+                black_box(1e-3),
+                black_box(3e-3),
+            ));
+            sink(magnus4_step_unequal(
+                q,
+                &[0.0f32; 0],
+                &[],
+                black_box(0.0),
+                black_box(1.0),
+            ));
+        }
         // The attitude estimator (`gyrostat::estimation`): every entry point, f32 and f64.
         estimator::<f32>();
         estimator::<f64>();

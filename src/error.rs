@@ -39,6 +39,9 @@ pub enum Error {
     /// A value does not fit the fixed-point format it is converted to, or a sum of a checked
     /// fixed-point update would saturate it (see [`crate::fixed`]).
     OutOfRange,
+    /// A raw sensor reading is at its register's limit (the sensor saturated: the true value may
+    /// be larger), and the caller's [`crate::sensor::ClipPolicy`] rejects such readings.
+    Clipped,
 }
 
 impl fmt::Display for Error {
@@ -54,6 +57,7 @@ impl fmt::Display for Error {
             Error::StepTooLong => "step too long: beyond the method's validity limit",
             Error::InvalidArgument => "argument outside the documented domain",
             Error::OutOfRange => "value outside the range of the fixed-point format",
+            Error::Clipped => "sensor reading clipped at its register's limit",
         };
         f.write_str(s)
     }

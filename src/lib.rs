@@ -21,6 +21,7 @@
 //! | [fixed point on a Cortex-M0](#fixed-point-on-a-cortex-m0) | [`fixed::Q30`], [`fixed::IncrementScale`], [`fixed::IncrementQuantizer`], [`fixed::CarriedAttitude`] |
 //! | [Euler angles, with gimbal lock](#euler-angles-with-gimbal-lock) | [`UnitQuat::to_euler`], [`rotation::EulerSequence`], [`rotation::GimbalPolicy`] |
 //! | [a gyrostat with a reaction wheel](#a-gyrostat-with-a-reaction-wheel) | [`dynamics::Gyrostat::with_wheels`], [`dynamics::Gyrostat::step_with`], [`dynamics::Control`] |
+//! | [a real sensor stream: timestamps, calibration, mounting](#a-real-sensor-stream-timestamps-calibration-mounting) | [`sensor::SampleClock`], [`sensor::MicrosClock`], [`sensor::InertialCalibration`], [`sensor::AxisRemap`], [`sensor::ClipGuard`], [`propagation::kernels::coning2_update_unequal`], [`propagation::kernels::magnus4_step_unequal`] |
 //! | [converting an attitude log](#converting-an-attitude-log) | [`Quat::try_normalize`], [`UnitQuat::to_euler_angles`], [`RotationVector`], [`Dcm`] |
 //!
 //! ## Strapdown attitude from gyro increments, in f32
@@ -124,6 +125,42 @@
 //! # Ok::<(), gyrostat::Error>(())
 //! ```
 //!
+//! ## A real sensor stream: timestamps, calibration, mounting
+//! Real samples jitter, drop and clip, and the sensor is neither calibrated nor aligned with the
+//! body. [`sensor`] turns each sample into what the core needs: the interval from its timestamp
+//! (a gap, a repeated or a backwards timestamp is a typed [`sensor::Interval`], never a silent
+//! jump), the calibration `K·(raw − b·Δt)`, the mounting remap; the 2-sample rule for unequal
+//! intervals then uses the coefficient `(h₁ + h₂)²/(6 h₁ h₂)` (⅔ when equal).
+//! ```
+//! use gyrostat::propagation::coning::two_sample_unequal_coefficient;
+//! use gyrostat::propagation::kernels::coning2_update_unequal;
+//! use gyrostat::sensor::{AxisRemap, InertialCalibration, Interval, SampleClock};
+//! use gyrostat::{Mat3, UnitQuat, Vec3};
+//!
+//! let cal = InertialCalibration::try_new(Mat3::IDENTITY, Vec3::new(1.0, 1.0, 1.0), Vec3::new(0.01, 0.0, 0.0))?;
+//! let remap = AxisRemap::try_parse("x,-z,y")?; // body y = −sensor z
+//! let mut clock = SampleClock::try_new(0.01)?; // 100 Hz nominal, a gap beyond 50 ms
+//! clock.restart(Some(0.0));
+//! let mut q = UnitQuat::<f64>::IDENTITY;
+//! let mut pending = None;
+//! // 1 rad/s about sensor x read with a +0.01 rad/s bias, over 9.8 ms then 10.5 ms.
+//! for (t, raw) in [(0.0098, [0.009_898, 0.0, 0.0]), (0.0203, [0.010_605, 0.0, 0.0])] {
+//!     let Interval::Step(h) = clock.interval(t)? else {
+//!         continue; // a gap, a repeat or a backwards step: see sensor::timing's policy
+//!     };
+//!     let d = remap.apply(cal.apply_increment(Vec3::from_array(raw), h));
+//!     match pending.take() {
+//!         None => pending = Some((d, h)),
+//!         Some((d1, h1)) => {
+//!             q = coning2_update_unequal(q, d1, d, two_sample_unequal_coefficient(h1, h));
+//!         }
+//!     }
+//! }
+//! // The bias removed: 0.0203 rad about body x.
+//! assert!((q.angle() - 0.0203).abs() < 1e-9);
+//! # Ok::<(), gyrostat::Error>(())
+//! ```
+//!
 //! ## Converting an attitude log
 //! Every representation converts to and from [`UnitQuat`] (`From`, or `TryFrom` and a `try_`
 //! method where the conversion can fail). A bad row becomes an [`Error`], never a NaN. (The
@@ -207,6 +244,7 @@
 //! | propagation | [`propagation`]: rules and interpolation, then the [`propagation::kernels`] and the compensated updates, the attitude trait, the integrators | rotations, step limits |
 //! | dynamics | [`dynamics`]: the body (inertia, Hamiltonian, gyrostat, state), the [`dynamics::integrators`] and the [`dynamics::closed_form`] on it, the step on the integrators | rotations, step limits |
 //! | at the edges | [`fixed`] (the fixed-point formats, conversions and sensor scale), the optional integrations (features below) | rotations |
+//! | sensor streams | [`sensor`]: timestamps and gap policy, calibration, mounting, raw registers and clipping, before the propagation core | rotations, propagation, fixed |
 //!
 //! # Data path
 //! sensor samples or torques → a step function → [`UnitQuat`] (and body momentum) → conversions.
@@ -223,7 +261,7 @@
 //! |-------------|--------------|
 //! | *(none)*    | everything; math from `libm`, except f32 `sin`/`cos` from gyrostat's own f32 kernel ([`real`]) |
 //! | `micromath` | micromath's fast f32 `sin`/`cos`/`atan2`/`sqrt` instead of libm (see [`real`] for the measured errors) |
-//! | `defmt`     | `defmt::Format` for the foundation types ([`Vec3`], [`Mat3`], [`Complex`], [`Quat`], [`UnitQuat`], [`Su2`]), [`Error`], the propagation types ([`propagation::ConingRule`], [`propagation::Normalization`], [`propagation::RateMethod`], [`propagation::IncrementIntegrator`], [`propagation::ConingAccumulator`], [`propagation::RateIntegrator`]) and the fixed-point types ([`fixed::Fixed`], [`fixed::IncrementScale`]); not the other rotation representations nor the dynamics types |
+//! | `defmt`     | `defmt::Format` for the foundation types ([`Vec3`], [`Mat3`], [`Complex`], [`Quat`], [`UnitQuat`], [`Su2`]), [`Error`], the propagation types ([`propagation::ConingRule`], [`propagation::Normalization`], [`propagation::RateMethod`], [`propagation::IncrementIntegrator`], [`propagation::ConingAccumulator`], [`propagation::RateIntegrator`]) and the fixed-point types ([`fixed::Fixed`], [`fixed::IncrementScale`]), the sensor clocks, calibrations and clipping types ([`sensor::SampleClock`], [`sensor::MicrosClock`], [`sensor::Interval`], [`sensor::InertialCalibration`], [`sensor::MagnetometerCalibration`], [`sensor::ClipGuard`], …); not [`sensor::AxisRemap`], [`sensor::Mounting`], the other rotation representations nor the dynamics types |
 //! | `nalgebra`  | `From`/`Into` nalgebra's `UnitQuaternion`, `Quaternion`, `Vector3`, `Matrix3` (no std) |
 //! | `mint`      | `From`/`Into` mint's types, so glam, cgmath and others convert for free |
 //!
@@ -245,6 +283,7 @@ pub mod linalg;
 pub mod propagation;
 pub mod real;
 pub mod rotation;
+pub mod sensor;
 pub mod step_limit;
 
 pub use error::Error;

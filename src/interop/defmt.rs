@@ -70,6 +70,7 @@ impl Format for Error {
             Error::StepTooLong => "StepTooLong",
             Error::InvalidArgument => "InvalidArgument",
             Error::OutOfRange => "OutOfRange",
+            Error::Clipped => "Clipped",
         };
         write!(f, "Error::{}", s)
     }

@@ -35,7 +35,7 @@
 //! correction; at the attitude rate `φ = α + β` goes through one exponential.
 
 use crate::step_limit::within_step_limit;
-use crate::{Error, Ring, Vec3};
+use crate::{Error, Real, Ring, Vec3};
 
 /// An increment (coning) rule: how the rotation vector of one attitude update is formed.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -110,6 +110,45 @@ pub fn one_plus_previous_terms<T: Ring>(previous: Vec3<T>, current: Vec3<T>) -> 
         sum: current,
         lever: previous.scale(T::ratio::<1, 12>()),
         last: current,
+    }
+}
+
+/// The coefficient of the 2-sample rule for unequal sub-intervals `h₁`, `h₂` (see
+/// [`two_sample_unequal_terms`]): `c = (h₁ + h₂)² / (6 h₁ h₂)`, `⅔` for `h₁ = h₂`, formed as
+/// `(r + 2 + 1/r)/6` with `r = h₁/h₂`. Domain: `h₁, h₂ > 0` (unchecked: a zero interval gives
+/// an infinite or NaN coefficient).
+#[inline]
+pub fn two_sample_unequal_coefficient<T: Real>(h1: T, h2: T) -> T {
+    let r = h1 / h2;
+    (r + T::TWO + T::ONE / r) / T::from_f64(6.0)
+}
+
+/// The 2-sample rule for two increments over unequal sub-intervals `h₁` then `h₂`:
+/// `θ₁ + θ₂ + c · θ₁ × θ₂` with `c` = [`two_sample_unequal_coefficient`]`(h₁, h₂)`
+/// `= (h₁ + h₂)²/(6 h₁ h₂)`, given as `coefficient` so that fixed point can take it precomputed
+/// (in Q1.30 it fits for `h₁/h₂ ∈ (0.102, 9.9)`; from microsecond intervals in integer
+/// arithmetic: [`crate::sensor::timing::unequal_coefficient_q30`]).
+///
+/// Derivation (the order kept): the rotation vector over `[0, T]`, `T = h₁ + h₂`, to second
+/// order in the rates (Bortz, truncated after the single commutator) is
+/// `φ = α(T) + ½ ∫₀ᵀ α(t) × ω(t) dt`, `α(t) = ∫₀ᵗ ω`. For a linearly varying rate
+/// `ω = a + b t`: `α × ω = (a t + b t²/2) × (a + b t) = (a × b) t²/2`, so the coning term is
+/// `(a × b) T³/12`. The increments are `θ₁ = a h₁ + b h₁²/2`,
+/// `θ₂ = a h₂ + b (T² − h₁²)/2`, whose cross product is `θ₁ × θ₂ = (a × b) h₁ h₂ T / 2`; hence
+/// `φ = θ₁ + θ₂ + T²/(6 h₁ h₂) · θ₁ × θ₂`, which for `h₁ = h₂` is the classical `⅔`. Like the
+/// equal-interval rule, it is exact for a rate linear in time through the single-commutator
+/// term; under classical coning its drift error is of fourth order in `Ω T` (the equal rule's
+/// `(ΩT)⁴` behaviour, measured with jittered intervals in `host-tests/tests/sensor/`).
+#[inline]
+pub fn two_sample_unequal_terms<T: Ring>(
+    t1: Vec3<T>,
+    t2: Vec3<T>,
+    coefficient: T,
+) -> ConingTerms<T> {
+    ConingTerms {
+        sum: t1 + t2,
+        lever: t1.scale(coefficient),
+        last: t2,
     }
 }
 

@@ -15,7 +15,9 @@
 //!   rates at their nodes ([`crate::propagation::rate_samples`]);
 //! - [`step_constant_rate`]: the exact step of a rate held constant.
 
-use crate::propagation::coning::{ConingRule, ConingTerms, coning_terms_for, two_sample_terms};
+use crate::propagation::coning::{
+    ConingRule, ConingTerms, coning_terms_for, two_sample_terms, two_sample_unequal_terms,
+};
 use crate::propagation::kinematics::quat_rate_body;
 use crate::propagation::normalization::Normalization;
 use crate::propagation::rate_samples::{
@@ -89,6 +91,78 @@ impl<T: ExpMap> RotationVectorForm<T> for ConingTerms<T> {
 #[inline]
 pub fn coning2_update<T: ExpMap>(q: UnitQuat<T>, t1: Vec3<T>, t2: Vec3<T>) -> UnitQuat<T> {
     apply_rotation_vector(q, two_sample_terms(t1, t2), Normalization::Fast)
+}
+
+/// The 2-sample update over unequal sub-intervals: `q ⊗ exp(θ₁ + θ₂ + c θ₁ × θ₂)` with the
+/// coefficient `c = (h₁ + h₂)²/(6 h₁ h₂)` ([`crate::propagation::coning::two_sample_unequal_terms`],
+/// where the rule is derived), then the fast renormalisation. Equal to [`coning2_update`] for
+/// `c = ⅔`. Fixed point: pass the coefficient in Q1.30 (precomputed per interval pattern).
+///
+/// Unchecked: the domain of [`coning2_update`].
+#[inline]
+pub fn coning2_update_unequal<T: ExpMap>(
+    q: UnitQuat<T>,
+    t1: Vec3<T>,
+    t2: Vec3<T>,
+    coefficient: T,
+) -> UnitQuat<T> {
+    apply_rotation_vector(
+        q,
+        two_sample_unequal_terms(t1, t2, coefficient),
+        Normalization::Fast,
+    )
+}
+
+/// The Lagrange interpolant through `(tᵢ, ωᵢ)` evaluated at `x`: `Σ ωᵢ Πⱼ≠ᵢ (x − tⱼ)/(tᵢ − tⱼ)`.
+/// Unchecked: the times must be distinct.
+#[inline]
+fn lagrange_at<T: Real, const M: usize>(t: &[T; M], w: &[Vec3<T>; M], x: T) -> Vec3<T> {
+    let mut acc = Vec3::ZERO;
+    for (i, (ti, wi)) in t.iter().zip(w).enumerate() {
+        let mut l = T::ONE;
+        for (j, tj) in t.iter().enumerate() {
+            if i != j {
+                l *= (x - *tj) / (*ti - *tj);
+            }
+        }
+        acc += *wi * l;
+    }
+    acc
+}
+
+/// One Magnus-4 step on rate samples at unequal times: advances from `t0` to `t1` with the
+/// rates at the step's Gauss nodes taken from the Lagrange interpolant through the `M` samples
+/// `(times[i], rates[i])` (the [`crate::propagation::rate_samples`] scheme with the weights formed
+/// from the actual times). Not renormalised.
+///
+/// Use it like the equal-interval integrator: over `[tₖ₋₁, tₖ]` with the window of samples
+/// `k−3 … k` (no look-ahead), and, at the start, the first three intervals with samples `0 … 3`.
+/// Order: the cubic interpolant's error is `O(h⁴)` in `ω` (for a jitter that keeps the window's
+/// intervals comparable), so the local error is `O(h⁵)` and the method converges with order 4 on
+/// a jittered clock as on a regular one (a window of three samples: order 3, of two: order 2;
+/// measured in `host-tests/tests/sensor/`).
+///
+/// Unchecked: the times must be distinct (repeated times give NaN; see
+/// [`crate::sensor::SampleClock`] for the checks), `[t0, t1]` inside the window's span
+/// (outside, the interpolant extrapolates, less accurately), and the domain of [`magnus4_step`]
+/// holds. `M = 0` gives a zero rate.
+#[inline]
+pub fn magnus4_step_unequal<T: Real, const M: usize>(
+    q: UnitQuat<T>,
+    times: &[T; M],
+    rates: &[Vec3<T>; M],
+    t0: T,
+    t1: T,
+) -> UnitQuat<T> {
+    let h = t1 - t0;
+    let g1 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_1);
+    let g2 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_2);
+    magnus4_step(
+        q,
+        lagrange_at(times, rates, g1),
+        lagrange_at(times, rates, g2),
+        h,
+    )
 }
 
 /// One Magnus-4 step: `q ⊗ exp(φ)` with φ from [`magnus4_rotation_vector`]. Unchecked, not

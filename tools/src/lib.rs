@@ -14,7 +14,9 @@
 //! A further tool is one more file in `src/bin/` that declares its [`flags::Cli`] and reads its
 //! input with [`stream::Lines`].
 
+pub mod calibration;
 pub mod flags;
+pub mod sensor_units;
 pub mod simulation;
 pub mod stream;
 pub mod torque;

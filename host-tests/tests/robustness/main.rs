@@ -2,7 +2,7 @@
 //! tables in `ROBUSTNESS.md`), one module per layer, the named regressions and the f32 soak (the
 //! whole map is in `host-tests/README.md`):
 //!
-//! - [`rotation`], [`propagation`], [`dynamics`], [`fixed`]: the campaign per layer.
+//! - [`rotation`], [`propagation`], [`dynamics`], [`fixed`], [`sensor`]: the campaign per layer.
 //! - [`regressions`]: every case the campaign once found, pinned to its typed error or value.
 //! - [`soak`]: long f32 runs of the hot paths, watching the invariants.
 
@@ -11,4 +11,5 @@ mod fixed;
 mod propagation;
 mod regressions;
 mod rotation;
+mod sensor;
 mod soak;

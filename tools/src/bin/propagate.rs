@@ -2,7 +2,9 @@
 //!
 //! ```text
 //! propagate --input increments|rates --algo ALGO --dt SECONDS [--q0 w,x,y,z] [--f32 | --fixed] \
-//!     [--compensated] [--every N]
+//!     [--compensated] [--every N] [--gyro-unit U] [--calibration FILE] [--remap x,-z,y]
+//! propagate --time-column --input increments|rates --algo ALGO --dt NOMINAL [--t0 T] \
+//!     [--time-unit s|ms|us] [--gap-factor K] [--gyro-unit U] [--calibration FILE] [--remap R]
 //! ```
 //! Run with `--help` for the full description of the input and output formats.
 
@@ -12,13 +14,18 @@ use std::process::ExitCode;
 use std::str::FromStr;
 
 use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
+use gyrostat::propagation::coning::two_sample_unequal_coefficient;
+use gyrostat::propagation::kernels::{coning2_update_unequal, magnus4_step_unequal};
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
     RateIntegrator, RateMethod,
 };
+use gyrostat::sensor::{AxisRemap, InertialCalibration, Interval, MicrosClock, SampleClock};
+use gyrostat::step_limit::MAX_STEP_ANGLE;
 use gyrostat::{Quat, Real, UnitQuat, Vec3};
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
 use gyrostat_tools::stream::{self, Csv, Lines};
+use gyrostat_tools::{calibration, sensor_units};
 
 const CLI: Cli = Cli {
     name: "propagate",
@@ -32,6 +39,16 @@ const CLI: Cli = Cli {
         Flag::switch("--fixed"),
         Flag::switch("--compensated"),
         Flag::value("--every"),
+        Flag::switch("--time-column"),
+        Flag::value("--t0"),
+        Flag::value("--gap-factor"),
+        Flag::value("--gyro-unit"),
+        Flag::value("--time-unit"),
+        Flag::value("--calibration"),
+        Flag::value("--remap"),
+        Flag::switch("--time-wrap"),
+        Flag::value("--gyro-full-scale"),
+        Flag::value("--on-clip"),
     ],
 };
 
@@ -40,7 +57,9 @@ propagate: integrate gyro increments or rate samples into attitude quaternions
 
 USAGE:
     propagate --input increments|rates --algo ALGO --dt SECONDS [--q0 w,x,y,z] [--f32 | --fixed]
-              [--compensated] [--every N]
+              [--compensated] [--every N] [SENSOR OPTIONS]
+    propagate --time-column --input increments|rates --algo ALGO --dt NOMINAL [--t0 T]
+              [--time-unit s|ms|us] [--gap-factor K] [--q0 w,x,y,z] [--every N] [SENSOR OPTIONS]
 
     Flags take their value as the next argument or after `=` (--dt 0.01, --dt=0.01); a flag
     given twice is an error.
@@ -91,6 +110,50 @@ OPTIONS:
     --every N      print every N-th sample (N >= 1, default 1)
     --help         print this text
 
+SENSOR OPTIONS (every mode): each sample goes raw -> unit -> calibration -> remap -> propagation.
+    --gyro-unit rad/s|deg/s   the unit of the rates (default rad/s); with --input increments
+                   the angle unit of the increments (rad or deg: the same factor)
+    --calibration FILE        the gyro model of FILE, corrected = M diag(s) (raw - b), applied in
+                   rad/s after the unit conversion (for increments: M diag(s) (raw - b dt),
+                   dt the sample's interval). FILE holds `key = numbers` lines (`#` comments):
+                   gyro_bias = bx,by,bz (rad/s), gyro_scale = sx,sy,sz (> 0),
+                   gyro_misalignment = 9 numbers row-major, and accel_*, mag_hard_iron,
+                   mag_soft_iron (read and checked, used by other tools). Errors name the line.
+    --remap X,Y,Z  the sensor's axes in the body: body x,y,z = the listed sensor axes, each
+                   with an optional sign (x,-z,y: body y = -sensor z). Only the 24 proper
+                   rotations are accepted (a reflection is an error). Applied after calibration.
+
+TIME COLUMN (--time-column, f64 only): each row starts with its timestamp, `t,x,y,z`.
+    --time-unit s|ms|us       the unit of t and --t0 (default s)
+    --dt NOMINAL   the nominal sample interval (s), for the gap policy only
+    --gap-factor K an interval longer than K*NOMINAL is a gap (K >= 1, default 5)
+    --input increments   t is the END of the interval the increment covers; the first interval
+                   starts at --t0 T (required). ALGO exp (one exponential per increment) or
+                   coning2 (2-sample rule for unequal intervals h1, h2: coefficient
+                   (h1+h2)^2/(6 h1 h2), 2/3 when equal; one update per two increments; a row
+                   inside a pair, and the last row of an odd record, apply the pending
+                   increment as an exponential, not fed back).
+    --input rates        the rate sampled at t. ALGO magnus4: 4th-order Magnus on the cubic
+                   interpolant through the actual times of samples k-3..k (the first three
+                   intervals use samples 0..3; a record of 2 or 3 samples the linear or
+                   quadratic interpolant). --t0 is not used.
+    --time-wrap    t is a free-running 32-bit microsecond counter (whole numbers 0..2^32-1, needs
+                   --time-unit us and a whole --gap-factor) that wraps every 2^32 us (71.6 min):
+                   intervals are wrapped differences, the printed t is unwrapped (counted from
+                   the first value; --t0 a counter value too). A wrapped difference of 2^31 us
+                   or more reads as backwards.
+    --gyro-full-scale R  the gyro's full scale in --gyro-unit (rad or deg for increments): a
+                   row with an axis at |value| >= R is clipped (the sensor saturated)
+    --on-clip error|pass|hold   error (default): the row is an error; pass: integrate it as
+                   read; hold: each clipped axis takes its last unclipped rate (times the
+                   row's interval for increments; passed when there is none yet). With pass
+                   or hold, stderr ends with a note of how many rows were clipped.
+    Policy: an interval longer than K*NOMINAL (samples were lost), a repeated timestamp and a
+    timestamp before the previous one stop the run with a row error (exit status 1): the
+    attitude is never carried silently across them.
+    Output: `k,t,qw,qx,qy,qz`, t in seconds: increments, the attitude at the end of row k's
+    interval; rates, the attitude at row k's time (row 0 prints q0).
+
 OUTPUT (stdout): `k,qw,qx,qy,qz` after sample k (0-based) whenever k is a multiple of N, and
     always after the last sample consumed (the last valid one when the run stops at an error).
     Rows are written as they are computed (flushed at least every 0.1 s and whenever the input
@@ -140,6 +203,84 @@ struct Args {
     arith: Arith,
     compensated: bool,
     every: u64,
+    sensor: Sensor,
+    timed: Option<Timed>,
+}
+
+/// The sensor model applied to every sample before the propagation.
+struct Sensor {
+    gyro_factor: f64,
+    calibration: Option<InertialCalibration<f64>>,
+    remap: Option<AxisRemap>,
+}
+
+impl Sensor {
+    /// A rate sample (or, with `dt`, an increment over `dt`) in rad/s (rad), body axes.
+    fn apply(&self, raw: Vec3<f64>, dt: Option<f64>) -> Vec3<f64> {
+        let v = raw * self.gyro_factor;
+        let v = match (&self.calibration, dt) {
+            (Some(c), Some(dt)) => c.apply_increment(v, dt),
+            (Some(c), None) => c.apply(v),
+            (None, _) => v,
+        };
+        self.remap.map_or(v, |r| r.apply(v))
+    }
+}
+
+/// The arguments of the time-column mode.
+struct Timed {
+    time_factor: f64,
+    t0: Option<f64>,
+    gap_factor: f64,
+    wrap: bool,
+    clip: Option<Clip>,
+}
+
+/// What the time-column mode does with a sample at the gyro's full scale.
+#[derive(Clone, Copy, PartialEq)]
+enum OnClip {
+    Error,
+    Pass,
+    Hold,
+}
+
+/// The clipping check of the time-column mode: an axis whose raw reading (in --gyro-unit)
+/// reaches the full scale is clipped; the policy chooses what the propagation gets.
+struct Clip {
+    full_scale: f64,
+    policy: OnClip,
+    last_rate: [Option<f64>; 3],
+    count: u64,
+}
+
+impl Clip {
+    /// The raw sample the propagation gets (`h` the interval of an increment, `None` for a
+    /// rate), or the row error under `--on-clip error`.
+    fn filter(&mut self, raw: Vec3<f64>, h: Option<f64>) -> Result<Vec3<f64>, String> {
+        let mut out = raw.to_array();
+        let mut clipped = false;
+        for (i, (v, last)) in out.iter_mut().zip(self.last_rate.iter_mut()).enumerate() {
+            let per_s = h.map_or(1.0, |h| 1.0 / h);
+            if v.abs() < self.full_scale {
+                *last = Some(*v * per_s);
+                continue;
+            }
+            clipped = true;
+            match (self.policy, *last) {
+                (OnClip::Error, _) => {
+                    return Err(format!(
+                        "gyro axis {} clipped: |{v}| reaches the full scale {} (--on-clip error)",
+                        ["x", "y", "z"][i],
+                        self.full_scale
+                    ));
+                }
+                (OnClip::Hold, Some(rate)) => *v = rate * h.unwrap_or(1.0),
+                _ => {}
+            }
+        }
+        self.count += u64::from(clipped);
+        Ok(Vec3::from_array(out))
+    }
 }
 
 /// The arguments of a run, from the flags given.
@@ -158,6 +299,87 @@ fn arguments(f: &Flags) -> Result<Args, String> {
     };
     let compensated = f.switch("--compensated");
     let every = f.get("--every", flags::at_least_one)?.unwrap_or(1);
+    let gyro_factor = f
+        .get("--gyro-unit", sensor_units::gyro_unit)?
+        .unwrap_or(1.0);
+    let calibration = f
+        .value("--calibration")
+        .map(|p| calibration::read(p).map(|c| c.gyro))
+        .transpose()?;
+    let remap = f
+        .value("--remap")
+        .map(|r| {
+            AxisRemap::try_parse(r).map_err(|e| match e {
+                gyrostat::Error::NotRotation => format!(
+                    "--remap: '{r}' is a reflection (determinant -1), not a rotation of the axes"
+                ),
+                _ => format!("--remap: expected three distinct signed axes like x,-z,y, got '{r}'"),
+            })
+        })
+        .transpose()?;
+    let sensor = Sensor {
+        gyro_factor,
+        calibration,
+        remap,
+    };
+    let time_factor = f.get("--time-unit", sensor_units::time_unit)?;
+    let t0 = f.get("--t0", flags::number)?;
+    let gap_factor = f.get("--gap-factor", flags::number)?;
+    let timed = if f.switch("--time-column") {
+        let gap_factor = gap_factor.unwrap_or(5.0);
+        if gap_factor < 1.0 {
+            return Err(format!("--gap-factor: must be >= 1, got {gap_factor}"));
+        }
+        let wrap = f.switch("--time-wrap");
+        if wrap && time_factor != Some(1e-6) {
+            return Err("--time-wrap needs --time-unit us (a 32-bit microsecond counter)".into());
+        }
+        if wrap && gap_factor.fract() != 0.0 {
+            return Err(format!(
+                "--gap-factor: must be a whole number with --time-wrap, got {gap_factor}"
+            ));
+        }
+        let full_scale = f.get("--gyro-full-scale", flags::positive)?;
+        let policy = match f.value("--on-clip") {
+            None | Some("error") => OnClip::Error,
+            Some("pass") => OnClip::Pass,
+            Some("hold") => OnClip::Hold,
+            Some(o) => {
+                return Err(format!(
+                    "--on-clip: expected error, pass or hold, got '{o}'"
+                ));
+            }
+        };
+        if full_scale.is_none() && f.value("--on-clip").is_some() {
+            return Err("--on-clip needs --gyro-full-scale".into());
+        }
+        Some(Timed {
+            time_factor: time_factor.unwrap_or(1.0),
+            t0,
+            gap_factor,
+            wrap,
+            clip: full_scale.map(|full_scale| Clip {
+                full_scale,
+                policy,
+                last_rate: [None; 3],
+                count: 0,
+            }),
+        })
+    } else {
+        for (given, name) in [
+            (time_factor.is_some(), "--time-unit"),
+            (t0.is_some(), "--t0"),
+            (gap_factor.is_some(), "--gap-factor"),
+            (f.switch("--time-wrap"), "--time-wrap"),
+            (f.value("--gyro-full-scale").is_some(), "--gyro-full-scale"),
+            (f.value("--on-clip").is_some(), "--on-clip"),
+        ] {
+            if given {
+                return Err(format!("{name} needs --time-column"));
+            }
+        }
+        None
+    };
     let input = input.ok_or("--input is required (increments or rates)")?;
     let algo_name = algo.ok_or("--algo is required")?;
     let dt = dt.ok_or("--dt is required")?;
@@ -182,6 +404,28 @@ fn arguments(f: &Flags) -> Result<Args, String> {
         }
         (i, _) => return Err(format!("--input must be increments or rates, got '{i}'")),
     };
+    if timed.is_some() {
+        if arith != Arith::F64 || compensated {
+            return Err(
+                "--time-column runs in f64 only (not --f32, --fixed, --compensated)".into(),
+            );
+        }
+        match algo {
+            Algo::Increments(ConingRule::Exp | ConingRule::TwoSample)
+            | Algo::Rates(RateMethod::Magnus4) => {}
+            _ => {
+                return Err(format!(
+                    "--time-column supports --algo exp or coning2 (increments) and magnus4 (rates), not '{algo_name}'"
+                ));
+            }
+        }
+        if matches!(algo, Algo::Increments(_)) && timed.as_ref().is_some_and(|t| t.t0.is_none()) {
+            return Err(
+                "--time-column --input increments needs --t0 (the start of the first interval)"
+                    .into(),
+            );
+        }
+    }
     if arith == Arith::Fixed && matches!(algo, Algo::Rates(_)) {
         return Err("--fixed supports --input increments only".into());
     }
@@ -197,6 +441,8 @@ fn arguments(f: &Flags) -> Result<Args, String> {
         arith,
         compensated,
         every,
+        sensor,
+        timed,
     })
 }
 
@@ -263,6 +509,8 @@ impl From<io::Error> for Failure {
 fn next_sample<T: Real + FromStr, R: io::Read>(
     lines: &mut Lines<R>,
     out: &mut Csv,
+    sensor: &Sensor,
+    dt: Option<f64>,
 ) -> Result<Option<(u64, Vec3<T>)>, Failure> {
     loop {
         if lines.will_read() {
@@ -274,8 +522,11 @@ fn next_sample<T: Real + FromStr, R: io::Read>(
         match line {
             Ok(text) if text.trim().is_empty() => continue,
             Ok(text) => {
-                return parse_row(text)
-                    .map(|v| Some((n, v)))
+                return parse_row::<T>(text)
+                    .map(|v| {
+                        let v = sensor.apply(Vec3::from_array(v.to_array().map(T::to_f64)), dt);
+                        Some((n, Vec3::from_array(v.to_array().map(T::from_f64))))
+                    })
                     .map_err(|e| Failure::Row(n, e));
             }
             Err(reason) => return Err(Failure::Row(n, reason)),
@@ -345,6 +596,8 @@ fn increments<T, A, R>(
     p: &mut Printer,
     q0: UnitQuat<T>,
     rule: ConingRule,
+    sensor: &Sensor,
+    dt: f64,
 ) -> Result<(), Failure>
 where
     T: Real + FromStr + Debug,
@@ -356,7 +609,7 @@ where
     let mut last = q0; // the attitude after sample k - 1
     let mut n = 0; // the line of the latest sample
     let stop = loop {
-        let v = match next_sample::<T, R>(lines, &mut p.out) {
+        let v = match next_sample::<T, R>(lines, &mut p.out, sensor, Some(dt)) {
             Ok(Some((line, v))) => {
                 n = line;
                 v
@@ -407,6 +660,7 @@ fn rates<T, A, R>(
     q0: UnitQuat<T>,
     method: RateMethod,
     args_dt: f64,
+    sensor: &Sensor,
 ) -> Result<(), Failure>
 where
     T: Real + FromStr + Debug,
@@ -432,7 +686,7 @@ where
         Ok(())
     };
     let stop = loop {
-        let v = match next_sample::<T, R>(lines, &mut p.out) {
+        let v = match next_sample::<T, R>(lines, &mut p.out, sensor, None) {
             Ok(Some((line, v))) => {
                 n = line;
                 v
@@ -486,8 +740,12 @@ fn run<T: Real + FromStr + Debug, A: PropagatedAttitude<T> + From<UnitQuat<T>>>(
     };
     let mut lines = Lines::new(io::stdin().lock());
     let result = match args.algo {
-        Algo::Increments(rule) => increments::<T, A, _>(&mut lines, &mut p, q0, rule),
-        Algo::Rates(method) => rates::<T, A, _>(&mut lines, &mut p, q0, method, args.dt),
+        Algo::Increments(rule) => {
+            increments::<T, A, _>(&mut lines, &mut p, q0, rule, &args.sensor, args.dt)
+        }
+        Algo::Rates(method) => {
+            rates::<T, A, _>(&mut lines, &mut p, q0, method, args.dt, &args.sensor)
+        }
     };
     finish(result, &mut p)
 }
@@ -517,12 +775,13 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
     let mut last = q0; // the attitude after sample k - 1
     let result = (|| -> Result<(), Failure> {
         let stop = loop {
-            let (n, v) = match next_sample::<f64, _>(&mut lines, &mut p.out) {
-                Ok(Some(s)) => s,
-                Ok(None) => break None,
-                Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
-                Err(e) => return Err(e),
-            };
+            let (n, v) =
+                match next_sample::<f64, _>(&mut lines, &mut p.out, &args.sensor, Some(args.dt)) {
+                    Ok(Some(s)) => s,
+                    Ok(None) => break None,
+                    Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
+                    Err(e) => return Err(e),
+                };
             let v = quantizer
                 .try_quantize(v)
                 .map_err(|e| Failure::Row(n, format!("{e} (Q1.30 holds |value| < 2 rad)")));
@@ -550,6 +809,388 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
     finish(result, &mut p)
 }
 
+/// Parses one `t,x,y,z` row of the time-column mode.
+fn parse_timed_row(line: &str) -> Result<(f64, Vec3<f64>), String> {
+    let parts: Vec<&str> = line.split(',').collect();
+    if parts.len() != 4 {
+        return Err(format!(
+            "expected 4 comma-separated numbers t,x,y,z, found {}",
+            parts.len()
+        ));
+    }
+    let mut v = [0.0; 4];
+    for (slot, p) in v.iter_mut().zip(&parts) {
+        let p = p.trim();
+        let x: f64 = p.parse().map_err(|_| format!("invalid number '{p}'"))?;
+        if !x.is_finite() {
+            return Err(format!("non-finite value '{p}'"));
+        }
+        *slot = x;
+    }
+    let [t, x, y, z] = v;
+    Ok((t, Vec3::new(x, y, z)))
+}
+
+/// The clock of the time-column mode: timestamps in seconds, or a wrapping 32-bit microsecond
+/// counter (`--time-wrap`) with the time unwrapped since its first value.
+enum TimedClock {
+    Seconds(SampleClock<f64>, f64),
+    Counter(MicrosClock, u64),
+}
+
+impl TimedClock {
+    /// Starts the first interval at the raw timestamp `t0`.
+    fn restart(&mut self, t0: f64, n: u64) -> Result<(), Failure> {
+        match self {
+            TimedClock::Seconds(c, factor) => c.restart(Some(t0 * *factor)),
+            TimedClock::Counter(c, unwrapped) => {
+                let t = counter(t0).ok_or_else(|| {
+                    Failure::Row(n, format!("--t0 {t0}: not a 32-bit counter value"))
+                })?;
+                c.restart(Some(t));
+                *unwrapped = u64::from(t);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A raw timestamp as a 32-bit counter value (a whole number in `[0, 2^32)`).
+fn counter(t: f64) -> Option<u32> {
+    ((0.0..4_294_967_296.0).contains(&t) && t.fract() == 0.0).then_some(t as u32)
+}
+
+/// The time (s, unwrapped) and the elapsed time of a raw timestamp by the clock's policy: a
+/// step, or the row error of a gap, a repeated or a backwards timestamp.
+fn timed_step(clock: &mut TimedClock, raw: f64, n: u64) -> Result<(f64, Option<f64>), Failure> {
+    let row = |e: String| Failure::Row(n, e);
+    let (t, interval, nominal, max) = match clock {
+        TimedClock::Seconds(c, factor) => {
+            let t = raw * *factor;
+            let i = c.interval(t).map_err(|e| row(format!("timestamp: {e}")))?;
+            (t, i, c.nominal(), c.max_step())
+        }
+        TimedClock::Counter(c, unwrapped) => {
+            let value = counter(raw)
+                .ok_or_else(|| row(format!("timestamp {raw}: not a 32-bit counter value")))?;
+            let i = c.interval(value);
+            match i {
+                Interval::First => *unwrapped = u64::from(value),
+                Interval::Step(d) | Interval::Gap(d) => *unwrapped += u64::from(d),
+                _ => {}
+            }
+            let i = match i {
+                Interval::First => Interval::First,
+                Interval::Step(d) => Interval::Step(f64::from(d) * 1e-6),
+                Interval::Gap(d) => Interval::Gap(f64::from(d) * 1e-6),
+                Interval::Repeated => Interval::Repeated,
+                Interval::Backwards(d) => Interval::Backwards(f64::from(d) * 1e-6),
+            };
+            let to_s = |us: u32| f64::from(us) * 1e-6;
+            (
+                *unwrapped as f64 * 1e-6,
+                i,
+                to_s(c.nominal_us()),
+                to_s(c.max_step_us()),
+            )
+        }
+    };
+    match interval {
+        Interval::First => Ok((t, None)),
+        Interval::Step(h) => Ok((t, Some(h))),
+        Interval::Gap(h) => Err(row(format!(
+            "gap: {h:e} s since the previous sample, more than --gap-factor {} times the nominal \
+             {nominal:e} s (samples lost)",
+            max / nominal
+        ))),
+        Interval::Repeated => Err(row("repeated timestamp".into())),
+        Interval::Backwards(d) => Err(row(format!(
+            "timestamp {d:e} s before the previous sample's"
+        ))),
+    }
+}
+
+/// The next `t,x,y,z` row (t raw, in the input's unit), skipping blank lines.
+fn next_timed<R: io::Read>(
+    lines: &mut Lines<R>,
+    out: &mut Csv,
+) -> Result<Option<(u64, f64, Vec3<f64>)>, Failure> {
+    loop {
+        if lines.will_read() {
+            out.flush()?;
+        }
+        let Some((n, line)) = lines.next_line()? else {
+            return Ok(None);
+        };
+        match line {
+            Ok(text) if text.trim().is_empty() => continue,
+            Ok(text) => {
+                return parse_timed_row(text)
+                    .map(|(t, v)| Some((n, t, v)))
+                    .map_err(|e| Failure::Row(n, e));
+            }
+            Err(reason) => return Err(Failure::Row(n, reason)),
+        }
+    }
+}
+
+/// `--time-column`: increments over their own intervals (exp, or the 2-sample rule for unequal
+/// intervals) or rates at their own times (Magnus-4 on the interpolant through the actual
+/// times), in f64.
+fn run_timed(args: &Args) -> Result<(), Failure> {
+    let mut clip = args.timed.as_ref().and_then(|t| {
+        t.clip.as_ref().map(|c| Clip {
+            full_scale: c.full_scale,
+            policy: c.policy,
+            last_rate: [None; 3],
+            count: 0,
+        })
+    });
+    let Some(timed) = &args.timed else {
+        return Err(Failure::Usage("--time-column expected".into()));
+    };
+    let [w, x, y, z] = args.q0;
+    let q0 = UnitQuat::try_from_near_unit(Quat::new(w, x, y, z), 1e-3)
+        .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
+    let mut clock = if timed.wrap {
+        let nominal_us = (args.dt * 1e6).round();
+        if !(1.0..4_294_967_296.0).contains(&nominal_us) || timed.gap_factor >= 4_294_967_296.0 {
+            return Err(Failure::Usage(format!(
+                "--dt {}: with --time-wrap a whole number of microseconds >= 1",
+                args.dt
+            )));
+        }
+        let c = MicrosClock::try_new(nominal_us as u32, timed.gap_factor as u32).map_err(|e| {
+            Failure::Usage(format!(
+                "--dt, --gap-factor: {e} (the gap threshold must stay below 2^31 us)"
+            ))
+        })?;
+        TimedClock::Counter(c, 0)
+    } else {
+        let c = SampleClock::try_with_gap_factor(args.dt, timed.gap_factor)
+            .map_err(|e| Failure::Usage(format!("--dt, --gap-factor: {e}")))?;
+        TimedClock::Seconds(c, timed.time_factor)
+    };
+    let mut p = Printer {
+        out: Csv::stdout(),
+        every: args.every,
+        last_printed: None,
+    };
+    let mut lines = Lines::new(io::stdin().lock());
+    let result = match args.algo {
+        Algo::Increments(rule) => match timed.t0 {
+            Some(t0) => clock
+                .restart(t0, 0)
+                .map_err(|e| match e {
+                    Failure::Row(_, m) => Failure::Usage(m),
+                    e => e,
+                })
+                .and_then(|()| {
+                    timed_increments(&mut lines, &mut p, &mut clock, q0, rule, args, &mut clip)
+                }),
+            None => Err(Failure::Usage("--t0 is required".into())),
+        },
+        Algo::Rates(_) => timed_rates(&mut lines, &mut p, &mut clock, q0, args, &mut clip),
+    };
+    if let Some(c) = &clip
+        && c.count > 0
+    {
+        let what = if c.policy == OnClip::Hold {
+            "each clipped axis held at its last unclipped rate"
+        } else {
+            "passed as read"
+        };
+        eprintln!(
+            "note: {} samples had an axis at the full scale {} ({what})",
+            c.count, c.full_scale
+        );
+    }
+    finish(result, &mut p)
+}
+
+fn print_timed(p: &mut Printer, k: u64, t: f64, q: UnitQuat<f64>) -> io::Result<()> {
+    p.last_printed = Some(k);
+    let [w, x, y, z] = q.to_array();
+    writeln!(p.out, "{k},{t:?},{w:?},{x:?},{y:?},{z:?}")?;
+    p.out.row_done()
+}
+
+/// A step's rotation within the methods' validity limit, else a row error.
+fn within_limit(angle: f64, n: u64) -> Result<(), Failure> {
+    if angle <= MAX_STEP_ANGLE {
+        return Ok(());
+    }
+    Err(Failure::Row(
+        n,
+        format!("the sample turns the body {angle:.3e} rad in one interval: beyond half a turn"),
+    ))
+}
+
+fn timed_increments<R: io::Read>(
+    lines: &mut Lines<R>,
+    p: &mut Printer,
+    clock: &mut TimedClock,
+    q0: UnitQuat<f64>,
+    rule: ConingRule,
+    args: &Args,
+    clip: &mut Option<Clip>,
+) -> Result<(), Failure> {
+    let mut q = q0;
+    let mut pending: Option<(Vec3<f64>, f64)> = None;
+    let mut k: u64 = 0;
+    let mut last = None; // (k, t, attitude) of the latest sample
+    let stop = loop {
+        let (n, raw_t, raw) = match next_timed(lines, &mut p.out) {
+            Ok(Some(r)) => r,
+            Ok(None) => break None,
+            Err(e @ Failure::Row(..)) => break Some(e),
+            Err(e) => return Err(e),
+        };
+        let (t, h) = match timed_step(clock, raw_t, n) {
+            Ok((t, Some(h))) => (t, h),
+            Ok((_, None)) => break Some(Failure::Row(n, "no interval start (--t0)".into())),
+            Err(e) => break Some(e),
+        };
+        let raw = match clip.as_mut().map_or(Ok(raw), |c| c.filter(raw, Some(h))) {
+            Ok(r) => r,
+            Err(e) => break Some(Failure::Row(n, e)),
+        };
+        let v = args.sensor.apply(raw, Some(h));
+        if let Err(e) = within_limit(v.norm(), n) {
+            break Some(e);
+        }
+        let shown = match (rule, pending.take()) {
+            (ConingRule::TwoSample, Some((v1, h1))) => {
+                let c = two_sample_unequal_coefficient(h1, h);
+                q = coning2_update_unequal(q, v1, v, c).renormalize();
+                q
+            }
+            (ConingRule::TwoSample, None) => {
+                pending = Some((v, h));
+                (q * UnitQuat::exp_unchecked(v)).renormalize()
+            }
+            _ => {
+                q = (q * UnitQuat::exp_unchecked(v)).renormalize();
+                q
+            }
+        };
+        if !shown.to_array().iter().all(|c| c.is_finite()) {
+            break Some(Failure::Row(n, "the attitude is not finite".into()));
+        }
+        if p.due(k) {
+            print_timed(p, k, t, shown)?;
+        }
+        last = Some((k, t, shown));
+        k += 1;
+    };
+    if let Some((k, t, q)) = last
+        && p.last_printed != Some(k)
+    {
+        print_timed(p, k, t, q)?;
+    }
+    stop.map_or(Ok(()), Err)
+}
+
+fn timed_rates<R: io::Read>(
+    lines: &mut Lines<R>,
+    p: &mut Printer,
+    clock: &mut TimedClock,
+    q0: UnitQuat<f64>,
+    args: &Args,
+    clip: &mut Option<Clip>,
+) -> Result<(), Failure> {
+    // The last four samples (t, ω, line); `done` the number of attitudes printed or skipped.
+    let mut win: Vec<(f64, Vec3<f64>, u64)> = Vec::with_capacity(5);
+    let mut q = q0;
+    let mut k: u64 = 0; // samples read
+    let mut last: Option<(u64, f64, UnitQuat<f64>)> = None;
+    // Integrates the interval ending at window index `end` (≥ 1) with the whole window.
+    let step = |q: UnitQuat<f64>,
+                win: &[(f64, Vec3<f64>, u64)],
+                end: usize|
+     -> Result<UnitQuat<f64>, Failure> {
+        let (t_a, w_a, _) = win[end - 1];
+        let (t_b, w_b, n) = win[end];
+        within_limit(w_a.norm().max(w_b.norm()) * (t_b - t_a), n)?;
+        let base = win[0].0;
+        let ts: Vec<f64> = win.iter().map(|s| s.0 - base).collect();
+        let ws: Vec<Vec3<f64>> = win.iter().map(|s| s.1).collect();
+        let (a, b) = (t_a - base, t_b - base);
+        let q = match (ts.as_slice(), ws.as_slice()) {
+            ([t0, t1], [w0, w1]) => magnus4_step_unequal(q, &[*t0, *t1], &[*w0, *w1], a, b),
+            ([t0, t1, t2], [w0, w1, w2]) => {
+                magnus4_step_unequal(q, &[*t0, *t1, *t2], &[*w0, *w1, *w2], a, b)
+            }
+            ([t0, t1, t2, t3], [w0, w1, w2, w3]) => {
+                magnus4_step_unequal(q, &[*t0, *t1, *t2, *t3], &[*w0, *w1, *w2, *w3], a, b)
+            }
+            _ => q,
+        }
+        .renormalize();
+        if q.to_array().iter().all(|c| c.is_finite()) {
+            Ok(q)
+        } else {
+            Err(Failure::Row(n, "the attitude is not finite".into()))
+        }
+    };
+    let mut emit = |p: &mut Printer, idx: u64, t: f64, q: UnitQuat<f64>| -> io::Result<()> {
+        if p.due(idx) {
+            print_timed(p, idx, t, q)?;
+        }
+        last = Some((idx, t, q));
+        Ok(())
+    };
+    let stop = loop {
+        let (n, raw_t, raw) = match next_timed(lines, &mut p.out) {
+            Ok(Some(r)) => r,
+            Ok(None) => break None,
+            Err(e @ Failure::Row(..)) => break Some(e),
+            Err(e) => return Err(e),
+        };
+        let t = match timed_step(clock, raw_t, n) {
+            Ok((t, _)) => t,
+            Err(e) => break Some(e),
+        };
+        let raw = match clip.as_mut().map_or(Ok(raw), |c| c.filter(raw, None)) {
+            Ok(r) => r,
+            Err(e) => break Some(Failure::Row(n, e)),
+        };
+        win.push((t, args.sensor.apply(raw, None), n));
+        if win.len() > 4 {
+            win.remove(0);
+        }
+        let r = match k {
+            0 => emit(p, 0, t, q).map_err(Failure::Io),
+            1 | 2 => Ok(()),
+            3 => (1..=3).try_for_each(|j| {
+                q = step(q, &win, j)?;
+                emit(p, j as u64, win[j].0, q).map_err(Failure::Io)
+            }),
+            _ => step(q, &win, 3).and_then(|qn| {
+                q = qn;
+                emit(p, k, t, q).map_err(Failure::Io)
+            }),
+        };
+        if let Err(e) = r {
+            break Some(e);
+        }
+        k += 1;
+    };
+    // A record of 2 or 3 samples: the intervals wait for the end.
+    if (2..=3).contains(&k) {
+        for j in 1..win.len() {
+            q = step(q, &win, j)?;
+            emit(p, j as u64, win[j].0, q)?;
+        }
+    }
+    if let Some((k, t, q)) = last
+        && p.last_printed != Some(k)
+    {
+        print_timed(p, k, t, q)?;
+    }
+    stop.map_or(Ok(()), Err)
+}
+
 /// Flushes the rows; a closed stdout is a quiet end, as if the input ended there.
 fn finish(result: Result<(), Failure>, p: &mut Printer) -> Result<(), Failure> {
     let flushed = p.out.flush();
@@ -570,6 +1211,7 @@ fn main() -> ExitCode {
         Err(status) => return status,
     };
     let r = match (args.arith, args.compensated) {
+        _ if args.timed.is_some() => run_timed(&args),
         (Arith::F64, false) => run::<f64, UnitQuat<f64>>(&args),
         (Arith::F64, true) => run::<f64, CompensatedAttitude<f64>>(&args),
         (Arith::F32, false) => run::<f32, UnitQuat<f32>>(&args),

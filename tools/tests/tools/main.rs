@@ -12,6 +12,8 @@
 //! - [`estimate`]: convergence on a closed-form motion, BROAD's metric against `score.py` and
 //!   `host_tests::broad`, input dialects, frames, f32, the plot, the error paths.
 //! - [`campaign`]: garbage input, bad flags, overflowing values and closed pipes for all three.
+//! - [`timed`]: `propagate --time-column` and the sensor options on the real Fusion log and on
+//!   jittered synthetic streams.
 //! - [`cli`]: the tools as processes (`CARGO_BIN_EXE_*`).
 
 mod campaign;
@@ -21,3 +23,4 @@ mod estimate;
 mod fixed;
 mod propagate;
 mod simulate;
+mod timed;

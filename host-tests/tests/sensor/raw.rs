@@ -1,0 +1,154 @@
+//! Raw registers: clipping flags and policies, the LSB scale in f32, f64 and Q1.30, and the
+//! whole raw → scale → calibration → remap chain agreeing across the formats.
+
+use super::Rng;
+use gyrostat::fixed::{IncrementQuantizer, IncrementScale, Q30};
+use gyrostat::sensor::{
+    AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, RawScale,
+};
+use gyrostat::{Error, Mat3, Vec3};
+
+#[test]
+fn clipping_flags() {
+    let full = ClipLimit::default();
+    assert_eq!(full.check([32767, 0, -32768]).axes, [true, false, true]);
+    assert_eq!(
+        full.check([32766, -32767, -32766]).axes,
+        [false, true, false]
+    );
+    let l = ClipLimit::try_new(16000).unwrap();
+    // Every i16 against the rule written here: |r| ≥ 16000.
+    for r in i16::MIN..=i16::MAX {
+        let want = (r as i32).abs() >= 16000;
+        assert_eq!(l.check([r, 0, r]).axes, [want, false, want], "{r}");
+    }
+    assert_eq!(ClipLimit::try_new(0), Err(Error::InvalidArgument));
+    assert_eq!(ClipLimit::try_new(-5), Err(Error::InvalidArgument));
+}
+
+#[test]
+fn clipping_policies() {
+    let seq = [
+        [10i16, -20, 30],
+        [32767, -21, 31],
+        [11, -32768, 32],
+        [32767, 32767, 32767],
+        [12, -22, 33],
+    ];
+    let mut pass = ClipGuard::new(ClipLimit::default(), ClipPolicy::Pass);
+    let mut hold = ClipGuard::new(ClipLimit::default(), ClipPolicy::HoldLast);
+    let mut reject = ClipGuard::new(ClipLimit::default(), ClipPolicy::Reject);
+    let want_hold = [
+        [10, -20, 30],
+        [10, -21, 31],
+        [11, -21, 32],
+        [11, -21, 32],
+        [12, -22, 33],
+    ];
+    for (k, raw) in seq.iter().enumerate() {
+        let (p, flags) = pass.filter(*raw).unwrap();
+        assert_eq!(p, *raw);
+        assert_eq!(flags.axes, raw.map(|r| r == 32767 || r <= -32767));
+        assert_eq!(hold.filter(*raw).unwrap().0, want_hold[k]);
+        let rj = reject.filter(*raw);
+        if flags.any() {
+            assert_eq!(rj, Err(Error::Clipped));
+        } else {
+            assert_eq!(rj, Ok((*raw, flags)));
+        }
+    }
+    // A clip before any unclipped reading of that axis is passed under HoldLast.
+    let mut hold = ClipGuard::new(ClipLimit::default(), ClipPolicy::HoldLast);
+    assert_eq!(hold.filter([32767, 5, 5]).unwrap().0, [32767, 5, 5]);
+}
+
+#[test]
+fn lsb_scale_in_every_format() {
+    let lsb = 1.0653e-6; // rad per LSB of an increment register
+    let s64 = RawScale::try_new(lsb).unwrap();
+    let s32 = RawScale::try_new(lsb as f32).unwrap();
+    let sq = IncrementScale::try_new(lsb).unwrap();
+    for r in (i16::MIN..=i16::MAX).step_by(7) {
+        let exact = r as f64 * lsb;
+        assert_eq!(s64.apply([r, 0, 0]).x, exact);
+        let f = s32.apply([r, 0, 0]).x as f64;
+        assert!((f - exact).abs() <= exact.abs() * 1.5 * f32::EPSILON as f64);
+        let q = sq.to_q30(r).to_f64();
+        // One rounding to 2⁻³¹ plus the scale's own relative 2⁻³¹.
+        assert!((q - exact).abs() <= 2f64.powi(-31) + exact.abs() * 2f64.powi(-31));
+    }
+    assert_eq!(RawScale::try_new(0.0), Err(Error::InvalidArgument));
+    assert_eq!(RawScale::try_new(-1.0f32), Err(Error::InvalidArgument));
+    assert_eq!(RawScale::try_new(f64::NAN), Err(Error::NonFinite));
+    assert_eq!(RawScale::try_new(f32::MAX), Err(Error::InvalidArgument));
+}
+
+/// raw i16 increments → LSB scale → calibration (bias over the step) → remap, in f64, f32 and
+/// Q1.30, over a stream that does not repeat; the Q1.30 sums stay within a few 2⁻³⁰ per sample of
+/// f64 (quantizer remainder carried).
+#[test]
+fn chain_agrees_across_formats() {
+    let mut rng = Rng::new(30);
+    let lsb = 1.0653e-6;
+    let dt = 1e-3;
+    let m = Mat3::from_rows(
+        [1.0, 0.004, -0.002],
+        [-0.003, 1.0, 0.001],
+        [0.002, -0.001, 1.0],
+    );
+    let s = Vec3::new(1.01, 0.995, 1.003);
+    let b = Vec3::new(0.002, -0.001, 0.0005); // rad/s
+    let cal = InertialCalibration::try_new(m, s, b).unwrap();
+    let cal32 = InertialCalibration::try_new(
+        Mat3::from_rows(
+            m.m[0].map(|x| x as f32),
+            m.m[1].map(|x| x as f32),
+            m.m[2].map(|x| x as f32),
+        ),
+        Vec3::from_array(s.to_array().map(|x| x as f32)),
+        Vec3::from_array(b.to_array().map(|x| x as f32)),
+    )
+    .unwrap();
+    let calq = cal.try_to_q30().unwrap();
+    let remap = AxisRemap::try_parse("y,-x,z").unwrap();
+    let (s64, s32, sq) = (
+        RawScale::try_new(lsb).unwrap(),
+        RawScale::try_new(lsb as f32).unwrap(),
+        IncrementScale::try_new(lsb).unwrap(),
+    );
+    let dtq = Q30::try_from_f64(dt).unwrap();
+    let mut quant = IncrementQuantizer::new();
+    let (mut sum64, mut sum32, mut sumq) = ([0.0f64; 3], [0.0f64; 3], [0.0f64; 3]);
+    let n = 10_000;
+    for _ in 0..n {
+        let raw = [0, 0, 0].map(|_: i32| rng.range(-30000.0, 30000.0) as i16);
+        let v64 = remap
+            .apply(cal.apply_increment(s64.apply(raw), dt))
+            .to_array();
+        let v32 = remap
+            .apply(cal32.apply_increment(s32.apply(raw), dt as f32))
+            .to_array();
+        let vq = remap
+            .apply(calq.apply_increment(quant.quantize_raw(&sq, raw), dtq))
+            .to_f64()
+            .to_array();
+        for k in 0..3 {
+            // Each sample, against the f64 model on the same raw reading.
+            assert!((v32[k] as f64 - v64[k]).abs() <= 4.0 * f32::EPSILON as f64 * 0.04);
+            sum64[k] += v64[k];
+            sum32[k] += v32[k] as f64;
+            sumq[k] += vq[k];
+        }
+    }
+    for k in 0..3 {
+        // The Q1.30 sum: the quantizer's remainder is carried (≤ 2⁻³¹ in the sum of the
+        // increments); the calibration's roundings (K to 2⁻³¹ relative, the dot product to 2⁻³¹
+        // per sample) do not carry, and are bounded by 2⁻³⁰ per sample.
+        assert!(
+            (sumq[k] - sum64[k]).abs() <= n as f64 * 2f64.powi(-30),
+            "{k} {:e}",
+            sumq[k] - sum64[k]
+        );
+        assert!((sum32[k] - sum64[k]).abs() <= n as f64 * 4.0 * f32::EPSILON as f64 * 0.04);
+    }
+}
