@@ -11,4 +11,5 @@ mod fixed;
 mod propagation;
 mod regressions;
 mod rotation;
+mod second_campaign;
 mod soak;
