@@ -5,15 +5,15 @@
 //! apply. A panic fails the test (nothing here catches one).
 
 use gyrostat::dynamics::semi_rigid::{Arrangement, QuarticBasis, SemiRigidRotor, SpringRotor};
+use gyrostat::dynamics::state::CompensatedState;
 use gyrostat::dynamics::{
     BodyHamiltonian, Drift, Gyrostat, Inertia, Integrator, Invariants, Quartic, State,
 };
-use gyrostat::dynamics::state::CompensatedState;
+use gyrostat::fixed::{Fixed, Q24, Q30};
 use gyrostat::propagation::kernels::{apply_rotation_vector, rk4_step};
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
-use gyrostat::fixed::{Fixed, Q24, Q30};
 use gyrostat::{Error, Quat, Real, UnitQuat, Vec3};
 
 /// `|q|` of a quaternion, in f64.
@@ -41,8 +41,9 @@ fn unit_f64<T: Real>(q: UnitQuat<T>) -> [f64; 4] {
 
 /// The rotation angle between two attitudes (f64, sign-insensitive).
 fn angle(a: [f64; 4], b: [f64; 4]) -> f64 {
-    let d: f64 = a.iter().zip(b.iter()).map(|(x, y)| x * y).sum();
-    2.0 * d.abs().min(1.0).acos()
+    let d = mul_ref([a[0], -a[1], -a[2], -a[3]], b);
+    let s = (d[1] * d[1] + d[2] * d[2] + d[3] * d[3]).sqrt();
+    2.0 * s.atan2(d[0].abs())
 }
 
 /// `exp(φ)` in f64 by its closed form (independent of the library).
@@ -136,7 +137,11 @@ fn compensated_coning_is_exp<T: Real>(tol: f64) {
     ];
     let phi: [f64; 3] = core::array::from_fn(|i| a[i] + b[i] + 2.0 / 3.0 * c[i]);
     let want = exp_ref(phi);
-    for norm in [Normalization::Fast, Normalization::Exact, Normalization::None] {
+    for norm in [
+        Normalization::Fast,
+        Normalization::Exact,
+        Normalization::None,
+    ] {
         let q0 = CompensatedAttitude::new(UnitQuat::<T>::IDENTITY);
         let mut integ = IncrementIntegrator::new(q0, ConingRule::TwoSample, norm);
         integ.push(v(a[0], a[1], a[2])).unwrap();
@@ -144,7 +149,8 @@ fn compensated_coning_is_exp<T: Real>(tol: f64) {
         let got = carried(integ.carried_attitude());
         let e = angle(got, want);
         assert!(e < tol, "{norm:?}: compensated {e} rad from exp(φ)");
-        let mut plain = IncrementIntegrator::new(UnitQuat::<T>::IDENTITY, ConingRule::TwoSample, norm);
+        let mut plain =
+            IncrementIntegrator::new(UnitQuat::<T>::IDENTITY, ConingRule::TwoSample, norm);
         plain.push(v(a[0], a[1], a[2])).unwrap();
         plain.push(v(b[0], b[1], b[2])).unwrap();
         let e = angle(unit_f64(plain.attitude()), want);
@@ -175,14 +181,26 @@ fn r03_compensated_coning_is_exp_f32() {
 fn compensated_rate_equals_plain<T: Real>(tol: f64) {
     let samples = [[0.0; 3], [0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]];
     for method in [RateMethod::Magnus4, RateMethod::Cf4, RateMethod::Rk4] {
-        let mut plain =
-            RateIntegrator::try_new(UnitQuat::<T>::IDENTITY, method, Normalization::Exact, T::ONE)
-                .unwrap();
+        let mut plain = RateIntegrator::try_new(
+            UnitQuat::<T>::IDENTITY,
+            method,
+            Normalization::Exact,
+            T::ONE,
+        )
+        .unwrap();
         let q0 = CompensatedAttitude::new(UnitQuat::<T>::IDENTITY);
         let mut comp = RateIntegrator::try_new(q0, method, Normalization::Exact, T::ONE).unwrap();
         for s in samples {
-            let p: Vec<_> = plain.push(v(s[0], s[1], s[2])).unwrap().into_iter().collect();
-            let c: Vec<_> = comp.push(v(s[0], s[1], s[2])).unwrap().into_iter().collect();
+            let p: Vec<_> = plain
+                .push(v(s[0], s[1], s[2]))
+                .unwrap()
+                .into_iter()
+                .collect();
+            let c: Vec<_> = comp
+                .push(v(s[0], s[1], s[2]))
+                .unwrap()
+                .into_iter()
+                .collect();
             assert_eq!(p.len(), c.len());
             for (p, c) in p.iter().zip(c.iter()) {
                 let e = angle(unit_f64(*p), unit_f64(*c));
@@ -209,7 +227,8 @@ fn compensated_exp_large<T: Real>(mags: &[f64], tol: f64) {
         for norm in [Normalization::Fast, Normalization::Exact] {
             let q0 = CompensatedAttitude::new(UnitQuat::<T>::IDENTITY);
             let mut comp = IncrementIntegrator::new(q0, ConingRule::Exp, norm);
-            let mut plain = IncrementIntegrator::new(UnitQuat::<T>::IDENTITY, ConingRule::Exp, norm);
+            let mut plain =
+                IncrementIntegrator::new(UnitQuat::<T>::IDENTITY, ConingRule::Exp, norm);
             for d in [v::<T>(m, 0.0, 0.0), v(0.3 * m, -0.7 * m, 0.2 * m)] {
                 match (comp.push(d), plain.push(d)) {
                     (Ok(_), Ok(_)) => {
@@ -266,16 +285,36 @@ fn r06_compensated_rotated_huge_angle() {
 #[test]
 fn r07_step_remainder_validated() {
     let q0 = CompensatedAttitude::new(UnitQuat::<f64>::IDENTITY);
-    let mut integ = RateIntegrator::try_new(q0, RateMethod::Magnus4, Normalization::Fast, 0.01)
-        .unwrap()
-        .with_step_remainder(1e300);
-    for _ in 0..6 {
-        if let Ok(qs) = integ.push(Vec3::new(1.0, 0.0, 0.0)) {
-            for q in qs {
-                assert!(q.into_quat().is_finite(), "{q:?}");
-            }
+    let integ =
+        || RateIntegrator::try_new(q0, RateMethod::Magnus4, Normalization::Fast, 0.01).unwrap();
+    assert_eq!(
+        integ().try_with_step_remainder(1e300).err(),
+        Some(Error::InvalidArgument)
+    );
+    assert_eq!(
+        integ().try_with_step_remainder(1e-3).err(),
+        Some(Error::InvalidArgument)
+    );
+    assert_eq!(
+        integ().try_with_step_remainder(f64::NAN).err(),
+        Some(Error::NonFinite)
+    );
+    let q0 = CompensatedAttitude::new(UnitQuat::<f32>::IDENTITY);
+    let integ =
+        RateIntegrator::try_new(q0, RateMethod::Magnus4, Normalization::Fast, 0.001f32).unwrap();
+    let lo = (0.001 - f64::from(0.001f32)) as f32;
+    let mut integ = integ.try_with_step_remainder(lo).unwrap();
+    for k in 0..8 {
+        for q in integ.push(Vec3::new(1.0, 0.1 * k as f32, 0.0)).unwrap() {
+            assert!((norm_of(q) - 1.0).abs() < 1e-6);
         }
     }
+    assert!(
+        RateIntegrator::try_new(q0, RateMethod::Magnus4, Normalization::Fast, 0.001f32)
+            .unwrap()
+            .try_with_step_remainder(1e-9)
+            .is_err()
+    );
 }
 
 /// 8. Intermediates of the compensated rate path that overflow although inputs and result are
@@ -343,7 +382,13 @@ fn r09_equilibrium_radius_is_a_root_f64() {
                 let res = equilibrium_residual(m, w, r0, j, r);
                 assert!(res < 1e-12, "J = {j:e}: r = {r}, residual {res}");
             }
-            Err(e) => assert!(matches!(e, Error::NotConverged | Error::NonFinite | Error::InvalidArgument), "{e:?}"),
+            Err(e) => assert!(
+                matches!(
+                    e,
+                    Error::NotConverged | Error::NonFinite | Error::InvalidArgument
+                ),
+                "{e:?}"
+            ),
         }
     }
     // The f64 reproducer has a representable root: it is found.
@@ -426,8 +471,16 @@ fn r11_stretched_radius_at_least_rest() {
 /// 12. `try_body_hamiltonian` cannot fail for a constructed rotor (the docs say so).
 #[test]
 fn r12_body_hamiltonian_total_for_constructed_rotor() {
-    for arrangement in [Arrangement::Octahedral, Arrangement::Cubic, Arrangement::Tetrahedral] {
-        for (m, w, r) in [(0.1f32, 5.248_066_5e-19, 1.0), (1.0, 1e-19, 1.0), (1e-3, 1.0, 1e-6)] {
+    for arrangement in [
+        Arrangement::Octahedral,
+        Arrangement::Cubic,
+        Arrangement::Tetrahedral,
+    ] {
+        for (m, w, r) in [
+            (0.1f32, 5.248_066_5e-19, 1.0),
+            (1.0, 1e-19, 1.0),
+            (1e-3, 1.0, 1e-6),
+        ] {
             if let Ok(rotor) = SemiRigidRotor::try_symmetric(arrangement, m, w, r) {
                 for basis in [QuarticBasis::Octahedral, QuarticBasis::Cubic] {
                     assert!(
@@ -505,7 +558,10 @@ fn r15_fixed_const_parameter_extremes() {
     assert_eq!(Q24::from_bits(-1).to_f64(), -(2f64.powi(-24)));
     assert_eq!(Fixed::<31>::from_bits(1).to_f64(), 2f64.powi(-31));
     assert_eq!(Fixed::<1>::from_bits(3).to_f64(), 1.5);
-    assert_eq!(Fixed::<31>::try_from_f64(0.25).map(|x| x.to_f64()), Ok(0.25));
+    assert_eq!(
+        Fixed::<31>::try_from_f64(0.25).map(|x| x.to_f64()),
+        Ok(0.25)
+    );
     assert_eq!(Fixed::<1>::try_from_f64(1e6).map(|x| x.to_f64()), Ok(1e6));
 }
 
@@ -514,12 +570,16 @@ fn r15_fixed_const_parameter_extremes() {
 ///     the step either agrees with RK4 or is rejected, never loses the attitude.
 fn quartic_high_spin<T: Real>(tol: f64) {
     let inertia = Inertia::try_from_principal(v::<T>(1e10, 1e10, 1e10)).unwrap();
-    let h = BodyHamiltonian::try_new(inertia, Vec3::ZERO, Quartic::Cubic(T::from_f64(1e-3)))
-        .unwrap();
+    let h =
+        BodyHamiltonian::try_new(inertia, Vec3::ZERO, Quartic::Cubic(T::from_f64(1e-3))).unwrap();
     let body = Gyrostat::from(h);
     let s = State::new(UnitQuat::IDENTITY, v::<T>(0.0, 1e6, 0.0));
     let rk4 = body.step(Integrator::Rk4, &s, T::ONE).unwrap();
-    for integ in [Integrator::Strang, Integrator::Yoshida4, Integrator::Suzuki4] {
+    for integ in [
+        Integrator::Strang,
+        Integrator::Yoshida4,
+        Integrator::Suzuki4,
+    ] {
         match body.step(integ, &s, T::ONE) {
             Ok(n) => {
                 let e = angle(unit_f64(n.attitude), unit_f64(rk4.attitude));
@@ -570,7 +630,10 @@ fn r17_drift_between_finite() {
         1.554_169_5e38 + 1.369_719_2e38,
     ];
     let want = diff.iter().map(|x| x * x).sum::<f64>().sqrt() / f64::from(a.momentum_norm);
-    assert!((f64::from(d.lab_momentum) / want - 1.0).abs() < 1e-5, "{d:?} vs {want}");
+    assert!(
+        (f64::from(d.lab_momentum) / want - 1.0).abs() < 1e-5,
+        "{d:?} vs {want}"
+    );
     let a = Invariants {
         energy: 1.0f64,
         momentum_norm: 1e308,
@@ -583,4 +646,3 @@ fn r17_drift_between_finite() {
     };
     assert!(Drift::between(&a, &b).lab_momentum.is_finite());
 }
-
