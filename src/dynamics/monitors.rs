@@ -81,7 +81,7 @@ impl<T: Real> Drift<T> {
         Self {
             energy: relative((now.energy - initial.energy).abs(), initial.energy),
             momentum_norm: relative((now.momentum_norm - initial.momentum_norm).abs(), n0),
-            lab_momentum: relative((now.lab_momentum - initial.lab_momentum).norm(), n0),
+            lab_momentum: relative_norm(now.lab_momentum - initial.lab_momentum, n0),
         }
     }
 
@@ -92,6 +92,24 @@ impl<T: Real> Drift<T> {
             momentum_norm: self.momentum_norm.max(other.momentum_norm),
             lab_momentum: self.lab_momentum.max(other.lab_momentum),
         }
+    }
+}
+
+/// `|v|/|reference|` (absolute `|v|` where the reference is zero or the quotient overflows),
+/// without forming `|v|` itself: `|v| = m·|v/m|` with `m = max |vᵢ|`, and the quotient is
+/// `|v/m|·(m/|reference|)`. The plain `√(v·v)` overflows once a component passes `√MAX`, and
+/// `|v|` itself once it passes `MAX/√3`, although the relative drift is representable.
+fn relative_norm<T: Real>(v: Vec3<T>, reference: T) -> T {
+    let m = v.x.abs().max(v.y.abs()).max(v.z.abs());
+    if m == T::ZERO || !m.is_finite() {
+        return m;
+    }
+    let unit = (v / m).norm();
+    let r = unit * (m / reference.abs());
+    if reference != T::ZERO && r.is_finite() {
+        r
+    } else {
+        unit * m
     }
 }
 
