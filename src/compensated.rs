@@ -242,20 +242,20 @@ pub(crate) fn rotate_compensated<T: Real>(
     let (z, ez) = two_sum(phi.z, phi_lo.z);
     let (phi, phi_lo) = (Vec3::new(x, y, z), Vec3::new(ex, ey, ez));
     let theta_sq = phi.norm_squared();
-    if !(theta_sq <= T::PI * T::PI) {
+    if theta_sq <= T::PI * T::PI {
+        let (m, sh) = exp_terms(theta_sq);
+        let v = phi.scale(T::HALF);
+        let v_lo = phi_lo.scale(T::HALF) + phi.scale(sh);
+        let large = *q * Quat::from_parts(m, v);
+        let small = *q * Quat::from_parts(T::ZERO, v_lo) + *q_lo * Quat::from_parts(T::ZERO, v);
+        add_compensated(q, q_lo, large, small);
+    } else {
         let e = crate::UnitQuat::exp_unchecked(phi).into_quat();
         let (m, v) = (e.w - T::ONE, Vec3::new(e.x, e.y, e.z));
         let large = *q * Quat::from_parts(m, v);
         let small = *q_lo * Quat::from_parts(m, v);
         add_compensated(q, q_lo, large, small);
-        return;
     }
-    let (m, sh) = exp_terms(theta_sq);
-    let v = phi.scale(T::HALF);
-    let v_lo = phi_lo.scale(T::HALF) + phi.scale(sh);
-    let large = *q * Quat::from_parts(m, v);
-    let small = *q * Quat::from_parts(T::ZERO, v_lo) + *q_lo * Quat::from_parts(T::ZERO, v);
-    add_compensated(q, q_lo, large, small);
 }
 
 /// `(x, x_lo) ← (x + x_lo) + (large + small)`: a compensated increment, its large part (an

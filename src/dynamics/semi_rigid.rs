@@ -402,7 +402,8 @@ impl<T: Real> SpringRotor<T> {
             }
         }
         let residual = (x - T::ONE - excess(x)).abs();
-        if !converged || !(residual <= T::from_f64(16.0) * T::EPSILON * x) {
+        let satisfied = converged && residual <= T::from_f64(16.0) * T::EPSILON * x;
+        if !satisfied {
             return Err(Error::NotConverged);
         }
         let r = r0 * x;

@@ -332,7 +332,7 @@ fn rate_extremes<T: Real>(dt: f64, sample: f64, methods: &[RateMethod], tol: f64
             let s = v::<T>(sample * f, sample * 0.5 * f64::from(k % 2), -0.25 * sample);
             match (comp.push(s), plain.push(s)) {
                 (Ok(c), Ok(p)) => {
-                    for (c, p) in c.into_iter().zip(p.into_iter()) {
+                    for (c, p) in c.into_iter().zip(p) {
                         assert!(c.into_quat().is_finite(), "{method:?}: {c:?}");
                         let e = angle(unit_f64(c), unit_f64(p));
                         assert!(e < tol, "{method:?} sample {k}: {e} rad from plain");
@@ -391,9 +391,20 @@ fn r09_equilibrium_radius_is_a_root_f64() {
             ),
         }
     }
-    // The f64 reproducer has a representable root: it is found.
+    // The f64 reproducer has a representable root: it is found, and it is the root found by
+    // bisection on the equation in log r (independent of Newton).
     let r = rotor.equilibrium_radius(1e20).unwrap();
-    assert!((r / 6.8e9 - 1.0).abs() < 0.05, "{r}");
+    let f = |r: f64| m * w * w * (r - r0) - 1e40 / (m * r * r * r);
+    let (mut lo, mut hi) = (r0.ln(), 300f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid.exp()) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    assert!((r / lo.exp() - 1.0).abs() < 1e-12, "{r} vs {}", lo.exp());
 }
 
 #[test]
@@ -460,11 +471,17 @@ fn r11_stretched_radius_at_least_rest() {
                 assert!(r >= r0, "ω_v = {w:e}, ω_J = {wj:e}: {r} < {r0}");
                 let x = f64::from(wj) / f64::from(w);
                 let want = f64::from(r0) / (1.0 - x * x);
-                assert!((f64::from(r) / want - 1.0).abs() < 1e-6, "{r} vs {want}");
+                // Rounding of x, x², 1 − x² and the quotient: ≤ 4u/(1 − x²) relative.
+                let bound = 4.0 * f64::from(f32::EPSILON) / (1.0 - x * x);
+                assert!((f64::from(r) / want - 1.0).abs() < bound, "{r} vs {want}");
             }
         }
     }
-    let rotor = SpringRotor::try_new(1.0f64, 1e-160, 2.0).unwrap();
+    let rotor = SpringRotor::try_new(1.0f64, 1e-150, 2.0).unwrap();
+    assert_eq!(
+        SpringRotor::try_new(1.0f64, 1e-160, 2.0),
+        Err(Error::InvalidArgument)
+    );
     assert!(rotor.stretched_radius(0.0).unwrap() >= 2.0);
 }
 
@@ -546,23 +563,33 @@ fn r14_fixed_exp_total_in_wide_formats() {
     fixed_exp_total::<24>(&[0.5, 3.0, 10.0, 50.0, 100.0, 127.9], 1e-5);
     fixed_exp_total::<20>(&[50.0, 100.0, 1000.0, 2047.0], 1e-4);
     fixed_exp_total::<16>(&[1000.0, 32767.0], 2e-3);
+    fixed_exp_total::<10>(&[1e4, 2e6], 3e-2);
     fixed_exp_total::<30>(&[0.5, 1.0, 1.99], 4e-8);
 }
 
-/// 15. A `Fixed<F>` at the extremes of its accepted const parameter is exact: `from_bits(1)` is
-///     `2⁻ᶠ`. Formats outside the accepted range do not compile (doc test on `Fixed`).
+/// 15. A `Fixed<F>` at the extremes of its accepted const parameter (6 ≤ F ≤ 30) is exact:
+///     `from_bits(1)` is `2⁻ᶠ`. Formats outside the range (`Fixed<1024>` panicked in `to_f64`,
+///     `Fixed<1023>` gave 0) do not compile: the `compile_fail` doc tests on
+///     `Fixed::SUPPORTED`.
 #[test]
 fn r15_fixed_const_parameter_extremes() {
     assert_eq!(Fixed::<30>::from_bits(1).to_f64(), 2f64.powi(-30));
     assert_eq!(Q30::from_bits(1).to_f64(), 2f64.powi(-30));
     assert_eq!(Q24::from_bits(-1).to_f64(), -(2f64.powi(-24)));
-    assert_eq!(Fixed::<31>::from_bits(1).to_f64(), 2f64.powi(-31));
-    assert_eq!(Fixed::<1>::from_bits(3).to_f64(), 1.5);
+    assert_eq!(Fixed::<6>::from_bits(3).to_f64(), 3.0 / 64.0);
     assert_eq!(
-        Fixed::<31>::try_from_f64(0.25).map(|x| x.to_f64()),
+        Fixed::<6>::from_bits(i32::MAX).to_f64(),
+        f64::from(i32::MAX) / 64.0
+    );
+    assert_eq!(
+        Fixed::<30>::try_from_f64(0.25).map(|x| x.to_f64()),
         Ok(0.25)
     );
-    assert_eq!(Fixed::<1>::try_from_f64(1e6).map(|x| x.to_f64()), Ok(1e6));
+    assert_eq!(Fixed::<6>::try_from_f64(1e6).map(|x| x.to_f64()), Ok(1e6));
+    assert_eq!(Fixed::<6>::try_from_f64(4e7), Err(Error::OutOfRange));
+    // The exponential at both extremes of the format range (its halving count sized for each).
+    fixed_exp_total::<6>(&[0.5, 3.0, 1e3, 1e6, 3.3e7], 0.1);
+    fixed_exp_total::<30>(&[0.2, 1.0, 1.99], 4e-8);
 }
 
 /// 16. The quartic splitting at high spin with |ω|dt ≪ π: sphere 1e10, `Quartic::Cubic(1e-3)`,
@@ -613,9 +640,14 @@ fn r16_quartic_splitting_high_spin_f32() {
 ///     lab-momentum difference overflowed).
 #[test]
 fn r17_drift_between_finite() {
+    // |L| in f64, rounded to f32 (the f32 `norm` of these vectors overflows).
     let inv = |l: Vec3<f32>| Invariants {
         energy: 1.0f32,
-        momentum_norm: l.norm(),
+        momentum_norm: [l.x, l.y, l.z]
+            .iter()
+            .map(|c| f64::from(*c).powi(2))
+            .sum::<f64>()
+            .sqrt() as f32,
         lab_momentum: l,
     };
     let a = inv(Vec3::new(1.315_531_1e38, -3.873_812_5e37, 1.554_169_5e38));
