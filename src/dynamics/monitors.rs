@@ -52,8 +52,10 @@ pub struct Invariants<T> {
 /// Relative drifts of the [`Invariants`] from their initial values `E₀`, `|J₀|`, `L₀`:
 /// `|E − E₀|/|E₀|`, `||J| − |J₀||/|J₀|` and `|L − L₀|/|J₀|`. An initial value of zero (a body
 /// at rest), or one so small that the relative drift overflows the type, makes the
-/// corresponding drift absolute instead of relative. Domain: invariants whose differences are
-/// representable (below `MAX/2` in magnitude); then every drift is finite.
+/// corresponding drift absolute instead of relative. Domain: invariants below `MAX/2` in
+/// magnitude (each component), so that their differences are representable; then every drift is
+/// finite (the lab drift is formed without forming `|L − L₀|`, which can exceed `MAX`), except an
+/// absolute lab drift (`|J₀|` zero or tiny) whose value itself exceeds `MAX`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Drift<T> {
     /// `|E − E₀|/|E₀|`.

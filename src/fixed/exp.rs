@@ -62,7 +62,8 @@ fn div_round(num: i128, den: i128) -> i128 {
 }
 
 /// The exponential of a rotation vector of any length in `Fixed<F>`, `F ≤ 29` (whose range
-/// holds angles beyond π; Q1.30's does not), `t2 = |φ|²` in units of `2^−(2F−2)`.
+/// holds angles beyond π; Q1.30's does not), `t2 = |φ|²` in units of `2^−(2F−2)`. For
+/// `F < 28` also below π (then `n = 0` and `φ' = φ` exactly), for the Q3.28 accuracy.
 ///
 /// `exp` has period 2π in the angle up to sign: `exp((θ − 2πn)·n̂) = (−1)ⁿ exp(θn̂)`. The angle
 /// `θ = √t2` is formed with 28 extra bits (an integer square root in 128 bits), `n =
@@ -114,8 +115,13 @@ fn exp_large<const F: u32>(phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
     // θ² in units of 2^-(2F−2): each square < 2⁶², shifted by 2, three of them < 3·2⁶⁰.
     let sq = |x: Fixed<F>| mul_wide(x.0, x.0) >> 2;
     let t2 = sq(phi.x) + sq(phi.y) + sq(phi.z);
-    // Formats whose range holds angles beyond π: reduce (Q1.30's |φ| < 2√3 needs no reduction,
-    // and this branch is not compiled into it).
+    // Formats with fewer than 28 fraction bits take every angle past the series in Q3.28 (their
+    // own halvings would double their coarser rounding up to five times); Q3.28 and Q2.29 reduce
+    // the angles beyond π. Q1.30 (|φ| < 2√3) needs neither, and these branches are not compiled
+    // into it.
+    if F < 28 {
+        return exp_reduced::<F, 28>(phi, t2);
+    }
     if F <= 29 && t2 > PI_SQ_Q58 >> (60 - 2 * F.min(29)) {
         return if F == 29 {
             exp_reduced::<F, 29>(phi, t2)

@@ -8,6 +8,7 @@
 
 mod dynamics;
 mod fixed;
+mod oracles;
 mod propagation;
 mod regressions;
 mod rotation;
