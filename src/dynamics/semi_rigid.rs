@@ -381,7 +381,16 @@ impl<T: Real> SpringRotor<T> {
     pub fn equilibrium_radius(&self, j: T) -> Result<T, Error> {
         finite(&[j])?;
         let r0 = self.rest_radius;
-        let b = j / self.mass / self.omega_v / r0 / r0;
+        // b = J·μ₀/ω_v from the normal constant μ₀ = 1/(mr₀²) (a chain of divisions by m, ω_v,
+        // r₀ can pass through a subnormal and lose b's digits); the other order if J·μ₀
+        // overflows or underflows.
+        let mu0 = self.rest_inverse_inertia();
+        let b = (j * mu0) / self.omega_v;
+        let b = if b.is_finite() && (b != T::ZERO || j == T::ZERO) && normal(j * mu0) {
+            b
+        } else {
+            (j / self.omega_v) * mu0
+        };
         if !b.is_finite() {
             return Err(Error::NonFinite);
         }

@@ -308,11 +308,26 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                     ];
                     let e = angle(got, unit_f64(p.attitude));
                     // The compensated step's own rounding and the rounding of J's rate in T;
-                    // the RK4 step's truncation is the same polynomial in both.
-                    let tol = T::per_type(3e-6, 2e-13) * (1.0 + angle_target);
-                    ensure(e <= tol, || {
-                        format!("{e:e} rad from the plain f64 step, tol {tol:e}")
-                    })
+                    // the RK4 step's truncation is the same polynomial in both. Compared for RK4
+                    // and for the rigid splittings, on normal moments. A quartic splitting step
+                    // is ill-conditioned in its rounding (measured: plain f32 and compensated
+                    // f32 agree to 1e-6 while both are 1.6e-5 from f64 on the same input at
+                    // 0.5 rad), and a subnormal moment has lost digits of `1/I` in `T`: there
+                    // only the unit norm is checked; likewise beyond 0.5 rad, where an RK4 step's
+                    // polynomial amplifies the rounding of its stages (6e-5 rad in f32 at 2 rad
+                    // on a body with moments 3e31, 1e36, 1e36), though not its norm.
+                    let normal_moments =
+                        m.iter().all(|x| t::<T>(*x).to_f64().abs() >= g_min::<T>());
+                    if (integ == Integrator::Rk4 || kind == 0)
+                        && normal_moments
+                        && angle_target <= 0.5
+                    {
+                        let tol = T::per_type(3e-6, 2e-13) * (1.0 + angle_target);
+                        ensure(e <= tol, || {
+                            format!("{e:e} rad from the plain f64 step, tol {tol:e}")
+                        })?;
+                    }
+                    Ok(())
                 })
             }
         ),
@@ -399,9 +414,16 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                     })?;
                     // x − 1 = b²/x³ in f64 from the rounded parameters, b = J/(mω r₀²).
                     let (m, w, r0, j) = (m.to_f64(), w.to_f64(), r0.to_f64(), j.to_f64());
-                    let b = j / m / w / r0 / r0;
+                    // In mantissa–exponent form: b²/x³ is formed without overflow even where
+                    // b itself is not an f64.
+                    let (fj, fm, fw, fr) = (frexp(j), frexp(m), frexp(w), frexp(r0));
+                    let bm = fj.0 / (fm.0 * fw.0 * fr.0 * fr.0);
+                    let be = fj.1 - fm.1 - fw.1 - 2 * fr.1;
+                    let b = ldexp(bm, be);
                     let x = r.to_f64() / r0;
-                    let res = (x - 1.0 - (b / (x * x)) * (b / x)).abs() / x;
+                    let (xm, xe) = frexp(x);
+                    let excess = ldexp(bm * bm / (xm * xm * xm), 2 * be - 3 * xe);
+                    let res = (x - 1.0 - excess).abs() / x;
                     let tol = 64.0 * g_eps::<T>();
                     ensure(res <= tol, || {
                         format!("residual {res:e} at r = {r:?} (x = {x:e}, b = {b:e})")
@@ -514,6 +536,27 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
             }
         ),
     ]
+}
+
+/// The smallest normal number of `T` as f64.
+fn g_min<T: Tolerance>() -> f64 {
+    T::per_type(f64::from(f32::MIN_POSITIVE), f64::MIN_POSITIVE)
+}
+
+/// `x = m·2ᵉ` with `|m| ∈ [1, 2)` (0 for 0): products and quotients of such pairs do not
+/// overflow or underflow, for the reference computations of the solver oracle.
+fn frexp(x: f64) -> (f64, i32) {
+    if x == 0.0 || !x.is_finite() {
+        return (x, 0);
+    }
+    let e = x.abs().log2().floor() as i32;
+    let m = x / 2f64.powi(e / 2) / 2f64.powi(e - e / 2);
+    (m, e)
+}
+
+/// `m·2ᵉ` as an f64 (∞ or 0 beyond the range).
+fn ldexp(m: f64, e: i32) -> f64 {
+    m * 2f64.powi(e / 2) * 2f64.powi(e - e / 2)
 }
 
 /// The machine epsilon of `T` as f64.
