@@ -162,8 +162,9 @@ mod firmware {
                     sink(integ.finish());
                 }
                 let ca = CompensatedAttitude::new(q);
-                if let Ok(integ) = RateIntegrator::try_new(ca, black_box(m), norm, dt) {
-                    let mut integ = integ.with_step_remainder(black_box(4.7e-11));
+                if let Ok(mut integ) = RateIntegrator::try_new(ca, black_box(m), norm, dt)
+                    .and_then(|i| i.try_with_step_remainder(black_box(4.7e-11)))
+                {
                     for _ in 0..black_box(6) {
                         sink(integ.push(v));
                     }

@@ -42,8 +42,9 @@ pub(crate) fn two_sum<T: Real>(a: T, b: T) -> (T, T) {
 
 /// Veltkamp's split `a = hi + lo` with `hi`, `lo` of at most half the significand each, so that
 /// their products are exact. The factor is `2^⌈p/2⌉ + 1`: f32 (p = 24) 4097, f64 (p = 53)
-/// 134 217 729. (Overflows for `|a|` within a factor 4097 of the type's maximum, far beyond any
-/// rate or angle.)
+/// 134 217 729. `factor·a` overflows for `|a|` within that factor of the type's maximum, so
+/// above [`split_max`] `a` is split scaled by 2⁻²⁸ and the parts scaled back (both scalings by a
+/// power of two, exact): the split is total on every finite `a`.
 #[inline(always)]
 fn split<T: Real>(a: T) -> (T, T) {
     let factor = if is_single::<T>() {
@@ -51,9 +52,31 @@ fn split<T: Real>(a: T) -> (T, T) {
     } else {
         T::from_f64(134_217_729.0)
     };
-    let c = factor * a;
-    let hi = c - (c - a);
-    (hi, a - hi)
+    let veltkamp = |a: T| {
+        let c = factor * a;
+        let hi = c - (c - a);
+        (hi, a - hi)
+    };
+    if a.abs() <= split_max::<T>() {
+        veltkamp(a)
+    } else {
+        let (hi, lo) = veltkamp(a * T::from_f64(TWO_POW_M28));
+        (hi * T::from_f64(TWO_POW_28), lo * T::from_f64(TWO_POW_28))
+    }
+}
+
+const TWO_POW_28: f64 = 268_435_456.0;
+const TWO_POW_M28: f64 = 1.0 / TWO_POW_28;
+
+/// The largest `|a|` that [`split`] splits directly: 2¹⁰⁰ in f32, 2⁹⁹⁶ in f64 (the overflow of
+/// `factor·a` starts at `MAX/4097 ≈ 2¹¹⁶`, `MAX/(2²⁷ + 1) ≈ 2⁹⁹⁷`); above it `a·2⁻²⁸` is below it.
+#[inline(always)]
+fn split_max<T: Real>() -> T {
+    if is_single::<T>() {
+        T::from_f64(1.267_650_600_228_229_4e30)
+    } else {
+        T::from_f64(6.696_928_794_914_171e299)
+    }
 }
 
 /// Dekker's TwoProduct: `(p, e)` with `p = fl(a·b)` and `e = a·b − p` exactly (no FMA).
@@ -189,12 +212,24 @@ pub(crate) fn exp_terms<T: Real>(theta_sq: T) -> (T, T) {
 
 /// The compensated update `(q, q_lo) ← (q + q_lo) ⊗ exp(φ + φ_lo)`, in increment form.
 ///
+/// The rotation vector is first brought to a normalised pair, `(φ, φ_lo) ← TwoSum(φ, φ_lo)`
+/// per component, so that the whole angle `φ + φ_lo` is in the exponential: a caller's low part
+/// may be large (a rule's coning term, the Magnus commutator, the CF4 difference), and an
+/// exponential taken of `φ` alone with `φ_lo` added linearly would be off by `O(|φ|²|φ_lo|)`.
+/// After the TwoSum `|φ_lo| ≤ ½ ulp(φ)` and its first-order treatment is exact to `u²`.
+///
 /// `exp(φ) = 1 + (m, v)` with `m = cos(θ/2) − 1` and `v = φ/2 + (s − ½)φ` ([`exp_terms`]); the
 /// increment `(q + q_lo) ⊗ (m, v + φ_lo/2)` is added component by component through
 /// [`add_compensated`], its large part `q ⊗ (m, φ/2)` and its small part (the rest) kept apart
 /// until then. Terms below `u²` are dropped: `q_lo ⊗ (m, v_lo)`, and `q_lo`'s share of the
 /// small corrections. `m` only scales `q` (`q ⊗ (m, 0) = m·q`), so its rounding changes `|q|`,
 /// never the attitude; the renormalisation removes it.
+///
+/// Beyond half a turn (`θ² > π²`, or a `θ²` that overflows) the split `φ/2 + (s − ½)φ` cancels
+/// (at `θ = 10¹⁶` both terms are 5·10¹⁵ and their difference is noise) and `θ²` may not be
+/// representable: there the exponential is the plain one ([`UnitQuat::exp_unchecked`], total on
+/// every finite `φ`) and the increment `(q + q_lo) ⊗ (exp(φ) − 1)` is added the same way, with
+/// the plain update's accuracy (`u`). Increments of an integrator's step are far below that.
 #[inline(always)]
 pub(crate) fn rotate_compensated<T: Real>(
     q: &mut Quat<T>,
@@ -202,12 +237,25 @@ pub(crate) fn rotate_compensated<T: Real>(
     phi: Vec3<T>,
     phi_lo: Vec3<T>,
 ) {
-    let (m, sh) = exp_terms(phi.norm_squared());
-    let v = phi.scale(T::HALF);
-    let v_lo = phi_lo.scale(T::HALF) + phi.scale(sh);
-    let large = *q * Quat::from_parts(m, v);
-    let small = *q * Quat::from_parts(T::ZERO, v_lo) + *q_lo * Quat::from_parts(T::ZERO, v);
-    add_compensated(q, q_lo, large, small);
+    let (x, ex) = two_sum(phi.x, phi_lo.x);
+    let (y, ey) = two_sum(phi.y, phi_lo.y);
+    let (z, ez) = two_sum(phi.z, phi_lo.z);
+    let (phi, phi_lo) = (Vec3::new(x, y, z), Vec3::new(ex, ey, ez));
+    let theta_sq = phi.norm_squared();
+    if theta_sq <= T::PI * T::PI {
+        let (m, sh) = exp_terms(theta_sq);
+        let v = phi.scale(T::HALF);
+        let v_lo = phi_lo.scale(T::HALF) + phi.scale(sh);
+        let large = *q * Quat::from_parts(m, v);
+        let small = *q * Quat::from_parts(T::ZERO, v_lo) + *q_lo * Quat::from_parts(T::ZERO, v);
+        add_compensated(q, q_lo, large, small);
+    } else {
+        let e = crate::UnitQuat::exp_unchecked(phi).into_quat();
+        let (m, v) = (e.w - T::ONE, Vec3::new(e.x, e.y, e.z));
+        let large = *q * Quat::from_parts(m, v);
+        let small = *q_lo * Quat::from_parts(m, v);
+        add_compensated(q, q_lo, large, small);
+    }
 }
 
 /// `(x, x_lo) ← (x + x_lo) + (large + small)`: a compensated increment, its large part (an
@@ -264,10 +312,29 @@ pub(crate) fn add_compensated_vec<T: Real>(
 /// `q + q_lo` as a whole (its rounding moves `|q|`, not the attitude), and each component's new
 /// rounding is carried. `|q|²` is taken from the rounded `q`, so the norm settles within a few
 /// `u` of 1 (not exactly: it does not need to, only the direction of `q + q_lo` is the attitude).
+///
+/// One Newton step leaves `3δ²/4` of a deviation `|q|² = 1 + δ`; as on the plain path
+/// ([`crate::propagation::Normalization::apply_quat_unchecked`]) it is used only while that is
+/// below `ε/4` (`|δ| ≤ √(ε/3)`), and a larger deviation (an RK4 step turning by more than about
+/// 0.19 rad in f64, 1 rad in f32) gets the exact correction `q·(1/|q| − 1)` instead.
 #[inline(always)]
 pub(crate) fn renormalize_compensated<T: Real>(q: &mut Quat<T>, q_lo: &mut Quat<T>) {
-    let r = (T::ONE - q.norm_squared()) * T::HALF;
+    let n2 = q.norm_squared();
+    let d = T::ONE - n2;
+    let r = if d.abs() <= (T::EPSILON / T::from_f64(3.0)).sqrt() {
+        d * T::HALF
+    } else {
+        renormalize_exact_factor(n2)
+    };
     add_compensated(q, q_lo, q.scale(r), Quat::ZERO);
+}
+
+/// `1/|q| − 1` for `n2 = |q|²`, in the form `(1 − |q|²)/(|q|(1 + |q|))` that keeps its digits when
+/// `|q|` is near 1: the exact renormalisation's scale correction.
+#[inline(always)]
+pub(crate) fn renormalize_exact_factor<T: Real>(n2: T) -> T {
+    let n = n2.sqrt();
+    (T::ONE - n2) / (n * (T::ONE + n))
 }
 
 #[cfg(test)]

@@ -178,8 +178,8 @@ fn rates<T: Real + Debug, A: PropagatedAttitude<T> + From<UnitQuat<T>>>(
     // The step's rounding remainder in T (zero when dt is exact in T).
     let dt_lo = T::from_f64(dt - step.to_f64());
     let mut integ = RateIntegrator::try_new(A::from(q0), method, Normalization::Exact, step)
-        .map_err(|e| RowError::call(format!("dt: {e}")))?
-        .with_step_remainder(dt_lo);
+        .and_then(|i| i.try_with_step_remainder(dt_lo))
+        .map_err(|e| RowError::call(format!("dt: {e}")))?;
     let n = input.len() / 3;
     let mut out = Vec::with_capacity(n * 4);
     let mut reached = 0;

@@ -52,8 +52,10 @@ pub struct Invariants<T> {
 /// Relative drifts of the [`Invariants`] from their initial values `E₀`, `|J₀|`, `L₀`:
 /// `|E − E₀|/|E₀|`, `||J| − |J₀||/|J₀|` and `|L − L₀|/|J₀|`. An initial value of zero (a body
 /// at rest), or one so small that the relative drift overflows the type, makes the
-/// corresponding drift absolute instead of relative. Domain: invariants whose differences are
-/// representable (below `MAX/2` in magnitude); then every drift is finite.
+/// corresponding drift absolute instead of relative. Domain: invariants below `MAX/2` in
+/// magnitude (each component), so that their differences are representable; then every drift is
+/// finite (the lab drift is formed without forming `|L − L₀|`, which can exceed `MAX`), except an
+/// absolute lab drift (`|J₀|` zero or tiny) whose value itself exceeds `MAX`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Drift<T> {
     /// `|E − E₀|/|E₀|`.
@@ -81,7 +83,7 @@ impl<T: Real> Drift<T> {
         Self {
             energy: relative((now.energy - initial.energy).abs(), initial.energy),
             momentum_norm: relative((now.momentum_norm - initial.momentum_norm).abs(), n0),
-            lab_momentum: relative((now.lab_momentum - initial.lab_momentum).norm(), n0),
+            lab_momentum: relative_norm(now.lab_momentum - initial.lab_momentum, n0),
         }
     }
 
@@ -92,6 +94,24 @@ impl<T: Real> Drift<T> {
             momentum_norm: self.momentum_norm.max(other.momentum_norm),
             lab_momentum: self.lab_momentum.max(other.lab_momentum),
         }
+    }
+}
+
+/// `|v|/|reference|` (absolute `|v|` where the reference is zero or the quotient overflows),
+/// without forming `|v|` itself: `|v| = m·|v/m|` with `m = max |vᵢ|`, and the quotient is
+/// `|v/m|·(m/|reference|)`. The plain `√(v·v)` overflows once a component passes `√MAX`, and
+/// `|v|` itself once it passes `MAX/√3`, although the relative drift is representable.
+fn relative_norm<T: Real>(v: Vec3<T>, reference: T) -> T {
+    let m = v.x.abs().max(v.y.abs()).max(v.z.abs());
+    if m == T::ZERO || !m.is_finite() {
+        return m;
+    }
+    let unit = (v / m).norm();
+    let r = unit * (m / reference.abs());
+    if reference != T::ZERO && r.is_finite() {
+        r
+    } else {
+        unit * m
     }
 }
 

@@ -105,6 +105,18 @@ fn positive<T: Real>(xs: &[T]) -> Result<(), Error> {
     }
 }
 
+/// `true` for a finite value at least the type's smallest normal number in magnitude: a derived
+/// constant that keeps its relative precision (a subnormal one has lost digits, and products
+/// and quotients with it lose more).
+fn normal<T: Real>(x: T) -> bool {
+    let min = if T::EPSILON.to_f64() > 1e-10 {
+        T::from_f64(f64::from(f32::MIN_POSITIVE))
+    } else {
+        T::from_f64(f64::MIN_POSITIVE)
+    };
+    x.is_finite() && x.abs() >= min
+}
+
 /// A result computed from finite input: [`Error::InvalidArgument`] if it overflowed (an input
 /// outside the documented domain of magnitudes, see the module docs).
 fn representable<T: Real>(x: T) -> Result<T, Error> {
@@ -233,9 +245,10 @@ impl<T: Real> StretchMode<T> {
     }
 }
 
-/// Newton iterations allowed for [`SpringRotor::equilibrium_radius`]. From `r₀` the iterates
-/// increase monotonically to the root (the balance `k(r − r₀) − J²/(mr³)` is increasing and
-/// concave), with quadratic convergence once `d/r₀ ≲ 1`; 64 also covers stretches of many `r₀`.
+/// Newton iterations allowed for [`SpringRotor::equilibrium_radius`]. From its starting point
+/// (a lower bound of the root within `1 + √|b|` of it, see there) the iterates increase
+/// monotonically to the root with quadratic convergence from the start: a handful are used; a
+/// run that does not converge within the cap is an error, never an `Ok`.
 pub const EQUILIBRIUM_MAX_ITERATIONS: usize = 64;
 
 /// The seed's spring-mass rotor (Fig. 6.8.3, (6.8.11)–(6.8.15)): a mass `m` on a spring of
@@ -258,8 +271,10 @@ impl<T: Real> SpringRotor<T> {
     ///
     /// # Errors
     /// [`Error::NonFinite`]; [`Error::InvalidArgument`] unless all three are positive, or when
-    /// the rest inverse inertia or the stretch mode is not representable (magnitudes near the
-    /// ends of the type's range).
+    /// a derived constant — the rest inverse inertia `1/(mr₀²)`, the slope `∂μ/∂r`, `ω_v²`, the
+    /// stiffness `mω_v²`, the quartic coefficient — overflows or underflows below the type's
+    /// smallest normal number (magnitudes near the ends of the type's range: every method's
+    /// result is then computed from full-precision constants).
     pub fn try_new(mass: T, omega_v: T, rest_radius: T) -> Result<Self, Error> {
         positive(&[mass, omega_v, rest_radius])?;
         let rotor = Self {
@@ -268,7 +283,11 @@ impl<T: Real> SpringRotor<T> {
             rest_radius,
         };
         let mode = rotor.mode();
-        if !(rotor.rest_inverse_inertia().is_finite() && mode.dmu_dr.is_finite()) {
+        if !(normal(rotor.rest_inverse_inertia())
+            && normal(mode.dmu_dr)
+            && normal(omega_v * omega_v)
+            && normal(mode.stiffness()))
+        {
             return Err(Error::InvalidArgument);
         }
         mode.check()?;
@@ -328,47 +347,75 @@ impl<T: Real> SpringRotor<T> {
 
     /// The centrifugal equilibrium radius at turning rate `ω_J` (6.8.12):
     /// `r = r₀ω_v²/(ω_v² − ω_J²)`, where the spring force `mω_v²(r − r₀)` balances the
-    /// centrifugal force `mω_J²r`.
+    /// centrifugal force `mω_J²r`. Computed as `r₀/(1 − x²)` with `x = ω_J/ω_v`: no square of a
+    /// rate (which under- or overflows at the ends of the range), and `r ≥ r₀` always (the
+    /// denominator is at most 1 and rounding is monotonic).
     ///
     /// # Errors
     /// [`Error::NonFinite`]; [`Error::InvalidArgument`] for `|ω_J| ≥ ω_v` (no equilibrium: the
-    /// radius "blows up").
+    /// radius "blows up") or a radius that overflows.
     pub fn stretched_radius(&self, omega_j: T) -> Result<T, Error> {
         finite(&[omega_j])?;
-        let w2 = self.omega_v * self.omega_v;
-        let denom = w2 - omega_j * omega_j;
+        let x = omega_j / self.omega_v;
+        let denom = T::ONE - x * x;
         if denom <= T::ZERO {
             return Err(Error::InvalidArgument);
         }
-        representable(self.rest_radius * w2 / denom)
+        representable(self.rest_radius / denom)
     }
 
     /// The exact equilibrium radius at angular momentum `j`: the root `r ≥ r₀` of
-    /// `mω_v²(r − r₀) = J²/(mr³)`, i.e. (6.8.12) with the rate `ω_J = J/(mr²)` of that radius
-    /// (Newton from `r₀`, at most [`EQUILIBRIUM_MAX_ITERATIONS`] steps).
+    /// `mω_v²(r − r₀) = J²/(mr³)`, i.e. (6.8.12) with the rate `ω_J = J/(mr²)` of that radius.
+    ///
+    /// Solved in the stretch ratio `x = r/r₀`: `x − 1 = b²/x³` with `b = J/(mω_v r₀²)`. The
+    /// balance `g(x) = x − 1 − b²/x³` is increasing and concave, and its root lies in
+    /// `[max(1, √|b|), 1 + √|b|]` (`x⁴ > x³(x − 1) = b²`), so Newton's iteration from
+    /// `max(1, √|b|)` increases monotonically to the root and converges quadratically from the
+    /// start (a few steps; at most [`EQUILIBRIUM_MAX_ITERATIONS`]). `b²/x³` is formed as
+    /// `(b/x²)(b/x)`, which does not overflow. The `Ok` value satisfies the equation: the
+    /// residual `|x − 1 − b²/x³|` is checked to be at most `16ε·x` before it is returned.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite `j` or a result that overflows.
+    /// [`Error::NonFinite`] for a non-finite `j`, or when `b` or the radius overflows;
+    /// [`Error::NotConverged`] if the iteration does not reach the residual bound.
     pub fn equilibrium_radius(&self, j: T) -> Result<T, Error> {
         finite(&[j])?;
-        let (m, r0) = (self.mass, self.rest_radius);
-        let k = m * self.omega_v * self.omega_v;
-        let c = j * j / m;
+        let r0 = self.rest_radius;
+        // b = J·μ₀/ω_v from the normal constant μ₀ = 1/(mr₀²) (a chain of divisions by m, ω_v,
+        // r₀ can pass through a subnormal and lose b's digits); the other order if J·μ₀
+        // overflows or underflows.
+        let mu0 = self.rest_inverse_inertia();
+        let b = (j * mu0) / self.omega_v;
+        let b = if b.is_finite() && (b != T::ZERO || j == T::ZERO) && normal(j * mu0) {
+            b
+        } else {
+            (j / self.omega_v) * mu0
+        };
+        if !b.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        let excess = |x: T| (b / (x * x)) * (b / x);
         let three = T::from_f64(3.0);
-        let mut r = r0;
+        let mut x = T::ONE.max(b.abs().sqrt());
+        let mut converged = false;
         for _ in 0..EQUILIBRIUM_MAX_ITERATIONS {
-            let r2 = r * r;
-            let r3 = r2 * r;
-            let g = k * (r - r0) - c / r3;
-            let dg = k + three * c / (r3 * r);
-            let step = g / dg;
-            r -= step;
-            // The iterates approach the root from below; stop at the rounding floor (or on a
-            // non-finite step, reported below).
-            if step.abs() <= T::from_f64(4.0) * T::EPSILON * r || !step.is_finite() {
+            let t = excess(x);
+            let step = (x - T::ONE - t) / (T::ONE + three * t / x);
+            if !step.is_finite() {
+                break;
+            }
+            x -= step;
+            if step.abs() <= T::from_f64(4.0) * T::EPSILON * x {
+                converged = true;
                 break;
             }
         }
+        let residual = (x - T::ONE - excess(x)).abs();
+        let satisfied = converged && residual <= T::from_f64(16.0) * T::EPSILON * x;
+        if !satisfied {
+            return Err(Error::NotConverged);
+        }
+        let r = r0 * x;
         if r.is_finite() {
             Ok(r)
         } else {
@@ -489,7 +536,9 @@ impl<T: Real> SemiRigidRotor<T> {
     /// axes (not cubic-symmetric about them within [`CUBIC_SYMMETRY_TOLERANCE_EPS`], or a rest
     /// tensor that is not diagonal); [`Error::ZeroNorm`] for a mass at the origin (no radial
     /// direction); [`Error::Singular`] or [`Error::NonPhysicalInertia`] for a rest inertia that
-    /// is not invertible or not physical (masses on a line).
+    /// is not invertible or not physical (masses on a line); [`Error::InvalidArgument`] also
+    /// when a quartic coefficient overflows or is too large for [`BodyHamiltonian::try_new`]
+    /// in either basis (so that [`SemiRigidRotor::try_body_hamiltonian`] cannot fail).
     pub fn try_from_radial_springs(masses: &[(T, Vec3<T>)], omega_v: T) -> Result<Self, Error> {
         check_masses(masses, omega_v)?;
         let (i0, mu0) = rest_inverse(masses)?;
@@ -519,12 +568,20 @@ impl<T: Real> SemiRigidRotor<T> {
         // a T⁽⁴⁾ + b T⁽²²⁾ = t₀|J|⁴ + t₄T⁽⁴⁾ with |J|⁴ = T⁽⁴⁾ + 2T⁽²²⁾ (6.8.19).
         let t0 = b * T::HALF;
         let t4 = a - t0;
-        finite(&[t0, t4])?;
-        Ok(Self {
+        finite(&[t0, t4, t0 + t4])?;
+        let rotor = Self {
             rest_inertia,
             t0,
             t4,
-        })
+        };
+        // Every basis's Hamiltonian exists (`try_body_hamiltonian` is then total): its quartic
+        // coefficient, `t₄` or `−2t₄`, within `MAX/12`.
+        for basis in [QuarticBasis::Octahedral, QuarticBasis::Cubic] {
+            rotor
+                .try_body_hamiltonian(basis)
+                .map_err(|_| Error::InvalidArgument)?;
+        }
+        Ok(rotor)
     }
 
     /// The rotor of equal masses `mass` at rest radius `rest_radius` in a symmetric

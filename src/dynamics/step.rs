@@ -49,7 +49,9 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite `dt` or state, or a non-finite result;
-    /// [`Error::InvalidArgument`] for `dt ≤ 0`; [`Error::StepTooLong`] beyond the validity limit,
+    /// [`Error::InvalidArgument`] for `dt ≤ 0`; [`Error::StepTooLong`] beyond the validity limit
+    /// (for a splitting method, also when one of its pieces would turn by more than the limit:
+    /// a cubic quartic term at high spin, whose pieces cancel in the net rate),
     /// or when the result's attitude has left the unit sphere by more than any step within the
     /// limit could (`|q|²` outside `[½, 2]` before renormalisation: a collapsed or exploded
     /// norm, never renormalised into a valid-looking attitude).
@@ -63,7 +65,10 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         self.check_start(state.plain(), dt)?;
         let mut torque_free = Control::ZERO;
         let next = match Stages::of(integrator, dt) {
-            Some(stages) => splitting::free(self, state, stages.as_slice()),
+            Some(stages) => {
+                self.check_pieces(state.plain(), stages.as_slice())?;
+                splitting::free(self, state, stages.as_slice())
+            }
             None => state.rk4(self, T::ZERO, dt, &mut torque_free),
         };
         self.finish(next, dt)
@@ -105,7 +110,10 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
         check_step(t, dt)?;
         self.check_start(state.plain(), dt)?;
         let next = match Stages::of(integrator, dt) {
-            Some(stages) => splitting::kicked(self, state, t, stages.as_slice(), &mut input),
+            Some(stages) => {
+                self.check_pieces(state.plain(), stages.as_slice())?;
+                splitting::kicked(self, state, t, stages.as_slice(), &mut input)
+            }
             None => state.rk4(self, t, dt, &mut input),
         };
         self.finish(next, dt)
@@ -122,6 +130,19 @@ impl<T: Real, const N: usize> Gyrostat<T, N> {
             Err(Error::StepTooLong)
         } else {
             Err(Error::NonFinite)
+        }
+    }
+
+    /// The splittings' own limit: every piece's rotation within the validity limit
+    /// ([`splitting::pieces_within_limit`]; only the cubic quartic's pieces can exceed it while
+    /// the net rate does not).
+    #[inline]
+    fn check_pieces(&self, state: &State<T, N>, stages: &[T]) -> Result<(), Error> {
+        let s = self.rotor_momentum(&state.wheel_speeds);
+        if splitting::pieces_within_limit(self.model(), state.momentum, s, stages) {
+            Ok(())
+        } else {
+            Err(Error::StepTooLong)
         }
     }
 

@@ -29,8 +29,72 @@ impl<const F: u32> ExpMap for Fixed<F> {
     }
 }
 
-/// Halvings needed at most: `|φ|² < 3·2² = 12` for components in `[−2, 2)`, and `12/4⁵ < 1/64`.
+/// Halvings needed at most: `|φ|² ≤ 12` (components in `[−2, 2)` in Q1.30; in the other formats
+/// the angle is first reduced to `|φ| ≤ π`, see [`exp_reduced`]), and `12/4⁵ < 1/64`.
 const MAX_HALVINGS: u32 = 5;
+
+/// `⌊π²·2⁵⁸⌋`: the threshold `θ² > π²` of the angle reduction, in units of `2⁻⁵⁸`.
+const PI_SQ_Q58: i64 = 2_844_719_788_994_575_540;
+/// `round(2⁶²/(2π))`.
+const INV_2PI_Q62: i128 = 733_972_625_820_500_307;
+/// `round(2π·2¹⁰⁰)`.
+const TWO_PI_Q100: i128 = 7_964_883_625_991_394_727_376_702_227_904;
+
+/// `round(v/2ᵏ)` (ties up) in 128 bits, `1 ≤ k ≤ 126`.
+#[inline]
+fn round_shift_wide(v: i128, k: u32) -> i128 {
+    (v + (1i128 << (k - 1))) >> k
+}
+
+/// `round(num/den)` for `den > 0` (ties away from zero); 0 for `den ≤ 0` (not reached).
+#[inline]
+fn div_round(num: i128, den: i128) -> i128 {
+    if den <= 0 {
+        return 0;
+    }
+    let q = num.checked_div(den).unwrap_or(0);
+    let r = num.checked_rem(den).unwrap_or(0);
+    if 2 * r.abs() >= den {
+        q + num.signum()
+    } else {
+        q
+    }
+}
+
+/// The exponential of a rotation vector of any length in `Fixed<F>`, `F ≤ 29` (whose range
+/// holds angles beyond π; Q1.30's does not), `t2 = |φ|²` in units of `2^−(2F−2)`. For
+/// `F < 28` also below π (then `n = 0` and `φ' = φ` exactly), for the Q3.28 accuracy.
+///
+/// `exp` has period 2π in the angle up to sign: `exp((θ − 2πn)·n̂) = (−1)ⁿ exp(θn̂)`. The angle
+/// `θ = √t2` is formed with 28 extra bits (an integer square root in 128 bits), `n =
+/// round(θ/2π)`, `θ' = θ − 2πn ∈ [−π, π]` (2π to 2⁻¹⁰⁰), and the reduced vector
+/// `φ' = φ·θ'/θ` is rounded into `Fixed<G>` (`G = 28`, or 29 for `F = 29`: a format holding
+/// `|φ'| ≤ π` with the most fraction bits), whose exponential ([`exp_large`] at most 5 halvings,
+/// or the series) is rounded back to `Fixed<F>` and negated for odd `n`. So every format's
+/// exponential has the accuracy of the Q3.28 one (a few units of 2⁻²⁸) and then its own
+/// rounding: the number of halvings no longer grows with the format's range.
+fn exp_reduced<const F: u32, const G: u32>(phi: Vec3<Fixed<F>>, t2: i64) -> Quat<Fixed<F>> {
+    // θ in units of 2^-(F+27): √(t2·2⁵⁶), t2 in units of 2^-(2F−2).
+    let t2 = u128::try_from(t2).unwrap_or(0);
+    let theta = i128::try_from((t2 << 56).isqrt()).unwrap_or(0);
+    let n = round_shift_wide(theta * INV_2PI_Q62, 62 + F + 27);
+    let reduced = theta - round_shift_wide(n * TWO_PI_Q100, 73 - F);
+    // φ' = φ·θ'/θ in units of 2^-G.
+    let up = G.saturating_sub(F);
+    let scale = |c: Fixed<F>| {
+        let raw = div_round((i128::from(c.0) << up) * reduced, theta);
+        Fixed::<G>(saturate(i64::try_from(raw).unwrap_or(0)))
+    };
+    let phi_g = Vec3::new(scale(phi.x), scale(phi.y), scale(phi.z));
+    let sq = |x: Fixed<G>| mul_wide(x.0, x.0) >> 2;
+    let e = exp_halving(phi_g, sq(phi_g.x) + sq(phi_g.y) + sq(phi_g.z));
+    let odd = n & 1 == 1;
+    let back = |c: Fixed<G>| {
+        let v = saturate(round_shift(i64::from(c.0), up));
+        Fixed::<F>(if odd { -v } else { v })
+    };
+    Quat::new(back(e.w), back(e.x), back(e.y), back(e.z))
+}
 
 /// `exp(φ)` for `|φ|² > 1/64` (θ > 1/8 rad), by scaling and squaring.
 ///
@@ -43,11 +107,34 @@ const MAX_HALVINGS: u32 = 5;
 /// level (`P̃ⱼ₋₁ = cⱼ² P̃ⱼ`): a small `Pⱼ` never loses its relative precision to the format's
 /// absolute resolution, so the error of `c` grows only by the doubling of `c² − P` (≤ 2ᵏ times
 /// the series' rounding, measured in `host-tests/tests/fixed/accuracy.rs`). Nothing is divided.
-/// The result `(c₀, s₀·φ)` scales the original `φ`.
+/// The result `(c₀, s₀·φ)` scales the original `φ`. In the formats whose range holds angles
+/// beyond π (all but Q1.30) such an angle is first reduced ([`exp_reduced`]), so at most
+/// [`MAX_HALVINGS`] halvings are ever needed.
 fn exp_large<const F: u32>(phi: Vec3<Fixed<F>>) -> Quat<Fixed<F>> {
+    const { assert!(F >= 6 && F <= 30, "Fixed<F> supports 6 ≤ F ≤ 30") };
     // θ² in units of 2^-(2F−2): each square < 2⁶², shifted by 2, three of them < 3·2⁶⁰.
     let sq = |x: Fixed<F>| mul_wide(x.0, x.0) >> 2;
     let t2 = sq(phi.x) + sq(phi.y) + sq(phi.z);
+    // Formats with fewer than 28 fraction bits take every angle past the series in Q3.28 (their
+    // own halvings would double their coarser rounding up to five times); Q3.28 and Q2.29 reduce
+    // the angles beyond π. Q1.30 (|φ| < 2√3) needs neither, and these branches are not compiled
+    // into it.
+    if F < 28 {
+        return exp_reduced::<F, 28>(phi, t2);
+    }
+    if F <= 29 && t2 > PI_SQ_Q58 >> (60 - 2 * F.min(29)) {
+        return if F == 29 {
+            exp_reduced::<F, 29>(phi, t2)
+        } else {
+            exp_reduced::<F, 28>(phi, t2)
+        };
+    }
+    exp_halving(phi, t2)
+}
+
+/// The scaling and squaring of [`exp_large`] for `t2 = |φ|² ≤ 12` (units of `2^−(2F−2)`), any
+/// angle in it (at or below the series threshold `k = 0` and the series alone is used).
+fn exp_halving<const F: u32>(phi: Vec3<Fixed<F>>, t2: i64) -> Quat<Fixed<F>> {
     // 1/64 in the same units.
     let limit = 1i64 << (2 * F - 2 - 6);
     let mut k = 0u32;

@@ -65,7 +65,12 @@
 //! Measured against the f64 reference (`host-tests/tests/fixed/accuracy.rs`,
 //! `firmware.rs`, `carried.rs`; `BENCHMARKS.md` has the tables), in units `u = 2⁻³⁰`: product
 //! ≤ 0.5u per component, rotation ≤ 3.4u, matrix ≤ 3.7u, exponential ≤ 0.64u on the series
-//! domain and ≤ 29u up to `|φ| = 3.4` rad. Propagated with [`CarriedAttitude`] from increments
+//! domain and ≤ 32u up to `|φ| = 3.4` rad (worst of 4·10⁶ random `φ`: 31.3u at 2.3 rad; an
+//! independent campaign's worst, 31.9u at 2.09 rad; the per-band bound of the accuracy test is
+//! `(2ᵏ⁺¹ + 4)u` for `k` halvings, 68u at `k = 5`). The other formats (`Fixed<F>`,
+//! `6 ≤ F ≤ 30`, checked at compile time) reduce an angle beyond π modulo 2π first and take the
+//! exponential past the series in Q3.28 (Q2.29 for `F = 29`), so theirs is within 80 units of
+//! that format plus their own rounding (the `oracles` campaign of `host-tests`). Propagated with [`CarriedAttitude`] from increments
 //! converted by an [`IncrementQuantizer`] (what `propagate --fixed` runs), the attitude has no
 //! rounding bias: over 60 s at 1 kHz a constant rate ends within 5e-8 rad of the exact attitude
 //! (f32: 1e-6 to 7e-4), and under classical coning every rule reproduces the f64 error, drift

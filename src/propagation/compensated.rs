@@ -31,7 +31,7 @@
 //! added to the low part), and the rate methods interpolate in difference form (the samples'
 //! differences, so that a constant rate is reproduced exactly), take the products with the step
 //! exactly and take the step `dt` with its rounding remainder
-//! ([`RateIntegrator::with_step_remainder`]). What is left is the rounding of the small
+//! ([`RateIntegrator::try_with_step_remainder`]). What is left is the rounding of the small
 //! increments, about `u·|φ|` per update (`u = 2⁻²⁴`), mostly a random walk.
 //!
 //! Measured over one hour at 1 kHz (3.6·10⁶ updates; `host-tests/tests/propagation/compensated.rs`,
@@ -52,10 +52,11 @@
 //! drifts by the same mechanism at the f64 ulp (1e-11 rad/h), so there the compensation buys
 //! nothing a user would notice; it is offered for symmetry.
 //!
-//! [`RateIntegrator::with_step_remainder`]: crate::propagation::RateIntegrator::with_step_remainder
+//! [`RateIntegrator::try_with_step_remainder`]: crate::propagation::RateIntegrator::try_with_step_remainder
 
 use crate::compensated::{
-    add_compensated, renormalize_compensated, rotate_compensated, sixth_pair, two_sum,
+    add_compensated, renormalize_compensated, renormalize_exact_factor, rotate_compensated,
+    sixth_pair, two_sum,
 };
 use crate::propagation::coning::{ConingRule, coning_terms_for};
 use crate::propagation::kernels::rk4_slope_sum;
@@ -174,10 +175,7 @@ impl<T: Real> CompensatedAttitude<T> {
         match norm {
             Normalization::Fast => renormalize_compensated(&mut q, &mut self.lo),
             Normalization::Exact => {
-                let n2 = q.norm_squared();
-                let n = n2.sqrt();
-                let r = (T::ONE - n2) / (n * (T::ONE + n));
-                let d = q.scale(r);
+                let d = q.scale(renormalize_exact_factor(q.norm_squared()));
                 add_compensated(&mut q, &mut self.lo, d, Quat::ZERO);
             }
             Normalization::None => {}
@@ -259,7 +257,12 @@ pub(crate) fn advance_compensated<T: Real, const M: usize>(
             let base_lo = base_lo + m_lo.scale(h * k) + m.scale(h_lo * k);
             if method == RateMethod::Magnus4 {
                 // φ = (h/2)(ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂.
-                let commutator = w1.cross(w2).scale(h * h * T::from_f64(SQRT_3 / 12.0));
+                // Each rate scaled by the step before the product (w₁ × w₂ alone can overflow
+                // for rates and steps whose angles are small).
+                let commutator = w1
+                    .scale(h)
+                    .cross(w2.scale(h))
+                    .scale(T::from_f64(SQRT_3 / 12.0));
                 q.rotated_pair_unchecked(base, base_lo + commutator, norm)
             } else {
                 // φ₁,₂ = (h/4)(ω₁ + ω₂) ± (√3/6) h (ω₁ − ω₂): the CF4 weights ¼ ± √3/6.

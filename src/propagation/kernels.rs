@@ -207,7 +207,11 @@ pub fn rk4_step<T: Real>(
     w_end: Vec3<T>,
     h: T,
 ) -> Quat<T> {
-    q + rk4_slope_sum(q, w_start, w_mid, w_end, h).scale(h / T::from_f64(6.0))
+    // The slopes of the step's angles `hω` over a unit step: the same polynomial as
+    // `(h/6)·Σ kᵢ(ω)`, but `h` multiplies the rates first, so that a short step of a fast rate
+    // (`|ω|` near the type's maximum) does not overflow in the slopes, and `h = 0` returns `q`.
+    let sum = rk4_slope_sum(q, w_start.scale(h), w_mid.scale(h), w_end.scale(h), T::ONE);
+    q + sum.scale(T::ONE / T::from_f64(6.0))
 }
 
 /// The weighted slopes of one RK4 step, `k₁ + 2k₂ + 2k₃ + k₄` (the step adds `h/6` times them:

@@ -91,12 +91,22 @@ impl<T: Real, A: PropagatedAttitude<T>> RateIntegrator<T, A> {
     /// Sets the rounding remainder of the sample interval, `dt_lo = dt_exact − dt` (for example
     /// `(0.001 − f64::from(0.001f32)) as f32` for 1 kHz in f32), which the compensated attitude
     /// adds to every step: without it an f32 step of 1 ms is 4.7e-8 relative too long, 1.8e-4 rad
-    /// an hour at 1 rad/s. The plain attitude ignores it. A non-finite value is ignored.
-    pub fn with_step_remainder(mut self, dt_lo: T) -> Self {
-        if dt_lo.is_finite() {
-            self.dt_lo = dt_lo;
+    /// an hour at 1 rad/s. The plain attitude ignores it.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite `dt_lo`; [`Error::InvalidArgument`] for
+    /// `|dt_lo| > ε·dt` (`ε` the machine epsilon): a rounding remainder of `dt` is at most half
+    /// an ulp of `dt`, `ε·dt/2`; anything larger is not one (and a remainder of the size of `dt`
+    /// or beyond would make every step's products overflow or mean a different step).
+    pub fn try_with_step_remainder(mut self, dt_lo: T) -> Result<Self, Error> {
+        if !dt_lo.is_finite() {
+            return Err(Error::NonFinite);
         }
-        self
+        if dt_lo.abs() > T::EPSILON * self.dt {
+            return Err(Error::InvalidArgument);
+        }
+        self.dt_lo = dt_lo;
+        Ok(self)
     }
 
     /// The latest attitude computed (at the time of the newest sample once four have arrived).

@@ -29,25 +29,57 @@ pub type Q30 = Fixed<30>;
 pub type Q24 = Fixed<24>;
 
 impl<const F: u32> Fixed<F> {
+    /// The supported formats, checked at compile time: `6 ≤ F ≤ 30` (Q25.6 to Q1.30). Below 6
+    /// the exponential's 1/64 threshold and its squaring shifts have no room; above 30 the value
+    /// 1 is not representable (and from 53 on `2^−F` leaves the f64 exponent's normal range).
+    /// Every constructor and conversion evaluates it, so a program naming `Fixed<F>` outside the
+    /// range and using it does not compile:
+    ///
+    /// ```compile_fail
+    /// let _ = gyrostat::fixed::Fixed::<1024>::from_bits(1).to_f64();
+    /// ```
+    /// ```compile_fail
+    /// let _ = gyrostat::fixed::Fixed::<31>::try_from_f64(0.5);
+    /// ```
+    /// ```compile_fail
+    /// let _ = gyrostat::fixed::Fixed::<5>::from_bits(1);
+    /// ```
+    /// ```
+    /// assert_eq!(gyrostat::fixed::Fixed::<6>::from_bits(1).to_f64(), 1.0 / 64.0);
+    /// assert_eq!(gyrostat::fixed::Fixed::<30>::from_bits(1).to_f64(), 2f64.powi(-30));
+    /// ```
+    pub const SUPPORTED: () = assert!(F >= 6 && F <= 30, "Fixed<F> supports 6 ≤ F ≤ 30");
+
     /// The number of fraction bits.
     pub const FRAC_BITS: u32 = F;
     /// The largest value, `(2³¹ − 1)·2^−F`.
-    pub const MAX: Self = Self(i32::MAX);
+    pub const MAX: Self = {
+        let () = Self::SUPPORTED;
+        Self(i32::MAX)
+    };
     /// The smallest value, `−(2³¹ − 1)·2^−F` (the range is symmetric).
-    pub const MIN: Self = Self(-i32::MAX);
+    pub const MIN: Self = {
+        let () = Self::SUPPORTED;
+        Self(-i32::MAX)
+    };
     /// The resolution `2^−F` (one unit of the raw integer).
-    pub const DELTA: Self = Self(1);
+    pub const DELTA: Self = {
+        let () = Self::SUPPORTED;
+        Self(1)
+    };
 
     /// The value whose raw integer is `raw` (`raw · 2^−F`); `i32::MIN` is clamped to
     /// [`Fixed::MIN`].
     #[inline]
     pub const fn from_bits(raw: i32) -> Self {
+        let () = Self::SUPPORTED;
         Self(if raw == i32::MIN { -i32::MAX } else { raw })
     }
 
     /// The raw integer: the value times `2^F`.
     #[inline]
     pub const fn to_bits(self) -> i32 {
+        let () = Self::SUPPORTED;
         self.0
     }
 
@@ -60,6 +92,7 @@ impl<const F: u32> Fixed<F> {
     /// [`Error::NonFinite`] for NaN or ±∞; [`Error::OutOfRange`] when the rounded value is outside
     /// `[−(2³¹ − 1), 2³¹ − 1]·2^−F`.
     pub fn try_from_f64(x: f64) -> Result<Self, Error> {
+        let () = Self::SUPPORTED;
         let b = x.to_bits();
         let exp = ((b >> 52) & 0x7FF) as i32;
         if exp == 0x7FF {
@@ -100,6 +133,7 @@ impl<const F: u32> Fixed<F> {
     /// The exact value as an f64 (every `Q(31−F).F` value is an f64).
     #[inline]
     pub fn to_f64(self) -> f64 {
+        let () = Self::SUPPORTED;
         f64::from(self.0) * pow2_neg(F)
     }
 
@@ -107,6 +141,7 @@ impl<const F: u32> Fixed<F> {
     /// most 24 significant bits).
     #[inline]
     pub fn to_f32(self) -> f32 {
+        let () = Self::SUPPORTED;
         // One rounding (i32 → f32), then an exact scaling by a power of two.
         (self.0 as f32) * (pow2_neg(F) as f32)
     }
@@ -204,7 +239,10 @@ fn dot_wide<const F: u32, const N: usize>(a: [Fixed<F>; N], b: [Fixed<F>; N]) ->
 }
 
 impl<const F: u32> Ring for Fixed<F> {
-    const ZERO: Self = Self(0);
+    const ZERO: Self = {
+        let () = Self::SUPPORTED;
+        Self(0)
+    };
     const ONE: Self = {
         assert!(F >= 6 && F <= 30, "Fixed<F> implements Ring for 6 ≤ F ≤ 30");
         Self(1 << F)

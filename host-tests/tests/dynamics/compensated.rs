@@ -720,6 +720,15 @@ mod replica {
         };
         let phi = j * p;
         let phi_lo = j * p_lo + Vec3::from_array(x.j_lo) * p;
+        // The pair normalised by TwoSum, so that the whole angle is in the exponential.
+        let pair: [(f32, f32); 3] = core::array::from_fn(|k| {
+            let (a, b) = (phi.to_array()[k], phi_lo.to_array()[k]);
+            let s = a + b;
+            let bb = s - a;
+            (s, (a - (s - bb)) + (b - bb))
+        });
+        let phi = Vec3::new(pair[0].0, pair[1].0, pair[2].0);
+        let phi_lo = Vec3::new(pair[0].1, pair[1].1, pair[2].1);
         let x2 = phi.norm_squared() * 0.25;
         let (mm, sh) = (x2 * cos_tail(x2), 0.5 * x2 * sin_tail(x2));
         let v = phi.scale(0.5);

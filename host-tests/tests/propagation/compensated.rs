@@ -155,7 +155,8 @@ fn run_rates<T: Real, A: PropagatedAttitude<T>>(
 ) -> Q {
     let mut integ = RateIntegrator::try_new(q0, method, Normalization::Exact, dt)
         .unwrap()
-        .with_step_remainder(dt_lo);
+        .try_with_step_remainder(dt_lo)
+        .unwrap();
     for k in 0..=n {
         integ.push(rate(k)).unwrap();
     }

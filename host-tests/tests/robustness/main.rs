@@ -4,12 +4,16 @@
 //!
 //! - [`rotation`], [`propagation`], [`dynamics`], [`fixed`], [`sensor`]: the campaign per layer.
 //! - [`regressions`]: every case the campaign once found, pinned to its typed error or value.
+//! - [`second_campaign`]: the 17 reproducers of the second, independent campaign (issue 19).
+//! - [`oracles`]: the oracle campaign: each `Ok` against an independent computation of it.
 //! - [`soak`]: long f32 runs of the hot paths, watching the invariants.
 
 mod dynamics;
 mod fixed;
+mod oracles;
 mod propagation;
 mod regressions;
 mod rotation;
 mod sensor;
+mod second_campaign;
 mod soak;

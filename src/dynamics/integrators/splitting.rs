@@ -7,6 +7,7 @@ use crate::dynamics::gyrostat::Gyrostat;
 use crate::dynamics::hamiltonian::{BodyHamiltonian, Quartic};
 use crate::dynamics::integrators::Integrator;
 use crate::dynamics::state::{ControlLaw, State};
+use crate::step_limit::within_step_limit;
 use crate::{Axis, Quat, Real, UnitQuat, Vec3};
 
 /// Yoshida (1990) order-4 outer weight `w₁ = 1/(2 − 2^{1/3})`; middle stage `w₀ = 1 − 2w₁`.
@@ -205,6 +206,42 @@ fn axis_rate<T: Real>(model: &BodyHamiltonian<T>, axis: Axis, ji: T, si: T) -> T
         Quartic::Cubic(t22) => -T::TWO * t22,
     };
     T::TWO * ai * (ji - si) + k * ji * ji * ji
+}
+
+/// `true` when every rotation a splitting step of `stages` makes stays within
+/// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE), for a body of momentum `j` and rotor
+/// momentum `s`.
+///
+/// For every model but the cubic quartic the pieces' rates are components of the body rate `ω`
+/// (`Hᵢ′(Jᵢ)`), which the net check `|ω|·dt ≤ π` already bounds. The cubic term is split as
+/// one-axis pieces of rate `2Aᵢ(Jᵢ − sᵢ) − 2t₂₂Jᵢ³` and the Casimir flow of rate `2t₂₂|J|²`
+/// about `J`: at a high spin these are huge rotations that cancel in `ω` (sphere 1e10,
+/// `t₂₂ = 10⁻³`, `J = 10⁶ e_y`: `|ω| = 10⁻⁴` but pieces of 2·10¹⁵ rad, rounded to a quarter of a
+/// radian each in f64), and the step loses the attitude while the net check passes. Bounded
+/// here with `|Jᵢ| ≤ |J|` (which every piece preserves) and the longest stage.
+#[inline]
+pub(crate) fn pieces_within_limit<T: Real>(
+    model: &BodyHamiltonian<T>,
+    j: Vec3<T>,
+    s: Vec3<T>,
+    stages: &[T],
+) -> bool {
+    let Quartic::Cubic(t22) = model.quartic() else {
+        return true;
+    };
+    let h = stages.iter().fold(T::ZERO, |m, h| m.max(h.abs()));
+    let n2 = j.norm_squared();
+    let n = n2.sqrt();
+    let quartic = (T::TWO * t22).abs() * n2 * n;
+    let casimir = (T::TWO * t22).abs() * n2 * n * h;
+    let axis = |a: Axis| {
+        let rate = T::TWO * model.half_inverse()[a].abs() * (n + s[a].abs()) + quartic;
+        within_step_limit(Vec3::new(rate * h, T::ZERO, T::ZERO))
+    };
+    axis(Axis::X)
+        && axis(Axis::Y)
+        && axis(Axis::Z)
+        && within_step_limit(Vec3::new(casimir, T::ZERO, T::ZERO))
 }
 
 /// The flow of the Casimir part `½t₂₂|J|⁴` of a cubic term: `ω = 2t₂₂|J|²J`, `J` fixed,

@@ -671,8 +671,8 @@ where
     // The step's rounding remainder in T (zero when --dt is exact in T).
     let dt_lo = T::from_f64(args_dt - dt.to_f64());
     let mut integ = RateIntegrator::try_new(A::from(q0), method, Normalization::Exact, dt)
-        .map_err(|e| Failure::Usage(format!("--dt: {e}")))?
-        .with_step_remainder(dt_lo);
+        .and_then(|i| i.try_with_step_remainder(dt_lo))
+        .map_err(|e| Failure::Usage(format!("--dt: {e}")))?;
     let mut reached: u64 = 0; // the next sample index whose attitude is due
     let mut last = q0;
     let mut n = 0; // the line of the latest sample
