@@ -188,12 +188,12 @@
 /**
  * Words of `gyro_estimator_f32`'s storage.
  */
-#define GYRO_ESTIMATOR_F32_WORDS 80
+#define GYRO_ESTIMATOR_F32_WORDS 112
 
 /**
  * Words of `gyro_estimator_f64`'s storage.
  */
-#define GYRO_ESTIMATOR_F64_WORDS 150
+#define GYRO_ESTIMATOR_F64_WORDS 208
 
 /**
  * The result of every function.
@@ -711,9 +711,14 @@ typedef struct {
    */
   float mag_correlation_time;
   /**
-   * Delay (s) of the magnetometer behind the gyroscope.
+   * Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
    */
   float mag_delay;
+  /**
+   * Averaging time (s of rotation in an undisturbed field) of the online estimate of the
+   * magnetometer's delay; 0 keeps `mag_delay` fixed.
+   */
+  float mag_delay_estimation_time;
   /**
    * Weight of a disturbed field's heading error (0: rejected outright).
    */
@@ -844,9 +849,14 @@ typedef struct {
    */
   double mag_correlation_time;
   /**
-   * Delay (s) of the magnetometer behind the gyroscope.
+   * Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
    */
   double mag_delay;
+  /**
+   * Averaging time (s of rotation in an undisturbed field) of the online estimate of the
+   * magnetometer's delay; 0 keeps `mag_delay` fixed.
+   */
+  double mag_delay_estimation_time;
   /**
    * Weight of a disturbed field's heading error (0: rejected outright).
    */

@@ -2064,9 +2064,9 @@ pub unsafe extern "C" fn gyro_gyrostat_f64_step(
 // --- Estimator ---------------------------------------------------------------------------------
 
 /// Words of `gyro_estimator_f32`'s storage.
-pub const GYRO_ESTIMATOR_F32_WORDS: usize = 80;
+pub const GYRO_ESTIMATOR_F32_WORDS: usize = 112;
 /// Words of `gyro_estimator_f64`'s storage.
-pub const GYRO_ESTIMATOR_F64_WORDS: usize = 150;
+pub const GYRO_ESTIMATOR_F64_WORDS: usize = 208;
 
 /// The attitude and gyro-bias estimator, f32 (`Estimator`, the library's default parameters).
 /// Contents private.
@@ -2129,8 +2129,11 @@ pub struct gyro_estimator_params_f32 {
     pub mag_heading_noise: f32,
     /// Correlation time (s) of that error.
     pub mag_correlation_time: f32,
-    /// Delay (s) of the magnetometer behind the gyroscope.
+    /// Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
     pub mag_delay: f32,
+    /// Averaging time (s of rotation in an undisturbed field) of the online estimate of the
+    /// magnetometer's delay; 0 keeps `mag_delay` fixed.
+    pub mag_delay_estimation_time: f32,
     /// Weight of a disturbed field's heading error (0: rejected outright).
     pub mag_disturbance_weight: f32,
     /// Disturbance monitor: the largest relative change of the field's norm.
@@ -2200,8 +2203,11 @@ pub struct gyro_estimator_params_f64 {
     pub mag_heading_noise: f64,
     /// Correlation time (s) of that error.
     pub mag_correlation_time: f64,
-    /// Delay (s) of the magnetometer behind the gyroscope.
+    /// Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
     pub mag_delay: f64,
+    /// Averaging time (s of rotation in an undisturbed field) of the online estimate of the
+    /// magnetometer's delay; 0 keeps `mag_delay` fixed.
+    pub mag_delay_estimation_time: f64,
     /// Weight of a disturbed field's heading error (0: rejected outright).
     pub mag_disturbance_weight: f64,
     /// Disturbance monitor: the largest relative change of the field's norm.
@@ -2265,6 +2271,7 @@ macro_rules! params_io {
                     mag_heading_noise: self.mag_heading_noise,
                     mag_correlation_time: self.mag_correlation_time,
                     mag_delay: self.mag_delay,
+                    mag_delay_estimation_time: self.mag_delay_estimation_time,
                     mag_disturbance_weight: self.mag_disturbance_weight,
                     rest_bias_noise: self.rest_bias_noise,
                     field: FieldThresholds {
@@ -2313,6 +2320,7 @@ macro_rules! params_io {
                     mag_heading_noise: p.mag_heading_noise,
                     mag_correlation_time: p.mag_correlation_time,
                     mag_delay: p.mag_delay,
+                    mag_delay_estimation_time: p.mag_delay_estimation_time,
                     mag_disturbance_weight: p.mag_disturbance_weight,
                     rest_bias_noise: p.rest_bias_noise,
                     field_norm: p.field.norm,

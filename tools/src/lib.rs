@@ -16,7 +16,6 @@
 
 pub mod calibration;
 pub mod flags;
-pub mod sensor_units;
 pub mod simulation;
 pub mod stream;
 pub mod torque;

@@ -14,6 +14,6 @@ mod oracles;
 mod propagation;
 mod regressions;
 mod rotation;
-mod sensor;
 mod second_campaign;
+mod sensor;
 mod soak;

@@ -23,9 +23,10 @@ use gyrostat::propagation::{
 use gyrostat::sensor::{AxisRemap, InertialCalibration, Interval, MicrosClock, SampleClock};
 use gyrostat::step_limit::MAX_STEP_ANGLE;
 use gyrostat::{Quat, Real, UnitQuat, Vec3};
+use gyrostat_tools::calibration;
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
 use gyrostat_tools::stream::{self, Csv, Lines};
-use gyrostat_tools::{calibration, sensor_units};
+use gyrostat_tools::units::{GyroUnit, TimeUnit};
 
 const CLI: Cli = Cli {
     name: "propagate",
@@ -300,8 +301,9 @@ fn arguments(f: &Flags) -> Result<Args, String> {
     let compensated = f.switch("--compensated");
     let every = f.get("--every", flags::at_least_one)?.unwrap_or(1);
     let gyro_factor = f
-        .get("--gyro-unit", sensor_units::gyro_unit)?
-        .unwrap_or(1.0);
+        .get("--gyro-unit", GyroUnit::parse)?
+        .unwrap_or_default()
+        .to_si();
     let calibration = f
         .value("--calibration")
         .map(|p| calibration::read(p).map(|c| c.gyro))
@@ -322,7 +324,7 @@ fn arguments(f: &Flags) -> Result<Args, String> {
         calibration,
         remap,
     };
-    let time_factor = f.get("--time-unit", sensor_units::time_unit)?;
+    let time_factor = f.get("--time-unit", TimeUnit::parse)?.map(TimeUnit::to_si);
     let t0 = f.get("--t0", flags::number)?;
     let gap_factor = f.get("--gap-factor", flags::number)?;
     let timed = if f.switch("--time-column") {

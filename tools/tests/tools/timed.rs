@@ -386,7 +386,7 @@ fn drops_repeats_and_backwards_are_row_errors() {
                 "--time-unit",
                 "min",
             ],
-            "--time-unit: expected s, ms or us",
+            "--time-unit: unknown unit 'min' (one of s, ms, us)",
         ),
         (
             vec![
@@ -399,7 +399,7 @@ fn drops_repeats_and_backwards_are_row_errors() {
                 "--gyro-unit",
                 "rpm",
             ],
-            "--gyro-unit: expected rad/s or deg/s",
+            "--gyro-unit: unknown unit 'rpm' (one of rad/s, deg/s)",
         ),
         (
             vec![

@@ -16,6 +16,7 @@ use std::process::ExitCode;
 
 use gyrostat::estimation::{EarthFrame, Estimator, Gains, MAX_STEP, Outcome, Params, SensorUse};
 use gyrostat::{Error, Real, Vec3};
+use gyrostat_tools::calibration::{self, CalibrationFile};
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
 use gyrostat_tools::stream::{self, Csv, Lines};
 use gyrostat_tools::units::{AccelUnit, GyroUnit, MagUnit, TimeUnit};
@@ -34,6 +35,7 @@ const CLI: Cli = Cli {
         Flag::value("--time-unit"),
         Flag::switch("--truth"),
         Flag::value("--plot"),
+        Flag::value("--calibration"),
         Flag::repeated("--set"),
     ],
 };
@@ -44,7 +46,7 @@ estimate: attitude and gyroscope bias from an IMU log (gyrostat's attitude estim
 USAGE:
     estimate [--6d | --9d] [--f32] [--frame enu|ned] [--gyro-unit rad/s|deg/s]
              [--accel-unit m/s^2|g] [--mag-unit uT|nT|G|any] [--time-unit s|ms|us]
-             [--truth] [--plot FILE.svg] [--set NAME=VALUE]... [FILE]
+             [--calibration FILE] [--truth] [--plot FILE.svg] [--set NAME=VALUE]... [FILE]
 
     Reads FILE (standard input without FILE, or with FILE `-`); gzip-compressed input (BROAD's
     .csv.gz files) is recognised by its first bytes and decompressed. Flags take their value as
@@ -95,6 +97,11 @@ OPTIONS:
                    score.py computes it from the output (`, MISSING K` when K scored rows have no
                    estimate). The reference is an attitude sensor -> the output's earth frame.
                    With --6d only the inclination is meaningful (the heading is free).
+    --calibration FILE
+                   the sensor model of FILE (the format `propagate --calibration` reads:
+                   gyro_* and accel_* give corrected = M diag(s) (raw - b), mag_* give
+                   corrected = S (raw - h)), applied to every sample after the unit conversion,
+                   in f64, before the estimator; keys a file leaves out are identities.
     --plot FILE    also write an SVG plot: the estimate's heading (2 atan2(qz, qw)) and
                    inclination (2 acos sqrt(qw^2 + qz^2), the tilt of the sensor's z axis),
                    with the reference's when --truth; the error against the reference (total,
@@ -155,6 +162,7 @@ struct Args {
     f32: bool,
     truth: bool,
     plot: Option<PathBuf>,
+    calibration: Option<CalibrationFile>,
     gyro: Option<GyroUnit>,
     accel: Option<AccelUnit>,
     mag: Option<MagUnit>,
@@ -199,6 +207,10 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         f32: f.switch("--f32"),
         truth: f.switch("--truth"),
         plot: f.value("--plot").map(PathBuf::from),
+        calibration: f
+            .value("--calibration")
+            .map(|p| calibration::read(p).map_err(|e| format!("--calibration: {e}")))
+            .transpose()?,
         gyro: f.get("--gyro-unit", GyroUnit::parse)?,
         accel: f.get("--accel-unit", AccelUnit::parse)?,
         mag: f.get("--mag-unit", MagUnit::parse)?,
@@ -539,6 +551,20 @@ struct Sample<'a> {
     mag: Option<[f64; 3]>,
     truth: Option<[f64; 4]>,
     scored: bool,
+}
+
+/// The sample's gyro, accelerometer and magnetometer readings through the calibration file's
+/// models (as read without one).
+fn calibrated(cal: Option<&CalibrationFile>, s: &Sample) -> ([f64; 3], [f64; 3], Option<[f64; 3]>) {
+    let Some(c) = cal else {
+        return (s.gyro, s.accel, s.mag);
+    };
+    let v = |a: [f64; 3]| Vec3::new(a[0], a[1], a[2]);
+    (
+        c.gyro.apply(v(s.gyro)).to_array(),
+        c.accel.apply(v(s.accel)).to_array(),
+        s.mag.map(|m| c.mag.apply(v(m)).to_array()),
+    )
 }
 
 /// Parses one row by `layout` (the reference and movement only when `truth`).
@@ -918,9 +944,10 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
             }
         };
         prev_t = Some(s.t);
-        let mag = if six_d { None } else { s.mag.map(v) };
+        let (gyro, accel, mag) = calibrated(args.calibration.as_ref(), &s);
+        let mag = if six_d { None } else { mag.map(v) };
         let outcome: Outcome = filter
-            .update(v(s.gyro), v(s.accel), mag, T::from_f64(dt))
+            .update(v(gyro), v(accel), mag, T::from_f64(dt))
             .map_err(|e| Failure::Row(n, library_error(e, dt)))?;
         let flags = format!(
             "{},{},{},{}",
