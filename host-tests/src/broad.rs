@@ -271,59 +271,9 @@ pub fn estimate(
     mode: Mode,
 ) -> Result<Vec<EstimateRow>, gyrostat::Error> {
     if mode.f32 {
-        run::<f32>(log, &convert_params(params), mode)
+        run::<f32>(log, &params.map(|x| x as f32), mode)
     } else {
         run::<f64>(log, params, mode)
-    }
-}
-
-/// The f64 parameters rounded to f32 field by field.
-pub fn convert_params(p: &Params<f64>) -> Params<f32> {
-    use gyrostat::estimation::{FieldThresholds, Gains, RestThresholds};
-    let c = |x: f64| x as f32;
-    Params {
-        frame: p.frame,
-        gains: match p.gains {
-            Gains::Kalman => Gains::Kalman,
-            Gains::Fixed {
-                heading_time_constant,
-            } => Gains::Fixed {
-                heading_time_constant: c(heading_time_constant),
-            },
-        },
-        gyro_noise_density: c(p.gyro_noise_density),
-        gyro_scale_noise: c(p.gyro_scale_noise),
-        gyro_bias_initial: c(p.gyro_bias_initial),
-        gyro_bias_stability: c(p.gyro_bias_stability),
-        gyro_bias_time: c(p.gyro_bias_time),
-        gyro_bias_max: c(p.gyro_bias_max),
-        gyro_range: c(p.gyro_range),
-        accel_range: c(p.accel_range),
-        accel_time_constant: c(p.accel_time_constant),
-        accel_tilt_noise: c(p.accel_tilt_noise),
-        accel_correlation_time: c(p.accel_correlation_time),
-        accel_reject: c(p.accel_reject),
-        mag_heading_noise: c(p.mag_heading_noise),
-        mag_correlation_time: c(p.mag_correlation_time),
-        mag_delay: c(p.mag_delay),
-        mag_delay_estimation_time: c(p.mag_delay_estimation_time),
-        mag_disturbance_weight: c(p.mag_disturbance_weight),
-        field: FieldThresholds {
-            norm: c(p.field.norm),
-            dip: c(p.field.dip),
-            reference_time_constant: c(p.field.reference_time_constant),
-            min_undisturbed: c(p.field.min_undisturbed),
-            new_field_time: c(p.field.new_field_time),
-            new_field_min_rate: c(p.field.new_field_min_rate),
-        },
-        rest: RestThresholds {
-            time_constant: c(p.rest.time_constant),
-            gyro: c(p.rest.gyro),
-            accel: c(p.rest.accel),
-            max_bias: c(p.rest.max_bias),
-            min_duration: c(p.rest.min_duration),
-        },
-        rest_bias_noise: c(p.rest_bias_noise),
     }
 }
 
@@ -542,44 +492,15 @@ pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), Str
     let v: f64 = value
         .parse()
         .map_err(|_| format!("{name}: not a number: {value:?}"))?;
-    let slot = match name {
-        "heading_time_constant" => {
-            p.gains = Gains::Fixed {
-                heading_time_constant: v,
-            };
-            return Ok(());
-        }
-        "gyro_noise_density" => &mut p.gyro_noise_density,
-        "gyro_scale_noise" => &mut p.gyro_scale_noise,
-        "gyro_bias_initial" => &mut p.gyro_bias_initial,
-        "gyro_bias_stability" => &mut p.gyro_bias_stability,
-        "gyro_bias_time" => &mut p.gyro_bias_time,
-        "gyro_bias_max" => &mut p.gyro_bias_max,
-        "gyro_range" => &mut p.gyro_range,
-        "accel_range" => &mut p.accel_range,
-        "accel_time_constant" => &mut p.accel_time_constant,
-        "accel_tilt_noise" => &mut p.accel_tilt_noise,
-        "accel_correlation_time" => &mut p.accel_correlation_time,
-        "accel_reject" => &mut p.accel_reject,
-        "mag_heading_noise" => &mut p.mag_heading_noise,
-        "mag_correlation_time" => &mut p.mag_correlation_time,
-        "mag_delay" => &mut p.mag_delay,
-        "mag_delay_estimation_time" => &mut p.mag_delay_estimation_time,
-        "mag_disturbance_weight" => &mut p.mag_disturbance_weight,
-        "field.norm" => &mut p.field.norm,
-        "field.dip" => &mut p.field.dip,
-        "field.reference_time_constant" => &mut p.field.reference_time_constant,
-        "field.min_undisturbed" => &mut p.field.min_undisturbed,
-        "field.new_field_time" => &mut p.field.new_field_time,
-        "field.new_field_min_rate" => &mut p.field.new_field_min_rate,
-        "rest.time_constant" => &mut p.rest.time_constant,
-        "rest.gyro" => &mut p.rest.gyro,
-        "rest.accel" => &mut p.rest.accel,
-        "rest.max_bias" => &mut p.rest.max_bias,
-        "rest.min_duration" => &mut p.rest.min_duration,
-        "rest_bias_noise" => &mut p.rest_bias_noise,
-        _ => return Err(format!("unknown parameter {name:?}")),
-    };
+    if name == "heading_time_constant" {
+        p.gains = Gains::Fixed {
+            heading_time_constant: v,
+        };
+        return Ok(());
+    }
+    let slot = p
+        .parameter_mut(name)
+        .ok_or_else(|| format!("unknown parameter {name:?}"))?;
     *slot = v;
     Ok(())
 }

@@ -20,73 +20,16 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The scalar parameters by name (the `Params` field, `field_*` and `rest_*` for the field
-/// monitor's and the rest detector's thresholds, `heading_time_constant` for fixed gains).
-const NAMES: [&str; 28] = [
-    "gyro_noise_density",
-    "gyro_scale_noise",
-    "gyro_bias_initial",
-    "gyro_bias_stability",
-    "gyro_bias_time",
-    "gyro_bias_max",
-    "gyro_range",
-    "accel_range",
-    "accel_time_constant",
-    "accel_tilt_noise",
-    "accel_correlation_time",
-    "accel_reject",
-    "mag_heading_noise",
-    "mag_correlation_time",
-    "mag_delay",
-    "mag_delay_estimation_time",
-    "mag_disturbance_weight",
-    "field_norm",
-    "field_dip",
-    "field_reference_time_constant",
-    "field_min_undisturbed",
-    "field_new_field_time",
-    "field_new_field_min_rate",
-    "rest_time_constant",
-    "rest_gyro",
-    "rest_accel",
-    "rest_max_bias",
-    "rest_min_duration",
-];
+/// The Python name of a parameter of [`Params::NAMES`]: `field.norm` is `field_norm`,
+/// `rest.gyro` is `rest_gyro` (keyword-argument names have no dots).
+fn python_name(name: &str) -> String {
+    name.replacen('.', "_", 1)
+}
 
-/// The parameter `name` of `p`.
-fn slot<'a, T>(p: &'a mut Params<T>, name: &str) -> Option<&'a mut T> {
-    Some(match name {
-        "gyro_noise_density" => &mut p.gyro_noise_density,
-        "gyro_scale_noise" => &mut p.gyro_scale_noise,
-        "gyro_bias_initial" => &mut p.gyro_bias_initial,
-        "gyro_bias_stability" => &mut p.gyro_bias_stability,
-        "gyro_bias_time" => &mut p.gyro_bias_time,
-        "gyro_bias_max" => &mut p.gyro_bias_max,
-        "gyro_range" => &mut p.gyro_range,
-        "accel_range" => &mut p.accel_range,
-        "accel_time_constant" => &mut p.accel_time_constant,
-        "accel_tilt_noise" => &mut p.accel_tilt_noise,
-        "accel_correlation_time" => &mut p.accel_correlation_time,
-        "accel_reject" => &mut p.accel_reject,
-        "mag_heading_noise" => &mut p.mag_heading_noise,
-        "mag_correlation_time" => &mut p.mag_correlation_time,
-        "mag_delay" => &mut p.mag_delay,
-        "mag_delay_estimation_time" => &mut p.mag_delay_estimation_time,
-        "mag_disturbance_weight" => &mut p.mag_disturbance_weight,
-        "field_norm" => &mut p.field.norm,
-        "field_dip" => &mut p.field.dip,
-        "field_reference_time_constant" => &mut p.field.reference_time_constant,
-        "field_min_undisturbed" => &mut p.field.min_undisturbed,
-        "field_new_field_time" => &mut p.field.new_field_time,
-        "field_new_field_min_rate" => &mut p.field.new_field_min_rate,
-        "rest_time_constant" => &mut p.rest.time_constant,
-        "rest_gyro" => &mut p.rest.gyro,
-        "rest_accel" => &mut p.rest.accel,
-        "rest_max_bias" => &mut p.rest.max_bias,
-        "rest_min_duration" => &mut p.rest.min_duration,
-        "rest_bias_noise" => &mut p.rest_bias_noise,
-        _ => return None,
-    })
+/// The parameter of `p` with the Python name `name`.
+fn slot<'a, T: Copy>(p: &'a mut Params<T>, name: &str) -> Option<&'a mut T> {
+    let library = Params::<T>::NAMES.iter().find(|n| python_name(n) == name)?;
+    p.parameter_mut(library)
 }
 
 /// The estimator's default parameters (SI units, angles in rad) by name.
@@ -94,9 +37,9 @@ fn slot<'a, T>(p: &'a mut Params<T>, name: &str) -> Option<&'a mut T> {
 fn estimator_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let mut p = Params::<f64>::default();
     let d = PyDict::new(py);
-    for name in NAMES.iter().chain(&["rest_bias_noise"]) {
-        if let Some(v) = slot(&mut p, name) {
-            d.set_item(*name, *v)?;
+    for name in Params::<f64>::NAMES {
+        if let Some(v) = p.parameter_mut(name) {
+            d.set_item(python_name(name), *v)?;
         }
     }
     Ok(d)

@@ -144,6 +144,129 @@ impl<T: Real> Default for Params<T> {
     }
 }
 
+impl<T: Copy> Params<T> {
+    /// The names of the numeric parameters, as [`Params::parameter_mut`] takes them: the field
+    /// names, those of [`Params::field`] and [`Params::rest`] prefixed `field.` and `rest.`
+    /// (the heading time constant of [`Gains::Fixed`] is a choice of gains, not among them).
+    pub const NAMES: [&'static str; 29] = [
+        "gyro_noise_density",
+        "gyro_scale_noise",
+        "gyro_bias_initial",
+        "gyro_bias_stability",
+        "gyro_bias_time",
+        "gyro_bias_max",
+        "gyro_range",
+        "accel_range",
+        "accel_time_constant",
+        "accel_tilt_noise",
+        "accel_correlation_time",
+        "accel_reject",
+        "mag_heading_noise",
+        "mag_correlation_time",
+        "mag_delay",
+        "mag_delay_estimation_time",
+        "mag_disturbance_weight",
+        "field.norm",
+        "field.dip",
+        "field.reference_time_constant",
+        "field.min_undisturbed",
+        "field.new_field_time",
+        "field.new_field_min_rate",
+        "rest.time_constant",
+        "rest.gyro",
+        "rest.accel",
+        "rest.max_bias",
+        "rest.min_duration",
+        "rest_bias_noise",
+    ];
+
+    /// The numeric parameter called `name` (one of [`Params::NAMES`]), for setting it by name
+    /// (command lines, bindings); `None` for any other name.
+    pub fn parameter_mut(&mut self, name: &str) -> Option<&mut T> {
+        Some(match name {
+            "gyro_noise_density" => &mut self.gyro_noise_density,
+            "gyro_scale_noise" => &mut self.gyro_scale_noise,
+            "gyro_bias_initial" => &mut self.gyro_bias_initial,
+            "gyro_bias_stability" => &mut self.gyro_bias_stability,
+            "gyro_bias_time" => &mut self.gyro_bias_time,
+            "gyro_bias_max" => &mut self.gyro_bias_max,
+            "gyro_range" => &mut self.gyro_range,
+            "accel_range" => &mut self.accel_range,
+            "accel_time_constant" => &mut self.accel_time_constant,
+            "accel_tilt_noise" => &mut self.accel_tilt_noise,
+            "accel_correlation_time" => &mut self.accel_correlation_time,
+            "accel_reject" => &mut self.accel_reject,
+            "mag_heading_noise" => &mut self.mag_heading_noise,
+            "mag_correlation_time" => &mut self.mag_correlation_time,
+            "mag_delay" => &mut self.mag_delay,
+            "mag_delay_estimation_time" => &mut self.mag_delay_estimation_time,
+            "mag_disturbance_weight" => &mut self.mag_disturbance_weight,
+            "field.norm" => &mut self.field.norm,
+            "field.dip" => &mut self.field.dip,
+            "field.reference_time_constant" => &mut self.field.reference_time_constant,
+            "field.min_undisturbed" => &mut self.field.min_undisturbed,
+            "field.new_field_time" => &mut self.field.new_field_time,
+            "field.new_field_min_rate" => &mut self.field.new_field_min_rate,
+            "rest.time_constant" => &mut self.rest.time_constant,
+            "rest.gyro" => &mut self.rest.gyro,
+            "rest.accel" => &mut self.rest.accel,
+            "rest.max_bias" => &mut self.rest.max_bias,
+            "rest.min_duration" => &mut self.rest.min_duration,
+            "rest_bias_noise" => &mut self.rest_bias_noise,
+            _ => return None,
+        })
+    }
+
+    /// The same parameters with every number mapped by `f`, the frame and the choice of gains
+    /// kept: `p.map(|x| x as f32)` is the f32 filter of the f64 parameters `p`.
+    pub fn map<U>(&self, f: impl Fn(T) -> U) -> Params<U> {
+        Params {
+            frame: self.frame,
+            gains: match self.gains {
+                Gains::Kalman => Gains::Kalman,
+                Gains::Fixed {
+                    heading_time_constant,
+                } => Gains::Fixed {
+                    heading_time_constant: f(heading_time_constant),
+                },
+            },
+            gyro_noise_density: f(self.gyro_noise_density),
+            gyro_scale_noise: f(self.gyro_scale_noise),
+            gyro_bias_initial: f(self.gyro_bias_initial),
+            gyro_bias_stability: f(self.gyro_bias_stability),
+            gyro_bias_time: f(self.gyro_bias_time),
+            gyro_bias_max: f(self.gyro_bias_max),
+            gyro_range: f(self.gyro_range),
+            accel_range: f(self.accel_range),
+            accel_time_constant: f(self.accel_time_constant),
+            accel_tilt_noise: f(self.accel_tilt_noise),
+            accel_correlation_time: f(self.accel_correlation_time),
+            accel_reject: f(self.accel_reject),
+            mag_heading_noise: f(self.mag_heading_noise),
+            mag_correlation_time: f(self.mag_correlation_time),
+            mag_delay: f(self.mag_delay),
+            mag_delay_estimation_time: f(self.mag_delay_estimation_time),
+            mag_disturbance_weight: f(self.mag_disturbance_weight),
+            field: FieldThresholds {
+                norm: f(self.field.norm),
+                dip: f(self.field.dip),
+                reference_time_constant: f(self.field.reference_time_constant),
+                min_undisturbed: f(self.field.min_undisturbed),
+                new_field_time: f(self.field.new_field_time),
+                new_field_min_rate: f(self.field.new_field_min_rate),
+            },
+            rest: RestThresholds {
+                time_constant: f(self.rest.time_constant),
+                gyro: f(self.rest.gyro),
+                accel: f(self.rest.accel),
+                max_bias: f(self.rest.max_bias),
+                min_duration: f(self.rest.min_duration),
+            },
+            rest_bias_noise: f(self.rest_bias_noise),
+        }
+    }
+}
+
 /// What became of one sensor's sample in an update.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum SensorUse {

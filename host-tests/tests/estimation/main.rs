@@ -7,8 +7,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use gyrostat::estimation::{
-    Covariance, Estimator, FieldMonitor, Params, RestDetector, SensorUse, attitude_from_gravity,
-    attitude_from_gravity_and_field,
+    Covariance, Estimator, FieldMonitor, Gains, Params, RestDetector, SensorUse,
+    attitude_from_gravity, attitude_from_gravity_and_field,
 };
 use gyrostat::{Error, Mat3, Vec3};
 use host_tests::broad::{self, Mode, Units};
@@ -670,5 +670,51 @@ fn broad_regression() {
         ] {
             assert!((a - b).abs() <= 0.05, "{stem}: f32 {b} vs f64 {a}");
         }
+    }
+}
+
+/// `Params::parameter_mut` reaches a distinct field for every name of `Params::NAMES` (each set
+/// to its own value reads back: two names on one field would not), the fields written out here
+/// by hand among them; `Params::map` carries every number and the choice of gains.
+#[test]
+fn parameters_by_name_and_between_precisions() {
+    let mut p = Params::<f64>::default();
+    for (k, name) in Params::<f64>::NAMES.iter().enumerate() {
+        *p.parameter_mut(name).unwrap() = k as f64 + 0.5;
+    }
+    for (k, name) in Params::<f64>::NAMES.iter().enumerate() {
+        assert_eq!(*p.parameter_mut(name).unwrap(), k as f64 + 0.5, "{name}");
+    }
+    assert!(p.parameter_mut("field_norm").is_none());
+    assert!(p.parameter_mut("heading_time_constant").is_none());
+    let at = |name: &str| {
+        Params::<f64>::NAMES
+            .iter()
+            .position(|n| *n == name)
+            .unwrap() as f64
+            + 0.5
+    };
+    assert_eq!(p.gyro_noise_density, at("gyro_noise_density"));
+    assert_eq!(p.mag_delay_estimation_time, at("mag_delay_estimation_time"));
+    assert_eq!(p.field.new_field_min_rate, at("field.new_field_min_rate"));
+    assert_eq!(p.rest.min_duration, at("rest.min_duration"));
+    assert_eq!(p.rest_bias_noise, at("rest_bias_noise"));
+    p.gains = Gains::Fixed {
+        heading_time_constant: 9.25,
+    };
+    let mut q = p.map(|x| x as f32);
+    assert_eq!(q.frame, p.frame);
+    assert_eq!(
+        q.gains,
+        Gains::Fixed {
+            heading_time_constant: 9.25f32
+        }
+    );
+    for name in Params::<f64>::NAMES {
+        assert_eq!(
+            f64::from(*q.parameter_mut(name).unwrap()),
+            *p.parameter_mut(name).unwrap(),
+            "{name}"
+        );
     }
 }

@@ -241,44 +241,15 @@ fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), String>
         None => (value, 1.0),
     };
     let v = flags::number(name, number)? * factor;
-    let slot = match name {
-        "heading_time_constant" => {
-            p.gains = Gains::Fixed {
-                heading_time_constant: v,
-            };
-            return Ok(());
-        }
-        "gyro_noise_density" => &mut p.gyro_noise_density,
-        "gyro_scale_noise" => &mut p.gyro_scale_noise,
-        "gyro_bias_initial" => &mut p.gyro_bias_initial,
-        "gyro_bias_stability" => &mut p.gyro_bias_stability,
-        "gyro_bias_time" => &mut p.gyro_bias_time,
-        "gyro_bias_max" => &mut p.gyro_bias_max,
-        "gyro_range" => &mut p.gyro_range,
-        "accel_range" => &mut p.accel_range,
-        "accel_time_constant" => &mut p.accel_time_constant,
-        "accel_tilt_noise" => &mut p.accel_tilt_noise,
-        "accel_correlation_time" => &mut p.accel_correlation_time,
-        "accel_reject" => &mut p.accel_reject,
-        "mag_heading_noise" => &mut p.mag_heading_noise,
-        "mag_correlation_time" => &mut p.mag_correlation_time,
-        "mag_delay" => &mut p.mag_delay,
-        "mag_delay_estimation_time" => &mut p.mag_delay_estimation_time,
-        "mag_disturbance_weight" => &mut p.mag_disturbance_weight,
-        "field.norm" => &mut p.field.norm,
-        "field.dip" => &mut p.field.dip,
-        "field.reference_time_constant" => &mut p.field.reference_time_constant,
-        "field.min_undisturbed" => &mut p.field.min_undisturbed,
-        "field.new_field_time" => &mut p.field.new_field_time,
-        "field.new_field_min_rate" => &mut p.field.new_field_min_rate,
-        "rest.time_constant" => &mut p.rest.time_constant,
-        "rest.gyro" => &mut p.rest.gyro,
-        "rest.accel" => &mut p.rest.accel,
-        "rest.max_bias" => &mut p.rest.max_bias,
-        "rest.min_duration" => &mut p.rest.min_duration,
-        "rest_bias_noise" => &mut p.rest_bias_noise,
-        _ => return Err(format!("unknown parameter '{name}' (see --help)")),
-    };
+    if name == "heading_time_constant" {
+        p.gains = Gains::Fixed {
+            heading_time_constant: v,
+        };
+        return Ok(());
+    }
+    let slot = p
+        .parameter_mut(name)
+        .ok_or_else(|| format!("unknown parameter '{name}' (see --help)"))?;
     *slot = v;
     Ok(())
 }
@@ -754,55 +725,6 @@ fn library_error(e: Error, dt: f64) -> String {
     }
 }
 
-fn convert_params(p: &Params<f64>) -> Params<f32> {
-    use gyrostat::estimation::{FieldThresholds, RestThresholds};
-    let c = |x: f64| x as f32;
-    Params {
-        frame: p.frame,
-        gains: match p.gains {
-            Gains::Kalman => Gains::Kalman,
-            Gains::Fixed {
-                heading_time_constant,
-            } => Gains::Fixed {
-                heading_time_constant: c(heading_time_constant),
-            },
-        },
-        gyro_noise_density: c(p.gyro_noise_density),
-        gyro_scale_noise: c(p.gyro_scale_noise),
-        gyro_bias_initial: c(p.gyro_bias_initial),
-        gyro_bias_stability: c(p.gyro_bias_stability),
-        gyro_bias_time: c(p.gyro_bias_time),
-        gyro_bias_max: c(p.gyro_bias_max),
-        gyro_range: c(p.gyro_range),
-        accel_range: c(p.accel_range),
-        accel_time_constant: c(p.accel_time_constant),
-        accel_tilt_noise: c(p.accel_tilt_noise),
-        accel_correlation_time: c(p.accel_correlation_time),
-        accel_reject: c(p.accel_reject),
-        mag_heading_noise: c(p.mag_heading_noise),
-        mag_correlation_time: c(p.mag_correlation_time),
-        mag_delay: c(p.mag_delay),
-        mag_delay_estimation_time: c(p.mag_delay_estimation_time),
-        mag_disturbance_weight: c(p.mag_disturbance_weight),
-        field: FieldThresholds {
-            norm: c(p.field.norm),
-            dip: c(p.field.dip),
-            reference_time_constant: c(p.field.reference_time_constant),
-            min_undisturbed: c(p.field.min_undisturbed),
-            new_field_time: c(p.field.new_field_time),
-            new_field_min_rate: c(p.field.new_field_min_rate),
-        },
-        rest: RestThresholds {
-            time_constant: c(p.rest.time_constant),
-            gyro: c(p.rest.gyro),
-            accel: c(p.rest.accel),
-            max_bias: c(p.rest.max_bias),
-            min_duration: c(p.rest.min_duration),
-        },
-        rest_bias_noise: c(p.rest_bias_noise),
-    }
-}
-
 /// What a finished run leaves for the summary and the plot.
 struct Done {
     metric: Option<Metric>,
@@ -1159,7 +1081,7 @@ fn main() -> ExitCode {
     };
     let mut out = Csv::stdout();
     let result = if args.f32 {
-        run::<f32>(&args, convert_params(&args.params), &mut out)
+        run::<f32>(&args, args.params.map(|x| x as f32), &mut out)
     } else {
         run::<f64>(&args, args.params, &mut out)
     };
