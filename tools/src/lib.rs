@@ -1,8 +1,8 @@
 //! The command-line tools of gyrostat (`convert`, `propagate`, `simulate`, `estimate`) and what
 //! they share: one flag dialect and error style ([`flags`]), one stream reader and CSV writer
-//! ([`stream`]), the units of sensor data on the command line ([`units`]), and the scenarios
-//! of `simulate` ([`simulation`], with the external torque of [`torque`]), which the Python
-//! package (`python/`) runs too.
+//! ([`stream`]), the units of sensor data on the command line ([`units`]), the plots' colours
+//! ([`plot`]), and the scenarios of `simulate` ([`simulation`], with the external torque of
+//! [`torque`]), which the Python package (`python/`) runs too.
 //!
 //! The tools are binaries of this crate (`src/bin/`); install them with
 //! `cargo install --path tools`, or run them from a checkout with the cargo aliases of
@@ -16,6 +16,7 @@
 
 pub mod calibration;
 pub mod flags;
+pub mod plot;
 pub mod simulation;
 pub mod stream;
 pub mod torque;

@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use gyrostat_tools::plot::{COLORS, err};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -37,20 +38,6 @@ pub struct Figure {
 
 const WIDTH: u32 = 1200;
 const PANEL_HEIGHT: u32 = 260;
-
-/// Series colours (the "tab10" palette).
-const COLORS: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-];
-
-fn err<E: std::fmt::Debug>(e: E) -> String {
-    format!("drawing the plot: {e:?}")
-}
 
 /// Writes the figure to `path` as SVG.
 pub fn write_svg(path: &Path, fig: &Figure) -> Result<(), String> {

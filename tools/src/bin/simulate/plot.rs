@@ -13,6 +13,7 @@ use std::path::Path;
 use gyrostat::Vec3;
 use gyrostat::dynamics::Inertia;
 use gyrostat::dynamics::closed_form::analysis::separatrix_angle;
+use gyrostat_tools::plot::{COLORS, err};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -66,23 +67,10 @@ const WIDTH: u32 = 1500;
 const HEIGHT: u32 = 900;
 const LEFT: u32 = 900;
 
-/// Series colours (the "tab10" palette).
-const COLORS: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-];
 /// Polhode colours: front hemisphere, far hemisphere.
 const ENERGY_CURVE: (RGBColor, RGBColor) = (RGBColor(120, 120, 120), RGBColor(222, 222, 222));
 const SEPARATRIX: (RGBColor, RGBColor) = (RGBColor(200, 30, 30), RGBColor(245, 190, 190));
 const TRAJECTORY: (RGBColor, RGBColor) = (RGBColor(20, 90, 200), RGBColor(170, 195, 235));
-
-fn err<E: std::fmt::Debug>(e: E) -> String {
-    format!("drawing the plot: {e:?}")
-}
 
 /// Writes the figure to `path` as SVG.
 pub fn write_svg(path: &Path, fig: &Figure) -> Result<(), String> {
