@@ -734,9 +734,45 @@ mod replica {
         let v = phi.scale(0.5);
         let v_lo = phi_lo.scale(0.5) + phi.scale(sh);
         let q_lo = Quat::from_array(x.q_lo);
-        let main = q * Quat::from_parts(mm, v);
         let small = q * Quat::from_parts(0.0, v_lo) + q_lo * Quat::from_parts(0.0, v);
-        add_all(&mut x.q, &mut x.q_lo, main.to_array(), small.to_array(), sw);
+        let w = Quat::from_parts(mm, v);
+        if !sw.compensated {
+            add_all(
+                &mut x.q,
+                &mut x.q_lo,
+                (q * w).to_array(),
+                small.to_array(),
+                sw,
+            );
+            return;
+        }
+        // The increment's product q ⊗ w added unrounded: q and w split in halves, the products
+        // of the high halves (exact) added one by one by TwoSum, the rest into the low part.
+        let halves = |a: Quat<f32>| {
+            let p = a.to_array().map(split);
+            (p.map(|h| h.0), Quat::from_array(p.map(|h| h.1)))
+        };
+        let (qh, ql) = halves(q);
+        let (wh, wl) = halves(w);
+        let small = (small + q * wl + ql * Quat::from_array(wh)).to_array();
+        let [ww, wx, wy, wz] = wh;
+        let rows = [
+            [ww, -wx, -wy, -wz],
+            [wx, ww, wz, -wy],
+            [wy, -wz, ww, wx],
+            [wz, wy, -wx, ww],
+        ];
+        for (k, row) in rows.iter().enumerate() {
+            let (mut acc, mut e) = (x.q[k], 0.0f32);
+            for (a, b) in qh.iter().zip(row) {
+                let t = a * b;
+                let s = acc + t;
+                let bb = s - acc;
+                e += (acc - (s - bb)) + (t - bb);
+                acc = s;
+            }
+            (x.q[k], x.q_lo[k]) = fast_two_sum(acc, e + (small[k] + x.q_lo[k]));
+        }
     }
 
     /// [`add`] for each component.

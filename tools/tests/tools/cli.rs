@@ -122,3 +122,27 @@ pub fn row(xs: &[f64]) -> String {
         .collect::<Vec<_>>()
         .join(",")
 }
+
+/// `propagate` on a stream of increments: the final attitude (the last row).
+pub fn final_attitude(algo: &str, arith: &[&str], q0: [f64; 4], input: &str) -> [f64; 4] {
+    let q0 = format!("{:?},{:?},{:?},{:?}", q0[0], q0[1], q0[2], q0[3]);
+    let n = input.lines().count().to_string();
+    let mut args = vec![
+        "--input",
+        "increments",
+        "--algo",
+        algo,
+        "--dt",
+        "0.001",
+        "--q0",
+        &q0,
+        "--every",
+        &n,
+    ];
+    args.extend_from_slice(arith);
+    let out = run("propagate", &args, input);
+    assert_eq!(out.status, Some(0), "{algo} {arith:?}: {}", out.stderr);
+    let last = out.lines().last().copied().expect("a row");
+    let v = numbers(last);
+    [v[1], v[2], v[3], v[4]]
+}

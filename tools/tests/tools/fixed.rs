@@ -93,30 +93,6 @@ fn propagate_fixed_reproduces_the_firmware_bit_for_bit() {
     println!("propagate --fixed: every rule's attitude equals the firmware's bits");
 }
 
-/// `propagate` on a stream of increments: the final attitude (the last row).
-fn final_attitude(algo: &str, arith: &[&str], q0: [f64; 4], input: &str) -> [f64; 4] {
-    let q0 = format!("{:?},{:?},{:?},{:?}", q0[0], q0[1], q0[2], q0[3]);
-    let n = input.lines().count().to_string();
-    let mut args = vec![
-        "--input",
-        "increments",
-        "--algo",
-        algo,
-        "--dt",
-        "0.001",
-        "--q0",
-        &q0,
-        "--every",
-        &n,
-    ];
-    args.extend_from_slice(arith);
-    let out = crate::cli::run("propagate", &args, input);
-    assert_eq!(out.status, Some(0), "{algo} {arith:?}: {}", out.stderr);
-    let last = out.lines().last().copied().expect("a row");
-    let v = crate::cli::numbers(last);
-    [v[1], v[2], v[3], v[4]]
-}
-
 /// Black box, on inputs that do not repeat: the 3° cone at 19.37 Hz (1 kHz, 20 s) and a constant
 /// rate from a base attitude (60 s, its increment not a multiple of 2⁻³⁰), started on the motion
 /// and at the identity,
@@ -173,7 +149,9 @@ fn propagate_fixed_has_no_rounding_bias() {
             };
             let exact = qmul(pre, truth(t_end));
             for algo in ["exp", "coning1", "coning2", "coning3", "coning4"] {
-                let e = |arith: &[&str]| quat_angle(exact, final_attitude(algo, arith, q0, &input));
+                let e = |arith: &[&str]| {
+                    quat_angle(exact, crate::cli::final_attitude(algo, arith, q0, &input))
+                };
                 let (fixed, f32, f64) = (e(&["--fixed"]), e(&["--f32"]), e(&[]));
                 println!(
                     "{name:<17} identity={identity:<5} {algo:<8} --fixed {fixed:.3e}  --f32 {f32:.3e}  f64 {f64:.3e}"
