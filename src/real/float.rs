@@ -233,37 +233,49 @@ fn sincos_f32(x: f32) -> (f32, f32) {
 #[cfg(not(feature = "micromath"))]
 #[inline(always)]
 fn sincos_f32_reduced(x: f32) -> (f32, f32, f32) {
-    const FRAC_2_PI: f32 = core::f32::consts::FRAC_2_PI;
-    const P1: f32 = 1.570_312_5;
-    const P2: f32 = 4.838_705e-4; // = 0.000483870506286621093750 exactly (12 bits)
-    const P3: f32 = -4.371_139e-8;
-    const S1: f32 = -0.166_666_55;
-    const S2: f32 = 0.008_332_16;
-    const S3: f32 = -1.951_528_2e-4;
-    const C1: f32 = 0.041_666_646;
-    const C2: f32 = -0.001_388_736_8;
-    const C3: f32 = 2.443_845e-5;
-    // k = x·2/π rounded to the nearest integer by the 1.5·2²³ shift (exact for |x·2/π| < 2²²;
-    // no libm floorf call, about 20 instructions fewer on a Cortex-M4F); the shifted value's
-    // two lowest mantissa bits are k mod 4.
-    const SHIFT: f32 = 12_582_912.0;
-    let shifted = x * FRAC_2_PI + SHIFT;
-    let kf = shifted - SHIFT;
-    let r = ((x - kf * P1) - kf * P2) - kf * P3;
+    let shifted = x * k::FRAC_2_PI + k::SHIFT;
+    let kf = shifted - k::SHIFT;
+    let r = ((x - kf * k::P1) - kf * k::P2) - kf * k::P3;
     let r2 = r * r;
-    let s = r + r * r2 * (S1 + r2 * (S2 + r2 * S3));
-    let c = 1.0 - 0.5 * r2 + r2 * r2 * (C1 + r2 * (C2 + r2 * C3));
+    let s = r + r * r2 * (k::S1 + r2 * (k::S2 + r2 * k::S3));
+    let c = 1.0 - 0.5 * r2 + r2 * r2 * (k::C1 + r2 * (k::C2 + r2 * k::C3));
     (shifted, s, c)
 }
 
-/// [`sincos_f32`] of four angles, lane by lane the same operations (so the same bits, see the
-/// test): written over arrays so that the compiler evaluates the lanes in one SIMD register,
-/// with the quadrant selected on the bits. The range check is one integer comparison per lane
-/// (`|x|`'s bits above the limit's: also true for NaN and infinity); any lane out of range sends
-/// all four through the scalar path. Not inlined: inlined next to a constant lane, the compiler
-/// splits the lanes again.
+/// The constants of [`sincos_f32_reduced`] and [`sincos_f32_x4`].
 #[cfg(not(feature = "micromath"))]
-#[inline(never)]
+mod k {
+    pub const FRAC_2_PI: f32 = core::f32::consts::FRAC_2_PI;
+    pub const P1: f32 = 1.570_312_5;
+    pub const P2: f32 = 4.838_705e-4; // = 0.000483870506286621093750 exactly (12 bits)
+    pub const P3: f32 = -4.371_139e-8;
+    pub const S1: f32 = -0.166_666_55;
+    pub const S2: f32 = 0.008_332_16;
+    pub const S3: f32 = -1.951_528_2e-4;
+    pub const C1: f32 = 0.041_666_646;
+    pub const C2: f32 = -0.001_388_736_8;
+    pub const C3: f32 = 2.443_845e-5;
+    /// k = x·2/π rounded to the nearest integer by the 1.5·2²³ shift (exact for
+    /// |x·2/π| < 2²²; no libm floorf call, about 20 instructions fewer on a Cortex-M4F); the
+    /// shifted value's two lowest mantissa bits are k mod 4.
+    pub const SHIFT: f32 = 12_582_912.0;
+}
+
+/// [`sincos_f32`] of four angles, lane by lane the same operations (so the same bits, see the
+/// test), written statement by statement over the four lanes so that the compiler evaluates them
+/// in one SIMD register, with the quadrant selected on the bits. The range check is one integer
+/// comparison per lane (`|x|`'s bits above the limit's: also true for NaN and infinity); any
+/// lane out of range sends all four through the scalar path. Inlined into its caller: called,
+/// the four angles go through memory, stored one by one and loaded as one vector (a failed
+/// store-to-load forwarding on x86-64).
+///
+/// Measured on the Euler → quaternion row of `benches/rotation.rs` (f32, fastest batch, the same
+/// machine and run): one scalar chain per lane, called, 15.2 ns until the crate grew (the sensor
+/// layer) and the vectoriser then mixed scalar and shuffled vector code, 30.0 ns; statement by
+/// statement, called, 17–27 ns; statement by statement, inlined, 17.8 ns; three scalar calls
+/// 22 ns.
+#[cfg(not(feature = "micromath"))]
+#[inline(always)]
 fn sincos_f32_x4(x: [f32; 4]) -> ([f32; 4], [f32; 4]) {
     let mut out_of_range = 0u32;
     for v in x {
@@ -273,13 +285,39 @@ fn sincos_f32_x4(x: [f32; 4]) -> ([f32; 4], [f32; 4]) {
         let r = x.map(sincos_f32);
         return (r.map(|p| p.0), r.map(|p| p.1));
     }
-    let mut s = [0.0; 4];
-    let mut c = [0.0; 4];
-    for i in 0..4 {
-        let (shifted, si, ci) = sincos_f32_reduced(x[i]);
-        (s[i], c[i]) = quadrant_bits(shifted.to_bits(), si, ci);
-    }
-    (s, c)
+    // Statement by statement over the four lanes (the operations of `sincos_f32_reduced` and
+    // `quadrant_bits`, in their order): each statement is four like operations on adjacent
+    // values, one SIMD instruction.
+    let shifted = lanes(|i| x[i] * k::FRAC_2_PI + k::SHIFT);
+    let kf = lanes(|i| shifted[i] - k::SHIFT);
+    let r = lanes(|i| ((x[i] - kf[i] * k::P1) - kf[i] * k::P2) - kf[i] * k::P3);
+    let r2 = lanes(|i| r[i] * r[i]);
+    let s = lanes(|i| r[i] + r[i] * r2[i] * (k::S1 + r2[i] * (k::S2 + r2[i] * k::S3)));
+    let c =
+        lanes(|i| 1.0 - 0.5 * r2[i] + r2[i] * r2[i] * (k::C1 + r2[i] * (k::C2 + r2[i] * k::C3)));
+    let q = lanes_u32(|i| shifted[i].to_bits());
+    let swap = lanes_u32(|i| 0u32.wrapping_sub(q[i] & 1));
+    let (sb, cb) = (s.map(f32::to_bits), c.map(f32::to_bits));
+    let first = lanes_u32(|i| (sb[i] & !swap[i]) | (cb[i] & swap[i]));
+    let second = lanes_u32(|i| (cb[i] & !swap[i]) | (sb[i] & swap[i]));
+    (
+        lanes(|i| f32::from_bits(first[i] ^ ((q[i] & 2) << 30))),
+        lanes(|i| f32::from_bits(second[i] ^ ((q[i].wrapping_add(1) & 2) << 30))),
+    )
+}
+
+/// `[f(0), f(1), f(2), f(3)]`.
+#[cfg(not(feature = "micromath"))]
+#[inline(always)]
+fn lanes(f: impl Fn(usize) -> f32) -> [f32; 4] {
+    [f(0), f(1), f(2), f(3)]
+}
+
+/// `[f(0), f(1), f(2), f(3)]` for integer lanes.
+#[cfg(not(feature = "micromath"))]
+#[inline(always)]
+fn lanes_u32(f: impl Fn(usize) -> u32) -> [u32; 4] {
+    [f(0), f(1), f(2), f(3)]
 }
 
 /// `(sin x, cos x)` from `(s, c) = (sin r, cos r)` and the quadrant `q mod 4` of
