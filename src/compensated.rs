@@ -229,14 +229,15 @@ pub(crate) fn exp_terms<T: Real>(theta_sq: T) -> (T, T) {
 ///
 /// The large part is added without rounding ([`add_product_compensated`]): `q` and `(m, φ/2)` are
 /// split into halves (Veltkamp), the sixteen products of the high halves are exact, and each is
-/// added into `q` by TwoSum with its rounding carried; the products with a low half, `2⁻¹²`
-/// (f32) of the increment, join the small part. Rounded instead (`fl(q ⊗ (m, φ/2))`, `u·|φ|/2`
+/// added into `q` by TwoSum with its rounding carried; the products with a low half, at most
+/// `2⁻¹¹` (f32) of the increment, join the small part. Rounded instead (`fl(q ⊗ (m, φ/2))`, `u·|φ|/2`
 /// per component and update), the increment's rounding is a function of `q` and `φ` alone, so on
 /// a repeating motion it repeats update after update and piles up: measured on the classical
 /// coning motion (1° half-angle at 10 Hz, 1 kHz, 60 s, the same f32-rounded increments in f32 and
 /// f64, exact normalisation), the 4-sample rule ended 5.6e-7 rad from the f64 run with the
-/// rounded product and 8.8e-11 with this one; made exact in f64 instead, the rule's rotation
-/// vector (5.6e-7) or the renormalisation (5.9e-7) alone changed nothing. TwoSum, not Fast2Sum:
+/// rounded product and 8.8e-11 with this one (the attitude rounded to f32); made exact in f64
+/// instead, the rule's rotation vector (5.6e-7) or the renormalisation (5.9e-7) alone changed
+/// nothing (`host-tests/tests/propagation/compensated_ablation.rs`). TwoSum, not Fast2Sum:
 /// components of `q` pass through zero (near the identity three of them are small), where
 /// Fast2Sum's error is not exact; with it the same rule on a 3° cone ended 4.8e-8 rad from f64,
 /// with TwoSum 2.5e-9.

@@ -41,8 +41,9 @@
 //! repeats it repeats too. Measured on the classical coning motion (1° half-angle at 10 Hz, 1 kHz,
 //! 60 s, the input repeating every 100 increments; the same f32-rounded increments in f32 and
 //! f64), the 4-sample rule ended 5.6e-7 rad from the f64 run with the product rounded, 8.8e-11
-//! with it carried; the rule's rotation vector and the renormalisation, each made exact in f64
-//! in turn, changed nothing (`crate::compensated`).
+//! with it carried (the attitude rounded to f32); the rule's rotation vector and the
+//! renormalisation, each made exact in f64 in turn, changed nothing
+//! (`host-tests/tests/propagation/compensated_ablation.rs`).
 //!
 //! Measured over one hour at 1 kHz (3.6·10⁶ updates; `host-tests/tests/propagation/compensated.rs`,
 //! BENCHMARKS.md), in f32: steady rotation up to 1.1 rad/s, every increment rule ≤ 6.3e-8 rad
