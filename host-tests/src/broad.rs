@@ -492,15 +492,9 @@ pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), Str
     let v: f64 = value
         .parse()
         .map_err(|_| format!("{name}: not a number: {value:?}"))?;
-    if name == "heading_time_constant" {
-        p.gains = Gains::Fixed {
-            heading_time_constant: v,
-        };
-        return Ok(());
+    if p.set_by_name(name, v) {
+        Ok(())
+    } else {
+        Err(format!("unknown parameter {name:?}"))
     }
-    let slot = p
-        .parameter_mut(name)
-        .ok_or_else(|| format!("unknown parameter {name:?}"))?;
-    *slot = v;
-    Ok(())
 }

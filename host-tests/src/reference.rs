@@ -81,6 +81,21 @@ pub fn quat_matrix(q: Q) -> M3 {
     r
 }
 
+/// `exp(φ) = (cos(θ/2), sin(θ/2)·φ/θ)`, `θ = |φ|`, by `sin`/`cos` of the half angle (the
+/// identity for `φ = 0`).
+pub fn quat_exp(phi: V3) -> Q {
+    let t = norm(phi);
+    if t == 0.0 {
+        return [1.0, 0.0, 0.0, 0.0];
+    }
+    let (s, c) = (0.5 * t).sin_cos();
+    [c, s * phi[0] / t, s * phi[1] / t, s * phi[2] / t]
+}
+
+/// The f32 floor of an attitude: rounding each component of a unit quaternion to f32 moves it by
+/// at most half an ulp below 1, 2⁻²⁵, and turns it by at most `2·√3·2⁻²⁵ ≈ 1.03e-7` rad.
+pub const F32_FLOOR: f64 = 2.0 * 1.732_050_808 / 33_554_432.0;
+
 /// The rotation angle between two attitudes in `[0, π]` (SO(3) view: `q` and `−q` agree):
 /// `2 atan2(|v|, |w|)` of `a* ⊗ b`, accurate for tiny angles (unlike `acos` of the dot
 /// product).

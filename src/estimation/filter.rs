@@ -217,6 +217,25 @@ impl<T: Copy> Params<T> {
         })
     }
 
+    /// Sets the numeric parameter `name` to `value`: one of [`Params::NAMES`], or
+    /// `heading_time_constant`, which selects [`Gains::Fixed`] with that time constant. `false`
+    /// (and nothing changed) for any other name.
+    pub fn set_by_name(&mut self, name: &str, value: T) -> bool {
+        if name == "heading_time_constant" {
+            self.gains = Gains::Fixed {
+                heading_time_constant: value,
+            };
+            return true;
+        }
+        match self.parameter_mut(name) {
+            Some(slot) => {
+                *slot = value;
+                true
+            }
+            None => false,
+        }
+    }
+
     /// The same parameters with every number mapped by `f`, the frame and the choice of gains
     /// kept: `p.map(|x| x as f32)` is the f32 filter of the f64 parameters `p`.
     pub fn map<U>(&self, f: impl Fn(T) -> U) -> Params<U> {

@@ -687,6 +687,17 @@ fn parameters_by_name_and_between_precisions() {
     }
     assert!(p.parameter_mut("field_norm").is_none());
     assert!(p.parameter_mut("heading_time_constant").is_none());
+    // `set_by_name`: every numeric name, and the heading time constant as a choice of gains.
+    let mut r = p;
+    assert!(r.set_by_name("rest.gyro", 0.25));
+    assert_eq!(r.rest.gyro, 0.25);
+    assert!(r.set_by_name("heading_time_constant", 7.0));
+    assert!(
+        matches!(r.gains, Gains::Fixed { heading_time_constant } if heading_time_constant == 7.0)
+    );
+    let before = r;
+    assert!(!r.set_by_name("field_norm", 1.0));
+    assert_eq!(format!("{r:?}"), format!("{before:?}"));
     let at = |name: &str| {
         Params::<f64>::NAMES
             .iter()

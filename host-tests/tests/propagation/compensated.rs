@@ -22,7 +22,7 @@ use gyrostat::propagation::{
 };
 use gyrostat::{Real, UnitQuat, Vec3};
 use host_tests::ref_propagation::Coning;
-use host_tests::reference::{Q, quat_angle};
+use host_tests::reference::{F32_FLOOR, Q, quat_angle, quat_exp};
 
 /// Updates in one hour at 1 kHz.
 const N: usize = 3_600_000;
@@ -30,9 +30,6 @@ const N: usize = 3_600_000;
 const DT: f64 = 1e-3;
 /// The target: 0.01°/h.
 const TARGET: f64 = 1.7e-4;
-/// The f32 floor: rounding each component of a unit quaternion to f32 moves it by at most half an
-/// ulp below 1, 2⁻²⁵, and turns it by at most `2·√3·2⁻²⁵ ≈ 1.03e-7` rad.
-const F32_FLOOR: f64 = 2.0 * 1.732_050_808 / 33_554_432.0;
 
 /// Steady body rates, rad/s: the case, the same direction at 0.11 rad/s, a single axis.
 const STEADY: [[f64; 3]; 3] = [[0.5, -0.8, 0.6], [0.05, -0.08, 0.06], [0.0, 0.0, 0.1]];
@@ -54,14 +51,6 @@ fn v32(v: [f64; 3]) -> Vec3<f32> {
 fn widen(v: Vec3<f32>) -> Vec3<f64> {
     Vec3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z))
 }
-
-/// `exp(φ)` in f64, written out.
-fn exp64(phi: [f64; 3]) -> Q {
-    let a = (phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2]).sqrt();
-    let (s, c) = (0.5 * a).sin_cos();
-    [c, s * phi[0] / a, s * phi[1] / a, s * phi[2] / a]
-}
-
 /// Runs `n` increments from `inc(k)` through an increment integrator carrying `A`, returns the
 /// final attitude.
 fn run_increments<T: Real, A: PropagatedAttitude<T>>(
@@ -85,7 +74,7 @@ fn run_increments<T: Real, A: PropagatedAttitude<T>>(
 fn compensated_increments_steady_one_hour() {
     for w in STEADY {
         let theta = v32(w.map(|c| c * DT));
-        let exact = exp64(widen(theta).scale(N as f64).to_array());
+        let exact = quat_exp(widen(theta).scale(N as f64).to_array());
         std::thread::scope(|scope| {
             let runs: Vec<_> = ConingRule::ALL
                 .iter()
@@ -195,7 +184,7 @@ fn compensated_rates_one_hour() {
             for w in STEADY {
                 runs.push(scope.spawn(move || {
                     let omega = v32(w);
-                    let exact = exp64(widen(omega).scale(N as f64 * DT).to_array());
+                    let exact = quat_exp(widen(omega).scale(N as f64 * DT).to_array());
                     let rate = move |_| omega;
                     let q0 = UnitQuat::IDENTITY;
                     let comp = run_rates(CompensatedAttitude::new(q0), method, dt, dt_lo, N, &rate);
@@ -238,7 +227,7 @@ fn compensated_rates_one_hour() {
 fn compensated_increments_in_f64() {
     let theta = Vec3::new(5e-4, -8e-4, 6e-4);
     let n = 100_000;
-    let exact = exp64(theta.scale(n as f64).to_array());
+    let exact = quat_exp(theta.scale(n as f64).to_array());
     for rule in ConingRule::ALL {
         let inc = move |_| theta;
         let q0 = UnitQuat::<f64>::IDENTITY;

@@ -27,7 +27,7 @@
 use gyrostat::propagation::{CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization};
 use gyrostat::{Quat, UnitQuat, Vec3};
 use host_tests::ref_propagation::Coning;
-use host_tests::reference::{Q, qmul, quat_angle};
+use host_tests::reference::{Q, qmul, quat_angle, quat_exp};
 
 /// The setting of [`Replica::update`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -90,13 +90,6 @@ fn split4(v: Q) -> (Q32, Q32) {
 fn pair64(q: Q32, lo: Q32) -> Q {
     [0, 1, 2, 3].map(|i| f64::from(q[i]) + f64::from(lo[i]))
 }
-
-fn exp64(p: [f64; 3]) -> Q {
-    let a = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-    let (s, c) = (0.5 * a).sin_cos();
-    [c, s * p[0] / a, s * p[1] / a, s * p[2] / a]
-}
-
 /// The 4-sample rule's lever `2·(27 t₁ + 46 t₂ + 107 t₃)/105` in f32, as `four_sample_terms`.
 fn lever4(s: &[V32]) -> V32 {
     let r = |n: f64| (n / 105.0) as f32;
@@ -147,7 +140,7 @@ impl Replica {
                 sum[1] + (l[2] * last[0] - l[0] * last[2]),
                 sum[2] + (l[0] * last[1] - l[1] * last[0]),
             ];
-            let q = qmul(pair64(self.q, self.lo), exp64(phi));
+            let q = qmul(pair64(self.q, self.lo), quat_exp(phi));
             let n = q.iter().map(|c| c * c).sum::<f64>().sqrt();
             (self.q, self.lo) = split4(q.map(|c| c / n));
             return;

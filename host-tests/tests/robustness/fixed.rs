@@ -21,7 +21,7 @@ use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, 
 use gyrostat::{Error, Quat, Ring, UnitQuat, Vec3};
 use host_tests::campaign::*;
 use host_tests::family;
-use host_tests::reference::{Q, V3, add, cross, qmul, quat_angle, scale};
+use host_tests::reference::{Q, V3, add, cross, qmul, quat_angle, quat_exp, scale};
 use host_tests::tolerance::Tolerance;
 
 /// The resolution of Q1.30, 2⁻³⁰.
@@ -82,17 +82,6 @@ fn q64(q: UnitQuat<Q30>) -> Q {
 fn health(q: UnitQuat<Q30>) -> f64 {
     q64(q).iter().map(|c| c * c).sum::<f64>() - 1.0
 }
-
-/// `exp(φ)` in f64 by `sin`/`cos` of the half angle.
-fn exp64(phi: V3) -> Q {
-    let t = (phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2]).sqrt();
-    if t == 0.0 {
-        return [1.0, 0.0, 0.0, 0.0];
-    }
-    let s = (t / 2.0).sin() / t;
-    [(t / 2.0).cos(), phi[0] * s, phi[1] * s, phi[2] * s]
-}
-
 /// The rule's rotation vector in f64 from its written coefficients.
 fn rule64(rule: ConingRule, previous: V3, g: &[V3]) -> V3 {
     match rule {
@@ -311,7 +300,7 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                     if small {
                         let (a, b) = (v64(t[0]), v64(t[1]));
                         let phi = rule64(ConingRule::TwoSample, [0.0; 3], &[a, b]);
-                        let want = qmul(q64(q), exp64(phi));
+                        let want = qmul(q64(q), quat_exp(phi));
                         let got = q64(coning2_update(q, t[0], t[1]));
                         let err = quat_angle(want, got);
                         ensure(err <= 64.0 * U, || format!("coning2 {err:e} rad off"))?;
@@ -341,7 +330,7 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                                 let d64 = v64(d);
                                 group.push(d64);
                                 if let Some(att) = done {
-                                    q = qmul(q, exp64(rule64(rule, previous, &group)));
+                                    q = qmul(q, quat_exp(rule64(rule, previous, &group)));
                                     previous = d64;
                                     group.clear();
                                     updates += 1;

@@ -506,14 +506,13 @@ impl From<io::Error> for Failure {
     }
 }
 
-/// The next sample of the input with its line number, skipping blank lines; `Ok(None)` at the
-/// end. Pending output is flushed before a read that may wait.
-fn next_sample<T: Real + FromStr, R: io::Read>(
+/// The next non-blank row of the input parsed by `parse`, with its line number; `Ok(None)` at
+/// the end. Pending output is flushed before a read that may wait.
+fn next_row<X, R: io::Read>(
     lines: &mut Lines<R>,
     out: &mut Csv,
-    sensor: &Sensor,
-    dt: Option<f64>,
-) -> Result<Option<(u64, Vec3<T>)>, Failure> {
+    parse: impl FnOnce(&str) -> Result<X, String>,
+) -> Result<Option<(u64, X)>, Failure> {
     loop {
         if lines.will_read() {
             out.flush()?;
@@ -524,16 +523,28 @@ fn next_sample<T: Real + FromStr, R: io::Read>(
         match line {
             Ok(text) if text.trim().is_empty() => continue,
             Ok(text) => {
-                return parse_row::<T>(text)
-                    .map(|v| {
-                        let v = sensor.apply(Vec3::from_array(v.to_array().map(T::to_f64)), dt);
-                        Some((n, Vec3::from_array(v.to_array().map(T::from_f64))))
-                    })
+                return parse(text)
+                    .map(|x| Some((n, x)))
                     .map_err(|e| Failure::Row(n, e));
             }
             Err(reason) => return Err(Failure::Row(n, reason)),
         }
     }
+}
+
+/// The next sample of the input through the sensor model ([`next_row`]).
+fn next_sample<T: Real + FromStr, R: io::Read>(
+    lines: &mut Lines<R>,
+    out: &mut Csv,
+    sensor: &Sensor,
+    dt: Option<f64>,
+) -> Result<Option<(u64, Vec3<T>)>, Failure> {
+    next_row(lines, out, |text| {
+        parse_row::<T>(text).map(|v| {
+            let v = sensor.apply(Vec3::from_array(v.to_array().map(T::to_f64)), dt);
+            Vec3::from_array(v.to_array().map(T::from_f64))
+        })
+    })
 }
 
 /// `q` when it is a finite unit quaternion; otherwise the error of the sample on line `n`.
@@ -912,28 +923,12 @@ fn timed_step(clock: &mut TimedClock, raw: f64, n: u64) -> Result<(f64, Option<f
     }
 }
 
-/// The next `t,x,y,z` row (t raw, in the input's unit), skipping blank lines.
+/// The next `t,x,y,z` row (t raw, in the input's unit), skipping blank lines ([`next_row`]).
 fn next_timed<R: io::Read>(
     lines: &mut Lines<R>,
     out: &mut Csv,
 ) -> Result<Option<(u64, f64, Vec3<f64>)>, Failure> {
-    loop {
-        if lines.will_read() {
-            out.flush()?;
-        }
-        let Some((n, line)) = lines.next_line()? else {
-            return Ok(None);
-        };
-        match line {
-            Ok(text) if text.trim().is_empty() => continue,
-            Ok(text) => {
-                return parse_timed_row(text)
-                    .map(|(t, v)| Some((n, t, v)))
-                    .map_err(|e| Failure::Row(n, e));
-            }
-            Err(reason) => return Err(Failure::Row(n, reason)),
-        }
-    }
+    Ok(next_row(lines, out, parse_timed_row)?.map(|(n, (t, v))| (n, t, v)))
 }
 
 /// `--time-column`: increments over their own intervals (exp, or the 2-sample rule for unequal

@@ -23,7 +23,7 @@ use std::f64::consts::TAU;
 
 use crate::cli::{numbers, row, run};
 use host_tests::ref_propagation::{Coning, body_error, fit_slope};
-use host_tests::reference::quat_angle;
+use host_tests::reference::{F32_FLOOR, quat_angle, quat_exp};
 
 /// The attitude rows `k → q` of a `propagate` run.
 fn attitudes(stdout: &str) -> Vec<(u64, [f64; 4])> {
@@ -265,14 +265,6 @@ fn error_paths() {
         assert!(out.stdout.is_empty(), "{args:?}");
     }
 }
-
-/// `exp(φ)` in f64, written out.
-fn exp64(phi: [f64; 3]) -> [f64; 4] {
-    let a = (phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2]).sqrt();
-    let (s, c) = (0.5 * a).sin_cos();
-    [c, s * phi[0] / a, s * phi[1] / a, s * phi[2] / a]
-}
-
 /// `--f32 --compensated` at the f32 floor on coning motion: fed the same f32-rounded increments
 /// and the same f32-rounded start, it ends no farther from the exact attitude than twice the f64
 /// run, for every rule. Black box through `propagate`, on the classical coning motion
@@ -284,10 +276,6 @@ fn exp64(phi: [f64; 3]) -> [f64; 4] {
 /// rounded). From the turned frame the f32 line is limited by its own rounding: rounding that
 /// attitude's components to f32 turns it by up to [`F32_FLOOR`] = 1.03e-7 rad, more than twice
 /// f64's error (4.7e-8), so there the line is asserted within that floor of the f64 run.
-/// Rounding each component of a unit quaternion to f32 moves it by at most 2⁻²⁵ (half an ulp
-/// below 1) and turns it by at most `2·√3·2⁻²⁵ ≈ 1.03e-7` rad.
-const F32_FLOOR: f64 = 2.0 * 1.732_050_808 / 33_554_432.0;
-
 #[test]
 fn propagate_compensated_f32_coning_at_the_floor() {
     use host_tests::ref_propagation::Coning;
@@ -379,7 +367,7 @@ fn propagate_cli_compensated() {
         ),
     ];
     for (input, algo, text, phi) in cases {
-        let exact = exp64(phi);
+        let exact = quat_exp(phi);
         let base = [
             "--input", input, "--algo", algo, "--dt", "0.001", "--every", "50000",
         ];

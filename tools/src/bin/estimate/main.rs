@@ -241,17 +241,11 @@ fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), String>
         None => (value, 1.0),
     };
     let v = flags::number(name, number)? * factor;
-    if name == "heading_time_constant" {
-        p.gains = Gains::Fixed {
-            heading_time_constant: v,
-        };
-        return Ok(());
+    if p.set_by_name(name, v) {
+        Ok(())
+    } else {
+        Err(format!("unknown parameter '{name}' (see --help)"))
     }
-    let slot = p
-        .parameter_mut(name)
-        .ok_or_else(|| format!("unknown parameter '{name}' (see --help)"))?;
-    *slot = v;
-    Ok(())
 }
 
 enum Failure {
