@@ -16,6 +16,7 @@
 
 pub mod calibration;
 pub mod flags;
+pub mod noise;
 pub mod plot;
 pub mod simulation;
 pub mod stream;
