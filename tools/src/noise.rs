@@ -74,7 +74,7 @@ pub const FLICKER_PER_DECADE: u32 = 2;
 
 /// `√(2 ln 2 / π)`: the Allan deviation of flicker noise over its bias instability coefficient
 /// (IEEE Std 952, C.3: the floor `σ = 0.664·B`).
-pub const FLICKER_FLOOR: f64 = 0.664_282_470_267_960_0;
+pub const FLICKER_FLOOR: f64 = 0.664_282_470_267_96;
 
 /// The noise coefficients of one sensor (the same for its three axes), SI units (see the module
 /// documentation for the model and the units).
