@@ -14,6 +14,7 @@
 //! A further tool is one more file in `src/bin/` that declares its [`flags::Cli`] and reads its
 //! input with [`stream::Lines`].
 
+pub mod allan;
 pub mod calibration;
 pub mod flags;
 pub mod noise;
