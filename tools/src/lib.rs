@@ -16,7 +16,9 @@
 
 pub mod allan;
 pub mod calibration;
+pub mod characterization;
 pub mod flags;
+pub mod imu_log;
 pub mod noise;
 pub mod plot;
 pub mod simulation;
