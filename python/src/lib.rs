@@ -20,6 +20,7 @@ use numpy::{
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+mod allan;
 mod estimation;
 mod propagation;
 mod rotation;
@@ -235,5 +236,6 @@ fn _gyrostat(m: &Bound<'_, PyModule>) -> PyResult<()> {
     propagation::register(m)?;
     simulation::register(m)?;
     estimation::register(m)?;
+    allan::register(m)?;
     Ok(())
 }

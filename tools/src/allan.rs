@@ -180,7 +180,7 @@ pub fn overlapping(y: &[f64], rate: f64, ms: &[usize]) -> Result<Vec<AllanPoint>
                     d * d
                 })
                 .sum();
-            let tau = m as f64 * tau0;
+            let tau = m as f64 / rate;
             let avar = sum / (2.0 * tau * tau * terms as f64);
             Ok(AllanPoint {
                 tau,

@@ -6,13 +6,15 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
 
-/// The path of the tool `name` (`convert`, `propagate`, `simulate` or `estimate`).
+/// The path of the tool `name` (`convert`, `propagate`, `simulate`, `estimate` or
+/// `characterize`).
 pub fn tool(name: &str) -> PathBuf {
     PathBuf::from(match name {
         "convert" => env!("CARGO_BIN_EXE_convert"),
         "propagate" => env!("CARGO_BIN_EXE_propagate"),
         "simulate" => env!("CARGO_BIN_EXE_simulate"),
         "estimate" => env!("CARGO_BIN_EXE_estimate"),
+        "characterize" => env!("CARGO_BIN_EXE_characterize"),
         other => panic!("no tool {other}"),
     })
 }
