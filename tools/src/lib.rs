@@ -9,9 +9,9 @@
 //! The tools are binaries of this crate (`src/bin/`); install them with
 //! `cargo install --path tools`, or run them from a checkout with the cargo aliases of
 //! `.cargo/config.toml` (`cargo simulate`, `cargo convert ...`, `cargo propagate ...`,
-//! `cargo estimate ...`, `cargo characterize ...`). Their interfaces (flags, formats, exit statuses) are in each tool's
-//! `--help` and in README.md; the library itself (`gyrostat`) stays `no_std` and knows nothing
-//! of them.
+//! `cargo estimate ...`, `cargo characterize ...`). Their interfaces (flags, formats, exit
+//! statuses) are in each tool's `--help` and in README.md; the library itself (`gyrostat`) stays
+//! `no_std` and knows nothing of them.
 //!
 //! A further tool is one more file in `src/bin/` that declares its [`flags::Cli`] and reads its
 //! input with [`stream::Lines`].
