@@ -102,9 +102,11 @@ OUTPUT (stdout): two CSV tables separated by a blank line (SI units: rad/s, m/s^
       overlapping terms, of non-overlapping clusters, the equivalent degrees of freedom (the
       relative error of adev is about 1/sqrt(2 edf)), and the fitted model there.
 
-ERRORS (stderr): error: line N: reason  (a row that estimate rejects, a time stamp not after
-    the previous one; exit 1); error: reason  (a bad command line: exit 2; an unreadable FILE,
-    fewer than 3 rows selected, a missing movement column with --rest-phase: exit 1).
+ERRORS (stderr): error: line N: reason  (a row that estimate rejects, a non-finite
+    accelerometer value, a time stamp not after the previous one: exit 1); error: reason  (a
+    bad command line, a unit flag contradicting a column name, --rest-phase without a movement
+    column: exit 2; an unreadable FILE, fewer than 3 rows selected: exit 1). Nothing is
+    printed or written after an error.
 ";
 
 /// Which rows.
@@ -257,7 +259,13 @@ fn read(args: &Args) -> Result<Log, Failure> {
             }
         }
         let Some((l, s)) = &layout else { continue };
-        let sample = parse_row(&text, l, s, false).map_err(|e| Failure::Row(n, e))?;
+        let sample = parse_row(&text, l, s, false).map_err(|e| {
+            // The shared reader's note on the estimator does not apply here.
+            Failure::Row(
+                n,
+                e.replace(" (the estimator cannot propagate across it)", ""),
+            )
+        })?;
         row += 1;
         let t = sample.t * s.time;
         let keep = match args.select {
