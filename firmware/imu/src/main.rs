@@ -9,8 +9,8 @@
 //! cargo run --profile firmware -p gyrostat-fw-imu --target riscv32imac-unknown-none-elf        # RV32IMAC, text
 //! ```
 //!
-//! Under QEMU there is no sensor: the I²C bus is [`ImuBoard`], a device model of the two chips
-//! behind the `embedded_hal::i2c::I2c` trait, and the timer is [`CaptureTimer`], a model of a
+//! Under QEMU there is no sensor: the I²C bus is `ImuBoard`, a device model of the two chips
+//! behind the `embedded_hal::i2c::I2c` trait, and the timer is `CaptureTimer`, a model of a
 //! free-running 1 MHz counter that latches its value at the IMU's data-ready edge (a timer input
 //! capture on the INT1 pin). The model answers the drivers' register accesses with the rows of a
 //! real log (`src/replay.rs`: BROAD trial 07, quantised to the chips' LSB and full scale, with a
@@ -34,9 +34,7 @@ mod firmware {
     use icm42670::prelude::*;
     use icm42670::{AccelOdr, AccelRange, Address, GyroOdr, GyroRange, Icm42670};
     use lsm303agr::{Lsm303agr, MagMode, MagOutputDataRate};
-    use replay::{
-        Line, MAG_EVERY, MISSED_DRDY_ROW, ROWS, RawSample, Replay, row, row_time_us,
-    };
+    use replay::{Line, MAG_EVERY, MISSED_DRDY_ROW, ROWS, RawSample, Replay, row, row_time_us};
 
     mod board {
         include!("../../../examples/fw/board.rs");
@@ -148,21 +146,29 @@ mod firmware {
                 && *self.icm.reg(ICM_GYRO_CONFIG0) >> 5 & 3 == 0
                 && *self.icm.reg(ICM_ACCEL_CONFIG0) >> 5 & 3 == 2;
             for (i, &v) in r[..6].iter().enumerate() {
-                let base = if i < 3 { ICM_GYRO_DATA_X1 } else { ICM_ACCEL_DATA_X1 };
+                let base = if i < 3 {
+                    ICM_GYRO_DATA_X1
+                } else {
+                    ICM_ACCEL_DATA_X1
+                };
                 let [hi, lo] = (if imu_on { v } else { i16::MIN }).to_be_bytes();
                 let at = base + 2 * (i as u8 % 3);
                 *self.icm.reg(at) = hi;
                 *self.icm.reg(at + 1) = lo;
             }
             let mag_on = *self.lsm_mag.reg(LSM_CFG_REG_A_M) & 0x03 == 0;
-            if mag_on && k % MAG_EVERY == 0 {
+            if mag_on && k.is_multiple_of(MAG_EVERY) {
                 for (i, &v) in r[6..].iter().enumerate() {
                     let [lo, hi] = v.to_le_bytes();
                     *self.lsm_mag.reg(LSM_OUTX_L_REG_M + 2 * i as u8) = lo;
                     *self.lsm_mag.reg(LSM_OUTX_L_REG_M + 2 * i as u8 + 1) = hi;
                 }
                 let status = self.lsm_mag.reg(LSM_STATUS_REG_M);
-                *status = if *status & ZYXDA != 0 { ZYXDA | ZYXOR } else { ZYXDA };
+                *status = if *status & ZYXDA != 0 {
+                    ZYXDA | ZYXOR
+                } else {
+                    ZYXDA
+                };
             }
             u8::from(k != MISSED_DRDY_ROW)
         }
@@ -285,13 +291,17 @@ mod firmware {
     }
 
     /// The whole application: bring the chips up, then one loop iteration per data-ready.
+    /// Not inlined, so that its state (bus model, drivers, filter) counts in the measured stack.
+    #[inline(never)]
     pub fn run(emit: &mut impl FnMut(Line), meter: &mut impl Meter) -> Result<u32, Stop> {
         let bus = RefCell::new(ImuBoard::new());
         let timer = CaptureTimer(&bus);
 
         // The IMU: ±2000 °/s, ±4 g, 400 Hz (the model replays the log at its own 285.7 Hz).
-        let mut imu = Icm42670::new(RefCellDevice::new(&bus), Address::Primary).map_err(|_| Stop::Imu)?;
-        imu.set_gyro_range(GyroRange::Deg2000).map_err(|_| Stop::Imu)?;
+        let mut imu =
+            Icm42670::new(RefCellDevice::new(&bus), Address::Primary).map_err(|_| Stop::Imu)?;
+        imu.set_gyro_range(GyroRange::Deg2000)
+            .map_err(|_| Stop::Imu)?;
         imu.set_accel_range(AccelRange::G4).map_err(|_| Stop::Imu)?;
         imu.set_gyro_odr(GyroOdr::Hz400).map_err(|_| Stop::Imu)?;
         imu.set_accel_odr(AccelOdr::Hz400).map_err(|_| Stop::Imu)?;
@@ -301,8 +311,12 @@ mod firmware {
             return Err(Stop::Mag);
         }
         mag.init().map_err(|_| Stop::Mag)?;
-        mag.set_mag_mode_and_odr(&mut NoDelay, MagMode::HighResolution, MagOutputDataRate::Hz100)
-            .map_err(|_| Stop::Mag)?;
+        mag.set_mag_mode_and_odr(
+            &mut NoDelay,
+            MagMode::HighResolution,
+            MagOutputDataRate::Hz100,
+        )
+        .map_err(|_| Stop::Mag)?;
         let mut mag = mag.into_mag_continuous().map_err(|_| Stop::Mag)?;
         // The data-ready status, read on the same bus beside the driver.
         let mut status_reg = RefCellDevice::new(&bus);
@@ -440,14 +454,34 @@ mod firmware {
 
         fn emit(line: Line) {
             match line {
-                Line::Attitude { n, est: e, strapdown: s } => defmt::println!(
+                Line::Attitude {
+                    n,
+                    est: e,
+                    strapdown: s,
+                } => defmt::println!(
                     "att {=u32} {=u32} {=u32} {=u32} {=u32} sd {=u32} {=u32} {=u32} {=u32}",
-                    n, e[0], e[1], e[2], e[3], s[0], s[1], s[2], s[3]
+                    n,
+                    e[0],
+                    e[1],
+                    e[2],
+                    e[3],
+                    s[0],
+                    s[1],
+                    s[2],
+                    s[3]
                 ),
                 Line::Bias(b) => defmt::println!("bias {=u32} {=u32} {=u32}", b[0], b[1], b[2]),
                 Line::Counters(c) => defmt::println!(
                     "count samples {=u32} mag {=u32} late {=u32} gaps {=u32} clipped {=u32} stuck {=u32} skipped {=u32} rejected {=u32} time_us {=u32}",
-                    c.samples, c.mag, c.late, c.gaps, c.clipped, c.stuck, c.skipped, c.rejected, c.time_us
+                    c.samples,
+                    c.mag,
+                    c.late,
+                    c.gaps,
+                    c.clipped,
+                    c.stuck,
+                    c.skipped,
+                    c.rejected,
+                    c.time_us
                 ),
             }
         }
@@ -481,7 +515,7 @@ mod firmware {
             match result {
                 Ok(polls) => {
                     defmt::println!(
-                        "loop instructions per sample: read {=u32} filter {=u32} (max {=u32}), {=u32} samples; stack {=u32} bytes",
+                        "loop instructions per data-ready sample: read {=u32} filter {=u32} (max {=u32}), over {=u32} samples without output; stack {=u32} bytes",
                         per_sample(meter.read_ticks, meter.samples, per_200k),
                         per_sample(meter.filter_ticks, meter.samples, per_200k),
                         per_sample(u64::from(meter.filter_max), 1, per_200k),

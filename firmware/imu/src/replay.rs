@@ -98,7 +98,7 @@ pub fn samples(mut f: impl FnMut(&RawSample) -> Result<(), Error>) -> Result<(),
     let mut mag_unread = None;
     for k in 0..ROWS {
         let r = row(k).ok_or(Error::InvalidArgument)?;
-        if k % MAG_EVERY == 0 {
+        if k.is_multiple_of(MAG_EVERY) {
             mag_unread = Some([r[6], r[7], r[8]]);
         }
         if k == MISSED_DRDY_ROW {
@@ -303,7 +303,7 @@ impl Replay {
             }
         }
 
-        if self.counters.samples % PRINT_EVERY == 0 {
+        if self.counters.samples.is_multiple_of(PRINT_EVERY) {
             let strapdown = self
                 .strapdown
                 .as_ref()

@@ -23,8 +23,12 @@ use replay::*;
 fn host_lines() -> Vec<String> {
     let mut lines = Vec::new();
     let mut replay = Replay::try_new().expect("constants accepted");
-    samples(|s| replay.push(s, &mut |l| lines.push(l.to_string())).map(|_| ()))
-        .expect("replay runs");
+    samples(|s| {
+        replay
+            .push(s, &mut |l| lines.push(l.to_string()))
+            .map(|_| ())
+    })
+    .expect("replay runs");
     replay.finish(&mut |l| lines.push(l.to_string()));
     lines
 }
@@ -41,7 +45,7 @@ fn expected_counters() -> Counters {
     // 9D updates: every magnetometer row, except those arriving with a skipped sample (the
     // missed row's field is read with the next row).
     let mag = (0..ROWS)
-        .filter(|k| k % MAG_EVERY == 0 && !skipped_rows.contains(k))
+        .filter(|k| k.is_multiple_of(MAG_EVERY) && !skipped_rows.contains(k))
         .count() as u32;
     Counters {
         samples,
@@ -92,13 +96,15 @@ fn the_table_has_exactly_the_documented_faults() {
     }
     assert!(!SATURATED_ROWS.contains(&MISSED_DRDY_ROW) && !STUCK_ROWS.contains(&MISSED_DRDY_ROW));
     // The missed row carries a magnetometer field, read with the next row.
-    assert_eq!(MISSED_DRDY_ROW % MAG_EVERY, 0);
+    assert!(MISSED_DRDY_ROW.is_multiple_of(MAG_EVERY));
 }
 
 /// The timer wraps within the log, and the firmware's intervals do not see it.
 #[test]
 fn the_timer_wraps_during_the_replay() {
-    let wraps = (1..ROWS).filter(|&k| row_time_us(k) < row_time_us(k - 1)).count();
+    let wraps = (1..ROWS)
+        .filter(|&k| row_time_us(k) < row_time_us(k - 1))
+        .count();
     assert_eq!(wraps, 1);
 }
 
@@ -140,7 +146,10 @@ fn the_table_is_the_quantised_broad_trial() {
     assert!(worst[0] <= 0.5 * GYRO_LSB_RAD_S * (1.0 + 1e-9));
     assert!(worst[1] <= 0.5 * ACCEL_LSB_M_S2 * (1.0 + 1e-9));
     assert!(worst[2] <= 0.5 * MAG_LSB_UT * (1.0 + 1e-9));
-    println!("worst dequantisation error: gyro {:.2e} rad/s, accel {:.2e} m/s², mag {:.3} uT", worst[0], worst[1], worst[2]);
+    println!(
+        "worst dequantisation error: gyro {:.2e} rad/s, accel {:.2e} m/s², mag {:.3} uT",
+        worst[0], worst[1], worst[2]
+    );
 }
 
 /// The firmware's targets and the names of their output files.
@@ -152,20 +161,29 @@ fn boards_print_the_same_bits_as_the_host() {
     let dir = std::env::var("GYROSTAT_FIRMWARE_OUTPUT")
         .expect("GYROSTAT_FIRMWARE_OUTPUT must name the directory of the firmware output");
     let host = host_lines();
-    assert_eq!(host.len(), (expected_counters().samples / PRINT_EVERY) as usize + 2);
+    assert_eq!(
+        host.len(),
+        (expected_counters().samples / PRINT_EVERY) as usize + 2
+    );
     let expected = expected_counters();
     assert!(host.last().unwrap().starts_with("count "));
     for target in TARGETS {
         let path = std::path::Path::new(&dir).join(format!("imu-{target}.txt"));
-        let text = std::fs::read_to_string(&path)
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        assert!(text.lines().any(|l| l == "done"), "{target}: no `done` line");
+        let text =
+            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert!(
+            text.lines().any(|l| l == "done"),
+            "{target}: no `done` line"
+        );
         let fw: Vec<String> = text
             .lines()
             .filter(|l| ["att ", "bias ", "count "].iter().any(|p| l.starts_with(p)))
             .map(str::to_owned)
             .collect();
         assert_eq!(fw, host, "{target}: output differs from the host's");
-        println!("{target}: {} lines identical to the host's; {expected:?}", fw.len());
+        println!(
+            "{target}: {} lines identical to the host's; {expected:?}",
+            fw.len()
+        );
     }
 }
