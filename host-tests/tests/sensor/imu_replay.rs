@@ -106,6 +106,8 @@ fn the_timer_wraps_during_the_replay() {
         .filter(|&k| row_time_us(k) < row_time_us(k - 1))
         .count();
     assert_eq!(wraps, 1);
+    // The missed data-ready's long step is the one across the wrap.
+    assert!(row_time_us(MISSED_DRDY_ROW) < row_time_us(MISSED_DRDY_ROW - 1));
 }
 
 /// The table is BROAD trial 07, rows 6700.., quantised as `imu_log.py` documents (requantised
@@ -150,6 +152,86 @@ fn the_table_is_the_quantised_broad_trial() {
         "worst dequantisation error: gyro {:.2e} rad/s, accel {:.2e} m/s², mag {:.3} uT",
         worst[0], worst[1], worst[2]
     );
+}
+
+/// The replay's estimate against BROAD's optical reference (BROAD's metric over the rows in
+/// motion), beside the same estimator fed the trial's own f64 samples of the same rows (no
+/// quantisation, no faults, no calibration, the field in the IMU's axes): the registers, the
+/// sensor layer and the three faults may cost at most 1° of total RMS error. Skipped when the
+/// shared folder is absent.
+#[test]
+fn the_replay_estimate_tracks_the_optical_reference() {
+    use gyrostat::Vec3;
+    use gyrostat::estimation::{Estimator, Params};
+    use host_tests::broad::{Log, Units, open_log, score, trial_path};
+    let path = trial_path("07_undisturbed_fast_rotation_B");
+    if !path.exists() {
+        eprintln!("skipped: {} absent", path.display());
+        return;
+    }
+    let full = open_log(&path, Units::SI).unwrap();
+    let window = Log {
+        rows: full.rows[6700..6700 + ROWS].to_vec(),
+        ..full.clone()
+    };
+    // The replay: the estimate after each used sample, at that row's time.
+    let mut replay = Replay::try_new().unwrap();
+    let mut estimate = Vec::new();
+    let mut k = 0;
+    samples(|s| {
+        while row_time_us(k) != s.t_us {
+            k += 1;
+        }
+        let used = replay.counters().samples;
+        replay.push(s, &mut |_| ())?;
+        if replay.counters().samples > used {
+            let q = replay.attitude().to_array().map(f64::from);
+            estimate.push((window.rows[k].t, q));
+        }
+        Ok(())
+    })
+    .unwrap();
+    let fw = score(&window, &estimate);
+    // The reference run: every row, as the trial gives it.
+    let mut f = Estimator::<f32>::try_new(Params::default()).unwrap();
+    let v = |a: [f64; 3]| Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32);
+    let plain: Vec<(f64, [f64; 4])> = window
+        .rows
+        .iter()
+        .map(|r| {
+            f.update_9d(
+                v(r.gyro),
+                v(r.accel),
+                v(r.mag.unwrap()),
+                PERIOD_US as f32 * 1e-6,
+            )
+            .unwrap();
+            (r.t, f.attitude().to_array().map(f64::from))
+        })
+        .collect();
+    let reference = score(&window, &plain);
+    println!("replay: {fw:?}\ntrial samples: {reference:?}");
+    let part = |a: usize, b: usize| {
+        let rows = Log {
+            rows: window.rows[a..b].to_vec(),
+            ..full.clone()
+        };
+        let (r, p) = (score(&rows, &estimate), score(&rows, &plain));
+        println!(
+            "rows {a}..{b}: replay {:.2}°, trial samples {:.2}°",
+            r.total, p.total
+        );
+        (r.total, p.total)
+    };
+    assert!(fw.n > 2000 && reference.n == fw.n + fw.missing);
+    // Before the stuck run: the registers, the sensor layer, the saturated register and the
+    // missed data-ready cost at most 1°.
+    let (before, plain_before) = part(0, STUCK_ROWS.start);
+    assert!(before < plain_before + 1.0, "{before} vs {plain_before}");
+    // After it: the lost rotation shows, and the corrections take it out.
+    let (after, _) = part(STUCK_ROWS.end, STUCK_ROWS.end + 500);
+    let (end, _) = part(ROWS - 800, ROWS);
+    assert!(after > 10.0 && end < 0.6 * after, "{after} then {end}");
 }
 
 /// The firmware's targets and the names of their output files.
