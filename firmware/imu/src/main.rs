@@ -31,6 +31,7 @@ mod firmware {
     use core::cell::RefCell;
     use embedded_hal::i2c::{ErrorKind, ErrorType, I2c, NoAcknowledgeSource, Operation};
     use embedded_hal_bus::i2c::RefCellDevice;
+    use gyrostat::UnitQuat;
     use icm42670::prelude::*;
     use icm42670::{AccelOdr, AccelRange, Address, GyroOdr, GyroRange, Icm42670};
     use lsm303agr::{Lsm303agr, MagMode, MagOutputDataRate};
@@ -293,7 +294,10 @@ mod firmware {
     /// The whole application: bring the chips up, then one loop iteration per data-ready.
     /// Not inlined, so that its state (bus model, drivers, filter) counts in the measured stack.
     #[inline(never)]
-    pub fn run(emit: &mut impl FnMut(Line), meter: &mut impl Meter) -> Result<u32, Stop> {
+    pub fn run(
+        emit: &mut impl FnMut(Line),
+        meter: &mut impl Meter,
+    ) -> Result<(u32, UnitQuat<f32>), Stop> {
         let bus = RefCell::new(ImuBoard::new());
         let timer = CaptureTimer(&bus);
 
@@ -356,7 +360,7 @@ mod firmware {
             meter.filter_done(printed);
         }
         replay.finish(emit);
-        Ok(polls)
+        Ok((polls, replay.attitude()))
     }
 
     /// Polls expected: one per row, then the silent ones.
@@ -513,7 +517,9 @@ mod firmware {
                 p += 4;
             }
             match result {
-                Ok(polls) => {
+                Ok((polls, attitude)) => {
+                    // The library's `defmt::Format` (feature `defmt`), for reading, not compared.
+                    defmt::println!("final attitude {}", attitude);
                     defmt::println!(
                         "loop instructions per data-ready sample: read {=u32} filter {=u32} (max {=u32}), over {=u32} samples without output; stack {=u32} bytes",
                         per_sample(meter.read_ticks, meter.samples, per_200k),
@@ -555,7 +561,8 @@ mod firmware {
         #[board::entry]
         fn main() -> ! {
             match run(&mut |line| hprintln!("{}", line), &mut NoMeter) {
-                Ok(polls) => {
+                Ok((polls, attitude)) => {
+                    hprintln!("final attitude {:?}", attitude.to_array());
                     hprintln!("polls {}", polls);
                     hprintln!("done");
                     board::exit(polls == super::EXPECTED_POLLS)
