@@ -15,8 +15,8 @@ firmware/imu/src/main.rs drives (round to nearest, clamped to the i16 range):
   firmware's MagnetometerCalibration removes. BROAD's field is already calibrated; the turn and
   the offset model a board where the magnetometer is a second chip.
 
-Three faults are written into the table (row numbers within the table; firmware/imu/src/replay.rs
-documents the firmware's outcome for each):
+Two of the three faults are written into the table (row numbers within the table;
+firmware/imu/src/replay.rs documents the firmware's outcome for each):
 - SATURATED_ROWS: gyro x at its positive full scale, +32767 (a shock driving the gyro to its rail);
 - STUCK_ROWS: the IMU repeats the gyro and accelerometer registers of the first row of the range
   (a sensor whose output froze; the magnetometer, another chip, goes on).
