@@ -10,8 +10,12 @@
 //! - [`variance`]: the streaming rest-noise statistics against a two-pass f64 computation.
 //! - [`unequal`]: the 2-sample coning rule for unequal sub-intervals and Magnus-4 on unequal
 //!   sample times, on jittered clocks against the closed-form coning motion.
+//! - [`imu_replay`]: the IMU firmware's driver-free path (`firmware/imu`) on the host, the
+//!   documented outcomes of its faults, its table against the shared BROAD trial, and the
+//!   boards' bits against the host's.
 
 mod calibration;
+mod imu_replay;
 mod mounting;
 mod raw;
 mod timing;
