@@ -16,8 +16,12 @@
 
 pub mod calibration;
 pub mod flags;
+pub mod motion;
+pub mod noise_standin;
 pub mod plot;
+pub mod sensor_spec;
 pub mod simulation;
 pub mod stream;
+pub mod synthesis;
 pub mod torque;
 pub mod units;
