@@ -34,7 +34,7 @@
 //! - `taps A`: every 1.5–3 s of a movement phase (seeded), a body-frame acceleration
 //!   `A·d·e^(−u/0.01 s)·sin(2π·60 Hz·u)` for `0 ≤ u < 0.1 s` along a seeded unit direction `d`.
 
-use crate::synthesis::Rng;
+use crate::noise::Rng;
 
 /// A quaternion, scalar first.
 pub type Q = [f64; 4];

@@ -44,7 +44,7 @@
 use gyrostat::sensor::{InertialCalibration, MagnetometerCalibration};
 use gyrostat::{Mat3, Vec3};
 
-use crate::noise_standin::NoiseSpec;
+use crate::noise::NoiseSpec;
 
 /// The errors of one 3-axis inertial sensor (gyro or accelerometer), SI units.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -26,57 +26,13 @@
 use gyrostat::Vec3;
 
 use crate::motion::{Kinematics, Motion, Rotation, rotate_inv};
-use crate::noise_standin::AxisNoise;
+use crate::noise::{NoiseError, Rng, TriadNoise, axis_seed};
 use crate::sensor_spec::{Inertial, SensorSpec};
 
-/// A small seeded random-number generator (SplitMix64) with uniform and normal draws.
-#[derive(Clone, Debug)]
-pub struct Rng {
-    state: u64,
-    spare: Option<f64>,
-}
-
-impl Rng {
-    /// The generator of `seed`.
-    pub fn new(seed: u64) -> Self {
-        Self {
-            state: seed,
-            spare: None,
-        }
-    }
-
-    /// The generator of stream `tag` of `seed` (independent streams for independent parts).
-    pub fn stream(seed: u64, tag: u64) -> Self {
-        let mut r = Self::new(seed ^ tag.wrapping_mul(0xD1B5_4A32_D192_ED03));
-        r.next_u64();
-        Self::new(r.next_u64())
-    }
-
-    /// The next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in (0, 1).
-    pub fn uniform(&mut self) -> f64 {
-        ((self.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-
-    /// Standard normal (Box–Muller).
-    pub fn normal(&mut self) -> f64 {
-        if let Some(x) = self.spare.take() {
-            return x;
-        }
-        let (u, v) = (self.uniform(), self.uniform());
-        let r = (-2.0 * u.ln()).sqrt();
-        let (s, c) = (2.0 * std::f64::consts::PI * v).sin_cos();
-        self.spare = Some(r * s);
-        r * c
-    }
+/// The generator of stream `tag` of `seed`: independent streams for the independent parts of a
+/// log (noise, jitter, motion), each unchanged when another part changes.
+pub fn stream(seed: u64, tag: u64) -> Rng {
+    Rng::new(axis_seed(seed, tag))
 }
 
 /// The axis of the passing magnet's moment (unit, earth frame).
@@ -207,12 +163,29 @@ fn clip_round(x: f64, range: f64, lsb: f64) -> f64 {
     }
 }
 
-fn measure(sensor: &Inertial, noise: &mut [AxisNoise; 3], truth: [f64; 3]) -> [f64; 3] {
+fn measure(
+    sensor: &Inertial,
+    noise: &mut TriadNoise,
+    dt: f64,
+    truth: [f64; 3],
+) -> Result<[f64; 3], NoiseError> {
     let raw = sensor
         .calibration
         .raw_from_corrected(Vec3::new(truth[0], truth[1], truth[2]))
         .to_array();
-    core::array::from_fn(|k| clip_round(raw[k] + noise[k].next_error(), sensor.range, sensor.lsb))
+    let e = noise.sample(dt)?;
+    Ok(core::array::from_fn(|k| {
+        clip_round(raw[k] + e[k], sensor.range, sensor.lsb)
+    }))
+}
+
+/// Why a run stopped.
+#[derive(Debug)]
+pub enum RunError<E> {
+    /// The error of the caller's function.
+    Sink(E),
+    /// The noise model rejected the spec or the step.
+    Noise(NoiseError),
 }
 
 impl Synth {
@@ -243,33 +216,33 @@ impl Synth {
     }
 
     /// Calls `each` with every sample in order; stops at its first error.
-    pub fn run<E>(&self, mut each: impl FnMut(&Sample) -> Result<(), E>) -> Result<(), E> {
+    ///
+    /// # Errors
+    /// [`RunError::Sink`] with the error of `each`; [`RunError::Noise`] for a noise spec the
+    /// noise model rejects.
+    pub fn run<E>(
+        &self,
+        mut each: impl FnMut(&Sample) -> Result<(), E>,
+    ) -> Result<(), RunError<E>> {
         let spec = &self.spec;
         let dt = self.step();
         let rate = 1.0 / dt;
-        let axes = |tag: u64, s: &Inertial| -> [AxisNoise; 3] {
-            core::array::from_fn(|k| {
-                AxisNoise::new(
-                    s.noise,
-                    dt,
-                    Rng::stream(self.seed, tag + k as u64).next_u64(),
-                )
-            })
-        };
-        let mut gyro_noise = axes(tags::GYRO, &spec.gyro);
-        let mut accel_noise = axes(tags::ACCEL, &spec.accel);
-        let mut mag_rng = Rng::stream(self.seed, tags::MAG);
-        let mut jitter = Rng::stream(self.seed, tags::JITTER);
+        let triad =
+            |tag: u64, s: &Inertial| TriadNoise::try_new(s.noise, axis_seed(self.seed, tag));
+        let mut gyro_noise = triad(tags::GYRO, &spec.gyro).map_err(RunError::Noise)?;
+        let mut accel_noise = triad(tags::ACCEL, &spec.accel).map_err(RunError::Noise)?;
+        let mut mag_rng = stream(self.seed, tags::MAG);
+        let mut jitter = stream(self.seed, tags::JITTER);
         let mag_rate = spec.mag.rate.unwrap_or(rate).min(rate);
         let g = spec.gravity;
         for k in 0..self.len() {
             let t = k as f64 * dt;
             let kin = self.motion.at(t);
-            let gyr = measure(&spec.gyro, &mut gyro_noise, kin.w);
+            let gyr = measure(&spec.gyro, &mut gyro_noise, dt, kin.w).map_err(RunError::Noise)?;
             let up = [kin.a[0], kin.a[1], kin.a[2] + g];
             let f = rotate_inv(kin.q, up);
             let f = core::array::from_fn(|j| f[j] + kin.a_body[j]);
-            let acc = measure(&spec.accel, &mut accel_noise, f);
+            let acc = measure(&spec.accel, &mut accel_noise, dt, f).map_err(RunError::Noise)?;
             let new_mag = k == 0
                 || ((k as f64) * mag_rate / rate + 1e-9).floor()
                     > (((k - 1) as f64) * mag_rate / rate + 1e-9).floor();
@@ -309,7 +282,8 @@ impl Synth {
                 mag,
                 q: kin.q,
                 moving: kin.moving,
-            })?;
+            })
+            .map_err(RunError::Sink)?;
         }
         Ok(())
     }

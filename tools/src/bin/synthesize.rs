@@ -15,7 +15,7 @@ use gyrostat_tools::flags::{self, Cli, Flag, Flags};
 use gyrostat_tools::motion::{self, Motion, MotionFile, Rotation, Timeline};
 use gyrostat_tools::sensor_spec::{self, PRESETS, SensorSpec};
 use gyrostat_tools::stream::{self, Csv};
-use gyrostat_tools::synthesis::{Environment, Rng, Sample, Synth, tags};
+use gyrostat_tools::synthesis::{Environment, RunError, Sample, Synth, stream as rng_stream, tags};
 
 const CLI: Cli = Cli {
     name: "synthesize",
@@ -138,11 +138,12 @@ fn main() -> ExitCode {
     }
     match write_log(&synth) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) if stream::is_closed_pipe(&e) => ExitCode::SUCCESS,
-        Err(e) => {
+        Err(RunError::Sink(e)) if stream::is_closed_pipe(&e) => ExitCode::SUCCESS,
+        Err(RunError::Sink(e)) => {
             flags::error(&format!("writing stdout: {e}"));
             ExitCode::FAILURE
         }
+        Err(RunError::Noise(e)) => flags::usage_error(&format!("--sensor: {e}")),
     }
 }
 
@@ -211,7 +212,7 @@ fn arguments(f: &Flags) -> Result<(Synth, String), String> {
             ramp,
         };
         let rotation = match motion_arg {
-            "handheld" => Rotation::handheld(&mut Rng::stream(seed, tags::ROTATION)),
+            "handheld" => Rotation::handheld(&mut rng_stream(seed, tags::ROTATION)),
             "axes" => Rotation::Axes,
             "rest" => Rotation::Rest,
             spin => Rotation::Spin(three("--motion", &spin["spin:".len()..], "WX,WY,WZ")?),
@@ -253,11 +254,11 @@ fn arguments(f: &Flags) -> Result<(Synth, String), String> {
     };
     let translation = f
         .get("--translation", flags::positive)?
-        .map(|a| motion::translation(&mut Rng::stream(seed, tags::TRANSLATION), a));
+        .map(|a| motion::translation(&mut rng_stream(seed, tags::TRANSLATION), a));
     let vibration = f
         .get("--vibration", |fl, v| flags::numbers::<2>(fl, v, "A,F"))?
         .map(|[a, hz]| {
-            let mut rng = Rng::stream(seed, tags::VIBRATION);
+            let mut rng = rng_stream(seed, tags::VIBRATION);
             let two_pi = 2.0 * std::f64::consts::PI;
             (a, hz, [(); 3].map(|()| two_pi * rng.uniform()))
         });
@@ -269,7 +270,7 @@ fn arguments(f: &Flags) -> Result<(Synth, String), String> {
     let taps = f.get("--taps", flags::positive)?.map(|a| {
         (
             a,
-            motion::taps(&mut Rng::stream(seed, tags::TAPS), &timeline),
+            motion::taps(&mut rng_stream(seed, tags::TAPS), &timeline),
         )
     });
     let passing = f.get("--magnet-pass", |fl, v| three(fl, v, "M,D,V"))?;
@@ -341,9 +342,9 @@ fn placeholder(spec: SensorSpec) -> Synth {
 /// The CSV header of a log (BROAD's columns).
 pub const HEADER: &str = "t_s,gyr_x_rad_s,gyr_y_rad_s,gyr_z_rad_s,acc_x_m_s2,acc_y_m_s2,acc_z_m_s2,mag_x_uT,mag_y_uT,mag_z_uT,opt_qw,opt_qx,opt_qy,opt_qz,movement";
 
-fn write_log(synth: &Synth) -> io::Result<()> {
+fn write_log(synth: &Synth) -> Result<(), RunError<io::Error>> {
     let mut out = Csv::stdout();
-    writeln!(out, "{HEADER}")?;
+    writeln!(out, "{HEADER}").map_err(RunError::Sink)?;
     synth.run(|s: &Sample| {
         write!(out, "{:.9},", s.stamp)?;
         for x in s.gyr.iter().chain(&s.acc) {
@@ -364,7 +365,7 @@ fn write_log(synth: &Synth) -> io::Result<()> {
         )?;
         out.row_done()
     })?;
-    out.flush()
+    out.flush().map_err(RunError::Sink)
 }
 
 // The preset names appear in the help text; keep them in step.
