@@ -119,6 +119,8 @@ pub struct Sample {
     pub q: [f64; 4],
     /// Inside a movement phase.
     pub moving: bool,
+    /// The true motion at `t`.
+    pub kin: Kinematics,
 }
 
 /// A synthetic log: motion, environment, sensor, rate, seed.
@@ -282,6 +284,7 @@ impl Synth {
                 mag,
                 q: kin.q,
                 moving: kin.moving,
+                kin,
             })
             .map_err(RunError::Sink)?;
         }

@@ -37,6 +37,7 @@ const CLI: Cli = Cli {
         Flag::value("--steel"),
         Flag::value("--seed"),
         Flag::switch("--print-sensor"),
+        Flag::switch("--kinematics"),
     ],
 };
 
@@ -48,7 +49,7 @@ USAGE:
     synthesize [--motion handheld|axes|rest|spin:WX,WY,WZ|FILE|-] [--sensor NAME|FILE]
                [--rate HZ] [--duration S] [--rest S] [--phases N] [--ramp S] [--q0 w,x,y,z]
                [--translation A] [--vibration A,F] [--taps A] [--magnet-pass M,D,V]
-               [--magnet-fixed HX,HY,HZ[,T]] [--steel DX,DY,DZ] [--seed N]
+               [--magnet-fixed HX,HY,HZ[,T]] [--steel DX,DY,DZ] [--seed N] [--kinematics]
     synthesize --sensor NAME|FILE --print-sensor
 
     Writes CSV to stdout in BROAD's columns, so that `estimate --truth` and BROAD's score.py
@@ -59,7 +60,12 @@ USAGE:
     sensor frame (the specific force: +g up at rest); the magnetometer (empty between the
     samples of a slower mag_rate); opt_q: the true attitude at k/rate, sensor -> earth (ENU:
     x east, y magnetic north, z up; v_earth = q v q*); movement: 1 inside a movement phase.
-    Same flags and seed: the same bytes.
+    Same flags and seed: the same bytes. --kinematics appends the true motion at each row:
+        true_gyr_x_rad_s,...  the body rate (sensor frame, before the sensor's errors)
+        pos_x_m,...           the position (earth frame, m; the translation)
+        lin_acc_x_m_s2,...    the linear acceleration (earth frame, without gravity)
+        body_acc_x_m_s2,...   vibration and taps (sensor frame)
+    so that the accelerometer's truth is R(q)^T (lin_acc + g z) + body_acc.
 
 MOTION:
     The log is a rest phase (--rest, default 5 s), then --phases (default 2) movement phases
@@ -112,6 +118,7 @@ SENSOR:
     --rate HZ           the output data rate (default: the spec's rate)
     --print-sensor      print the spec's text (a preset's with its sources) and exit
     --seed N            the seed of the motion, the noise and the jitter (default 0)
+    --kinematics        append the true motion's columns (see above)
 
 ERRORS:
     A bad command line, spec file or motion file: `error: reason` on stderr (a file's line
@@ -136,7 +143,7 @@ fn main() -> ExitCode {
             }
         };
     }
-    match write_log(&synth) {
+    match write_log(&synth, f.switch("--kinematics")) {
         Ok(()) => ExitCode::SUCCESS,
         Err(RunError::Sink(e)) if stream::is_closed_pipe(&e) => ExitCode::SUCCESS,
         Err(RunError::Sink(e)) => {
@@ -342,9 +349,13 @@ fn placeholder(spec: SensorSpec) -> Synth {
 /// The CSV header of a log (BROAD's columns).
 pub const HEADER: &str = "t_s,gyr_x_rad_s,gyr_y_rad_s,gyr_z_rad_s,acc_x_m_s2,acc_y_m_s2,acc_z_m_s2,mag_x_uT,mag_y_uT,mag_z_uT,opt_qw,opt_qx,opt_qy,opt_qz,movement";
 
-fn write_log(synth: &Synth) -> Result<(), RunError<io::Error>> {
+/// The columns `--kinematics` appends.
+pub const KINEMATICS: &str = ",true_gyr_x_rad_s,true_gyr_y_rad_s,true_gyr_z_rad_s,pos_x_m,pos_y_m,pos_z_m,lin_acc_x_m_s2,lin_acc_y_m_s2,lin_acc_z_m_s2,body_acc_x_m_s2,body_acc_y_m_s2,body_acc_z_m_s2";
+
+fn write_log(synth: &Synth, kinematics: bool) -> Result<(), RunError<io::Error>> {
     let mut out = Csv::stdout();
-    writeln!(out, "{HEADER}").map_err(RunError::Sink)?;
+    let extra = if kinematics { KINEMATICS } else { "" };
+    writeln!(out, "{HEADER}{extra}").map_err(RunError::Sink)?;
     synth.run(|s: &Sample| {
         write!(out, "{:.9},", s.stamp)?;
         for x in s.gyr.iter().chain(&s.acc) {
@@ -354,7 +365,7 @@ fn write_log(synth: &Synth) -> Result<(), RunError<io::Error>> {
             Some(m) => write!(out, "{:?},{:?},{:?},", m[0], m[1], m[2])?,
             None => write!(out, ",,,")?,
         }
-        writeln!(
+        write!(
             out,
             "{:?},{:?},{:?},{:?},{}",
             s.q[0],
@@ -363,6 +374,13 @@ fn write_log(synth: &Synth) -> Result<(), RunError<io::Error>> {
             s.q[3],
             u8::from(s.moving)
         )?;
+        if kinematics {
+            let k = &s.kin;
+            for x in k.w.iter().chain(&k.p).chain(&k.a).chain(&k.a_body) {
+                write!(out, ",{:?}", x + 0.0)?;
+            }
+        }
+        writeln!(out)?;
         out.row_done()
     })?;
     out.flush().map_err(RunError::Sink)

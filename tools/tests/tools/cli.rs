@@ -13,6 +13,7 @@ pub fn tool(name: &str) -> PathBuf {
         "propagate" => env!("CARGO_BIN_EXE_propagate"),
         "simulate" => env!("CARGO_BIN_EXE_simulate"),
         "estimate" => env!("CARGO_BIN_EXE_estimate"),
+        "synthesize" => env!("CARGO_BIN_EXE_synthesize"),
         other => panic!("no tool {other}"),
     })
 }
