@@ -2,12 +2,15 @@
 //! they share: one flag dialect and error style ([`flags`]), one stream reader and CSV writer
 //! ([`stream`]), the units of sensor data on the command line ([`units`]), the plots' colours
 //! ([`plot`]), and the scenarios of `simulate` ([`simulation`], with the external torque of
-//! [`torque`]), which the Python package (`python/`) runs too.
+//! [`torque`]), which the Python package (`python/`) runs too; the synthetic logs of
+//! `synthesize`: closed-form motions ([`motion`]), the sensor spec file and its presets
+//! ([`sensor_spec`]), the noise processes ([`noise`]) and the sensor model that turns a motion
+//! into measurements ([`synthesis`]).
 //!
 //! The tools are binaries of this crate (`src/bin/`); install them with
 //! `cargo install --path tools`, or run them from a checkout with the cargo aliases of
 //! `.cargo/config.toml` (`cargo simulate`, `cargo convert ...`, `cargo propagate ...`,
-//! `cargo estimate ...`). Their interfaces (flags, formats, exit statuses) are in each tool's
+//! `cargo estimate ...`, `cargo synthesize ...`). Their interfaces (flags, formats, exit statuses) are in each tool's
 //! `--help` and in README.md; the library itself (`gyrostat`) stays `no_std` and knows nothing
 //! of them.
 //!
