@@ -25,7 +25,7 @@
 
 use gyrostat::Vec3;
 
-use crate::motion::{Kinematics, Motion, Rotation, rotate_inv};
+use crate::motion::{self, Kinematics, Motion, MotionFile, Rotation, Timeline, rotate_inv};
 use crate::noise::{NoiseError, Rng, TriadNoise, axis_seed};
 use crate::sensor_spec::{Inertial, SensorSpec};
 
@@ -289,5 +289,235 @@ impl Synth {
             .map_err(RunError::Sink)?;
         }
         Ok(())
+    }
+}
+
+/// The motion of [`Options`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum MotionChoice {
+    /// `handheld`.
+    Handheld,
+    /// `axes`.
+    Axes,
+    /// `rest`.
+    Rest,
+    /// `spin:WX,WY,WZ`.
+    Spin([f64; 3]),
+    /// A motion file, read.
+    File(MotionFile),
+}
+
+/// A log as `synthesize`'s flags describe it (each optional as on the command line), checked
+/// into a [`Synth`] by [`Options::build`]; the Python package builds the same. Error messages
+/// name the flags.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// `--motion`.
+    pub motion: MotionChoice,
+    /// `--sensor`, read.
+    pub sensor: SensorSpec,
+    /// `--rate` (default: the spec's).
+    pub rate: Option<f64>,
+    /// `--duration` (default 30 s).
+    pub duration: Option<f64>,
+    /// `--rest` (default 5 s).
+    pub rest: Option<f64>,
+    /// `--phases` (default 2).
+    pub phases: Option<u64>,
+    /// `--ramp` (default 0.5 s, at most half a phase; 0 for a motion file).
+    pub ramp: Option<f64>,
+    /// `--q0` (default identity).
+    pub q0: Option<[f64; 4]>,
+    /// `--translation A`.
+    pub translation: Option<f64>,
+    /// `--vibration A,F`.
+    pub vibration: Option<[f64; 2]>,
+    /// `--taps A`.
+    pub taps: Option<f64>,
+    /// `--magnet-pass M,D,V`.
+    pub magnet_pass: Option<[f64; 3]>,
+    /// `--magnet-fixed HX,HY,HZ[,T]`.
+    pub magnet_fixed: Option<Vec<f64>>,
+    /// `--steel DX,DY,DZ`.
+    pub steel: Option<[f64; 3]>,
+    /// `--seed`.
+    pub seed: u64,
+}
+
+/// The largest log [`Options::build`] accepts, in samples.
+pub const MAX_SAMPLES: u64 = 100_000_000;
+
+impl Options {
+    /// Checks the options and builds the log's motion and environment (the seeded parts drawn).
+    ///
+    /// # Errors
+    /// A message naming the flag of a value out of its domain or a combination not allowed.
+    pub fn build(self) -> Result<Synth, String> {
+        let Options {
+            mut sensor, seed, ..
+        } = self;
+        let finite = |flag: &str, v: &[f64]| {
+            if v.iter().all(|x| x.is_finite()) {
+                Ok(())
+            } else {
+                Err(format!("{flag}: every number must be finite"))
+            }
+        };
+        let positive = |flag: &str, x: Option<f64>| match x {
+            Some(v) if !(v.is_finite() && v > 0.0) => {
+                Err(format!("{flag}: must be finite and > 0, got {v}"))
+            }
+            _ => Ok(()),
+        };
+        let non_negative = |flag: &str, x: Option<f64>| match x {
+            Some(v) if !(v.is_finite() && v >= 0.0) => {
+                Err(format!("{flag}: must be >= 0, got {v}"))
+            }
+            _ => Ok(()),
+        };
+        positive("--rate", self.rate)?;
+        positive("--duration", self.duration)?;
+        positive("--translation", self.translation)?;
+        positive("--taps", self.taps)?;
+        non_negative("--rest", self.rest)?;
+        non_negative("--ramp", self.ramp)?;
+        for (flag, v) in [
+            ("--q0", self.q0.as_ref().map(|v| &v[..])),
+            ("--vibration", self.vibration.as_ref().map(|v| &v[..])),
+            ("--magnet-pass", self.magnet_pass.as_ref().map(|v| &v[..])),
+            ("--magnet-fixed", self.magnet_fixed.as_deref()),
+            ("--steel", self.steel.as_ref().map(|v| &v[..])),
+        ] {
+            if let Some(v) = v {
+                finite(flag, v)?;
+            }
+        }
+        if let MotionChoice::Spin(w) = &self.motion {
+            finite("--motion", w)?;
+        }
+        let rest = self.rest.unwrap_or(5.0);
+        let q0 = match self.q0 {
+            None => [1.0, 0.0, 0.0, 0.0],
+            Some(q) => {
+                let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if (n - 1.0).abs() > 1e-6 {
+                    return Err(format!(
+                        "--q0: must have unit norm within 1e-6, got norm {n}"
+                    ));
+                }
+                q.map(|x| x / n)
+            }
+        };
+        let (rotation, timeline, q0) = if let MotionChoice::File(file) = self.motion {
+            for (flag, given) in [
+                ("--rate", self.rate.is_some()),
+                ("--duration", self.duration.is_some()),
+                ("--phases", self.phases.is_some()),
+                ("--q0", self.q0.is_some()),
+            ] {
+                if given {
+                    return Err(format!(
+                        "{flag}: not with --motion FILE (the file's rows are the samples and \
+                         their attitudes)"
+                    ));
+                }
+            }
+            let length = (file.attitudes.len() - 1) as f64 * file.step;
+            let timeline = Timeline {
+                rest: (rest / file.step).round() * file.step,
+                duration: length,
+                phases: 1,
+                ramp: self.ramp.unwrap_or(0.0).min(length / 2.0),
+            };
+            let q0 = file.attitudes[0];
+            (Rotation::File(file), timeline, q0)
+        } else {
+            if let Some(r) = self.rate {
+                sensor.rate = r;
+            }
+            let duration = self.duration.unwrap_or(30.0);
+            let phases = u32::try_from(self.phases.unwrap_or(2))
+                .map_err(|_| "--phases: too large".to_string())?;
+            let ramp = self.ramp.unwrap_or(0.5_f64.min(duration / 2.0));
+            if 2.0 * ramp > duration {
+                return Err(format!(
+                    "--ramp: two ramps ({ramp} s each) do not fit in a phase of --duration \
+                     {duration} s"
+                ));
+            }
+            let rotation = match self.motion {
+                MotionChoice::Handheld => Rotation::handheld(&mut stream(seed, tags::ROTATION)),
+                MotionChoice::Axes => Rotation::Axes,
+                MotionChoice::Rest => Rotation::Rest,
+                MotionChoice::Spin(w) => Rotation::Spin(w),
+                MotionChoice::File(_) => unreachable!("handled above"),
+            };
+            let timeline = Timeline {
+                rest,
+                duration,
+                phases,
+                ramp,
+            };
+            (rotation, timeline, q0)
+        };
+        let translation = self
+            .translation
+            .map(|a| motion::translation(&mut stream(seed, tags::TRANSLATION), a));
+        let vibration = match self.vibration {
+            None => None,
+            Some([_, hz]) if hz <= 0.0 => {
+                return Err(format!("--vibration: the frequency must be > 0, got {hz}"));
+            }
+            Some([a, hz]) => {
+                let mut rng = stream(seed, tags::VIBRATION);
+                let two_pi = 2.0 * std::f64::consts::PI;
+                Some((a, hz, [(); 3].map(|()| two_pi * rng.uniform())))
+            }
+        };
+        let taps = self
+            .taps
+            .map(|a| (a, motion::taps(&mut stream(seed, tags::TAPS), &timeline)));
+        if let Some([_, d, v]) = self.magnet_pass
+            && (d <= 0.0 || v <= 0.0)
+        {
+            return Err("--magnet-pass: D and V must be > 0".into());
+        }
+        let fixed = match self.magnet_fixed.as_deref() {
+            None => None,
+            Some(&[x, y, z]) => Some(([x, y, z], timeline.rest + timeline.duration / 3.0)),
+            Some(&[x, y, z, t]) => Some(([x, y, z], t)),
+            Some(v) => {
+                return Err(format!(
+                    "--magnet-fixed: expected 3 or 4 comma-separated numbers HX,HY,HZ[,T], \
+                     found {}",
+                    v.len()
+                ));
+            }
+        };
+        let synth = Synth {
+            motion: Motion {
+                timeline,
+                q0,
+                rotation,
+                translation,
+                vibration,
+                taps,
+            },
+            env: Environment {
+                passing: self.magnet_pass,
+                steel: self.steel,
+                fixed,
+            },
+            spec: sensor,
+            seed,
+        };
+        if synth.len() > MAX_SAMPLES {
+            return Err(format!(
+                "the log would have {} samples (more than {MAX_SAMPLES}): shorten --duration or \
+                 lower --rate",
+                synth.len()
+            ));
+        }
+        Ok(synth)
     }
 }

@@ -12,10 +12,10 @@ use std::io::{self, Read, Write};
 use std::process::ExitCode;
 
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
-use gyrostat_tools::motion::{self, Motion, MotionFile, Rotation, Timeline};
+use gyrostat_tools::motion::{Motion, MotionFile, Rotation, Timeline};
 use gyrostat_tools::sensor_spec::{self, PRESETS, SensorSpec};
 use gyrostat_tools::stream::{self, Csv};
-use gyrostat_tools::synthesis::{Environment, RunError, Sample, Synth, stream as rng_stream, tags};
+use gyrostat_tools::synthesis::{Environment, MotionChoice, Options, RunError, Sample, Synth};
 
 const CLI: Cli = Cli {
     name: "synthesize",
@@ -168,7 +168,7 @@ fn non_negative(flag: &str, v: &str) -> Result<f64, String> {
 
 /// The log of the flags given, and the sensor spec's text.
 fn arguments(f: &Flags) -> Result<(Synth, String), String> {
-    let (mut spec, text): (SensorSpec, String) = match f.value("--sensor") {
+    let (sensor, text): (SensorSpec, String) = match f.value("--sensor") {
         Some(v) => sensor_spec::read("--sensor", v.trim())?,
         None => sensor_spec::read("--sensor", "ideal")?,
     };
@@ -179,150 +179,49 @@ fn arguments(f: &Flags) -> Result<(Synth, String), String> {
         {
             return Err(format!("--print-sensor takes only --sensor, not {other}"));
         }
-        return Ok((placeholder(spec), text));
+        return Ok((placeholder(sensor), text));
     }
-    let seed = f.get("--seed", flags::count)?.unwrap_or(0);
     let motion_arg = f.value("--motion").map(str::trim).unwrap_or("handheld");
-    let rest = f.get("--rest", non_negative)?.unwrap_or(5.0);
-    let ramp_given = f.get("--ramp", non_negative)?;
-    let q0 = match f.get("--q0", |fl, v| flags::numbers::<4>(fl, v, "w,x,y,z"))? {
-        None => [1.0, 0.0, 0.0, 0.0],
-        Some(q) => {
-            let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if (n - 1.0).abs() > 1e-6 {
-                return Err(format!(
-                    "--q0: must have unit norm within 1e-6, got norm {n}"
-                ));
-            }
-            q.map(|x| x / n)
+    let motion = match motion_arg {
+        "handheld" => MotionChoice::Handheld,
+        "axes" => MotionChoice::Axes,
+        "rest" => MotionChoice::Rest,
+        spin if spin.starts_with("spin:") => {
+            MotionChoice::Spin(three("--motion", &spin["spin:".len()..], "WX,WY,WZ")?)
+        }
+        path => {
+            let text = if path == "-" {
+                let mut s = String::new();
+                io::stdin()
+                    .read_to_string(&mut s)
+                    .map_err(|e| format!("--motion -: reading stdin: {e}"))?;
+                s
+            } else {
+                std::fs::read_to_string(path).map_err(|e| format!("--motion {path}: {e}"))?
+            };
+            MotionChoice::File(
+                MotionFile::parse(&text).map_err(|e| format!("--motion {path}: {e}"))?,
+            )
         }
     };
-    let builtin =
-        matches!(motion_arg, "handheld" | "axes" | "rest") || motion_arg.starts_with("spin:");
-    let (rotation, timeline) = if builtin {
-        if let Some(r) = f.get("--rate", flags::positive)? {
-            spec.rate = r;
-        }
-        let duration = f.get("--duration", flags::positive)?.unwrap_or(30.0);
-        let phases = f.get("--phases", flags::count)?.unwrap_or(2);
-        let phases = u32::try_from(phases).map_err(|_| "--phases: too large".to_string())?;
-        let ramp = ramp_given.unwrap_or(0.5_f64.min(duration / 2.0));
-        if 2.0 * ramp > duration {
-            return Err(format!(
-                "--ramp: two ramps ({ramp} s each) do not fit in a phase of --duration {duration} s"
-            ));
-        }
-        let timeline = Timeline {
-            rest,
-            duration,
-            phases,
-            ramp,
-        };
-        let rotation = match motion_arg {
-            "handheld" => Rotation::handheld(&mut rng_stream(seed, tags::ROTATION)),
-            "axes" => Rotation::Axes,
-            "rest" => Rotation::Rest,
-            spin => Rotation::Spin(three("--motion", &spin["spin:".len()..], "WX,WY,WZ")?),
-        };
-        (rotation, timeline)
-    } else {
-        for flag in ["--rate", "--duration", "--phases", "--q0"] {
-            if f.switch(flag) {
-                return Err(format!(
-                    "{flag}: not with --motion FILE (the file's rows are the samples and their attitudes)"
-                ));
-            }
-        }
-        let text = if motion_arg == "-" {
-            let mut s = String::new();
-            io::stdin()
-                .read_to_string(&mut s)
-                .map_err(|e| format!("--motion -: reading stdin: {e}"))?;
-            s
-        } else {
-            std::fs::read_to_string(motion_arg)
-                .map_err(|e| format!("--motion {motion_arg}: {e}"))?
-        };
-        let file = MotionFile::parse(&text).map_err(|e| format!("--motion {motion_arg}: {e}"))?;
-        let rest = (rest / file.step).round() * file.step;
-        let timeline = Timeline {
-            rest,
-            duration: (file.attitudes.len() - 1) as f64 * file.step,
-            phases: 1,
-            ramp: ramp_given
-                .unwrap_or(0.0)
-                .min((file.attitudes.len() - 1) as f64 * file.step / 2.0),
-        };
-        (Rotation::File(file), timeline)
-    };
-    let q0 = match &rotation {
-        Rotation::File(file) => file.attitudes[0],
-        _ => q0,
-    };
-    let translation = f
-        .get("--translation", flags::positive)?
-        .map(|a| motion::translation(&mut rng_stream(seed, tags::TRANSLATION), a));
-    let vibration = f
-        .get("--vibration", |fl, v| flags::numbers::<2>(fl, v, "A,F"))?
-        .map(|[a, hz]| {
-            let mut rng = rng_stream(seed, tags::VIBRATION);
-            let two_pi = 2.0 * std::f64::consts::PI;
-            (a, hz, [(); 3].map(|()| two_pi * rng.uniform()))
-        });
-    if let Some((_, hz, _)) = vibration
-        && hz <= 0.0
-    {
-        return Err(format!("--vibration: the frequency must be > 0, got {hz}"));
-    }
-    let taps = f.get("--taps", flags::positive)?.map(|a| {
-        (
-            a,
-            motion::taps(&mut rng_stream(seed, tags::TAPS), &timeline),
-        )
-    });
-    let passing = f.get("--magnet-pass", |fl, v| three(fl, v, "M,D,V"))?;
-    if let Some([_, d, v]) = passing
-        && (d <= 0.0 || v <= 0.0)
-    {
-        return Err("--magnet-pass: D and V must be > 0".into());
-    }
-    let fixed = f
-        .get("--magnet-fixed", flags::list)?
-        .map(|v| match v.as_slice() {
-            [x, y, z] => Ok(([*x, *y, *z], timeline.rest + timeline.duration / 3.0)),
-            [x, y, z, t] => Ok(([*x, *y, *z], *t)),
-            _ => Err(format!(
-                "--magnet-fixed: expected 3 or 4 comma-separated numbers HX,HY,HZ[,T], found {}",
-                v.len()
-            )),
-        })
-        .transpose()?;
-    let env = Environment {
-        passing,
-        steel: f.get("--steel", |fl, v| three(fl, v, "DX,DY,DZ"))?,
-        fixed,
-    };
-    let motion = Motion {
-        timeline,
-        q0,
-        rotation,
-        translation,
-        vibration,
-        taps,
-    };
-    let synth = Synth {
+    let options = Options {
         motion,
-        env,
-        spec,
-        seed,
+        sensor,
+        rate: f.get("--rate", flags::positive)?,
+        duration: f.get("--duration", flags::positive)?,
+        rest: f.get("--rest", non_negative)?,
+        phases: f.get("--phases", flags::count)?,
+        ramp: f.get("--ramp", non_negative)?,
+        q0: f.get("--q0", |fl, v| flags::numbers::<4>(fl, v, "w,x,y,z"))?,
+        translation: f.get("--translation", flags::positive)?,
+        vibration: f.get("--vibration", |fl, v| flags::numbers::<2>(fl, v, "A,F"))?,
+        taps: f.get("--taps", flags::positive)?,
+        magnet_pass: f.get("--magnet-pass", |fl, v| three(fl, v, "M,D,V"))?,
+        magnet_fixed: f.get("--magnet-fixed", flags::list)?,
+        steel: f.get("--steel", |fl, v| three(fl, v, "DX,DY,DZ"))?,
+        seed: f.get("--seed", flags::count)?.unwrap_or(0),
     };
-    if synth.len() > 100_000_000 {
-        return Err(format!(
-            "the log would have {} samples (more than 1e8): shorten --duration or lower --rate",
-            synth.len()
-        ));
-    }
-    Ok((synth, text))
+    Ok((options.build()?, text))
 }
 
 fn placeholder(spec: SensorSpec) -> Synth {

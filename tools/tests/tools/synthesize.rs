@@ -647,7 +647,7 @@ fn presets_print_and_errors_are_one_line() {
         ),
         (
             &["--motion", "-", "--rate", "10"],
-            "t,qw,qx,qy,qz,w1,w2,w3\n",
+            "t,qw,qx,qy,qz,w1,w2,w3\n0,1,0,0,0,0,0,0\n0.1,1,0,0,0,0,0,0\n",
             "error: --rate: not with --motion FILE",
         ),
         (
