@@ -252,8 +252,10 @@ impl MotionFile {
             .map(|n| col(n))
             .collect::<Result<_, _>>()?;
         let (mut times, mut attitudes, mut rates) = (Vec::new(), Vec::new(), Vec::new());
+        let mut line_of = Vec::new();
         for (i, line) in lines {
             let n = i + 1;
+            line_of.push(n);
             let fields: Vec<&str> = line.split(',').map(str::trim).collect();
             if fields.len() != names.len() {
                 return Err(format!(
@@ -270,37 +272,65 @@ impl MotionFile {
                     .filter(|x| x.is_finite())
                     .ok_or_else(|| format!("line {n}: '{}' is not a finite number", fields[c]))?;
             }
-            let q = [v[1], v[2], v[3], v[4]];
-            let norm = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if (norm - 1.0).abs() > 1e-6 {
-                return Err(format!("line {n}: the attitude's norm is {norm}, not 1"));
-            }
-            if let Some(&last) = times.last()
-                && v[0] <= last
-            {
-                return Err(format!("line {n}: the time {} is not after {last}", v[0]));
-            }
             times.push(v[0]);
-            attitudes.push(q.map(|x| x / norm));
+            attitudes.push([v[1], v[2], v[3], v[4]]);
             rates.push([v[5], v[6], v[7]]);
         }
+        Self::try_new(&times, &attitudes, rates).map_err(|(row, e)| match row {
+            Some(r) => format!("line {}: {e}", line_of[r]),
+            None => e,
+        })
+    }
+
+    /// A motion from rows: times (uniformly spaced, increasing), unit attitudes (within 1e-6;
+    /// normalised here) and body rates, all finite. `Err((row, reason))` names the row
+    /// (counted from 0) where there is one.
+    pub fn try_new(
+        times: &[f64],
+        attitudes: &[Q],
+        rates: Vec<[f64; 3]>,
+    ) -> Result<Self, (Option<usize>, String)> {
+        if times.len() != attitudes.len() || times.len() != rates.len() {
+            return Err((None, "times, attitudes and rates differ in length".into()));
+        }
         if times.len() < 2 {
-            return Err("the motion file has fewer than two rows".into());
+            return Err((None, "the motion has fewer than two rows".into()));
+        }
+        let mut unit = Vec::with_capacity(attitudes.len());
+        for (k, ((t, q), w)) in times.iter().zip(attitudes).zip(&rates).enumerate() {
+            if !(t.is_finite() && q.iter().chain(w).all(|x| x.is_finite())) {
+                return Err((Some(k), "a number is not finite".into()));
+            }
+            let norm = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if (norm - 1.0).abs() > 1e-6 {
+                return Err((Some(k), format!("the attitude's norm is {norm}, not 1")));
+            }
+            if k > 0 && *t <= times[k - 1] {
+                return Err((
+                    Some(k),
+                    format!("the time {t} is not after {}", times[k - 1]),
+                ));
+            }
+            unit.push(q.map(|x| x / norm));
         }
         let step = (times[times.len() - 1] - times[0]) / (times.len() - 1) as f64;
         for (k, w) in times.windows(2).enumerate() {
             if ((w[1] - w[0]) - step).abs() > 1e-6 * step {
-                return Err(format!(
-                    "the motion file's rows are not uniformly spaced (rows {} and {}: {} s, the mean step is {step} s)",
-                    k + 1,
-                    k + 2,
-                    w[1] - w[0]
+                return Err((
+                    None,
+                    format!(
+                        "the motion's rows are not uniformly spaced (rows {} and {}: {} s, the \
+                         mean step is {step} s)",
+                        k + 1,
+                        k + 2,
+                        w[1] - w[0]
+                    ),
                 ));
             }
         }
         Ok(Self {
             step,
-            attitudes,
+            attitudes: unit,
             rates,
         })
     }
