@@ -1,5 +1,5 @@
-"""gyrostat: attitude conversions, propagation, gyrostat simulation and attitude estimation on
-numpy arrays, computed by the Rust crate ``gyrostat`` (no_std, panic-free).
+"""gyrostat: attitude conversions, propagation, gyrostat simulation, attitude estimation and
+sensor noise characterisation (Allan deviation) on numpy arrays, computed by the Rust crate ``gyrostat`` (no_std, panic-free).
 
 Conventions (the crate's, stated once):
 
@@ -45,6 +45,8 @@ __all__ = [
     "SyntheticLog",
     "synthesize",
     "sensor_text",
+    "allan_deviation",
+    "characterize",
 ]
 
 ArrayLike = npt.ArrayLike
@@ -553,3 +555,99 @@ def synthesize(
 def sensor_text(sensor: str) -> str:
     """The text of a sensor preset (with its datasheet sources) or spec file."""
     return _gyrostat.sensor_text(sensor)
+# -- noise characterisation ----------------------------------------------------------------------
+
+
+def _samples(x: ArrayLike, name: str) -> Array:
+    a = np.ascontiguousarray(np.asarray(x, dtype=np.float64))
+    if a.ndim not in (1, 2):
+        raise _error(f"{name}: expected shape (N,) or (N, k), got {a.shape}")
+    return a
+
+
+def allan_deviation(
+    x: ArrayLike, rate: float, taus: Union[None, str, ArrayLike] = None
+) -> Tuple[Array, Array, npt.NDArray[np.uint64]]:
+    """The overlapping Allan deviation of rate samples ``x`` (N,) at ``rate`` Hz, as the
+    ``characterize`` tool computes it: ``(taus, adev, n)``, with ``n`` the number of overlapping
+    terms of each point (``N + 1 - 2m`` for the averaging factor ``m = tau * rate``; allantools'
+    ``ns``).
+
+    The same numbers as ``allantools.oadev(x, rate, data_type="freq", taus=...)``: the samples
+    are integrated (after subtracting their mean) into ``N + 1`` phase points ``x_0 = 0``, and
+    ``sigma^2(tau) = sum (x[k+2m] - 2 x[k+m] + x[k])^2 / (2 tau^2 (N + 1 - 2m))``.
+    ``taus``: ``None`` or ``"octave"`` (m = 1, 2, 4, ... while two terms remain),
+    ``"decade"`` (about 10 per decade), or averaging times in s, each rounded to the nearest
+    factor ``m`` (duplicates merged); a time whose ``m`` is 0 or leaves fewer than two terms
+    raises :class:`GyrostatError` (allantools drops it silently)."""
+    y = _samples(x, "x")
+    if y.ndim != 1:
+        raise _error(f"x: expected shape (N,), got {y.shape}")
+    if taus is None or (isinstance(taus, str) and taus == "octave"):
+        t, a, n, _ = _gyrostat.allan_deviation(y, float(rate))
+    elif isinstance(taus, str) and taus == "decade":
+        t, a, n, _ = _gyrostat.allan_deviation(y, float(rate), per_decade=10)
+    elif isinstance(taus, str):
+        raise _error(f"taus: 'octave', 'decade' or averaging times, got {taus!r}")
+    else:
+        tt = np.asarray(taus, dtype=np.float64).reshape(-1)
+        if not np.all(np.isfinite(tt)):
+            raise _error("taus: not finite")
+        m = np.unique(np.round(tt * float(rate)))
+        if m.size and m[0] < 1:
+            raise _error(f"taus: {tt.min()} s is shorter than half a sample at {rate} Hz")
+        t, a, n, _ = _gyrostat.allan_deviation(y, float(rate), factors=[int(v) for v in m])
+    return t, a, n
+
+
+def characterize(
+    x: ArrayLike,
+    rate: float,
+    *,
+    fit_from: float = 0.0,
+    taus: Optional[str] = None,
+) -> Dict[str, Any]:
+    """White noise N, bias instability B and rate random walk K of rest samples ``x`` (N,) or
+    (N, k) (one column per axis) at ``rate`` Hz, as the ``characterize`` tool fits them:
+    ``sigma^2(tau) = N^2/tau + (0.664 B)^2 + K^2 tau/3``, all three terms at once by weighted
+    least squares of the Allan variance (weights from each point's equivalent degrees of freedom,
+    NIST SP 1065 Table 5; every coefficient >= 0), over the points with ``tau >= fit_from`` s.
+    N is the fitted -1/2 line at tau = 1 s (unit/sqrt(Hz)), B the floor / 0.664 (unit), K the
+    +1/2 line at tau = 3 s (unit/sqrt(s)).
+
+    Returns a dict of arrays with one entry per axis (floats for a 1-D ``x``):
+    ``noise_density``, ``bias_instability``, ``rate_random_walk``, ``floor_bound`` (the lowest
+    point of the curve / 0.664: the classical reading of B, an upper bound), ``floor_tau``,
+    ``chi2_per_dof`` (tens or more: the curve has a shape the three terms cannot take, such as
+    the correlated noise of a sensor's low-pass filter at short tau: raise ``fit_from``), and the
+    curves ``taus`` (M,), ``adev`` (k, M) or (M,), ``edf`` (the same shape). ``taus``: ``None``
+    or ``"octave"``, or ``"decade"`` (about 10 per decade)."""
+    y = _samples(x, "x")
+    single = y.ndim == 1
+    cols = y.reshape(-1, 1) if single else y
+    if taus not in (None, "octave", "decade"):
+        raise _error(f"taus: 'octave' or 'decade', got {taus!r}")
+    per_decade = 10 if taus == "decade" else None
+    fits = [
+        _gyrostat.allan_characterize(
+            np.ascontiguousarray(cols[:, i]), float(rate), float(fit_from), per_decade
+        )
+        for i in range(cols.shape[1])
+    ]
+    keys = (
+        "noise_density",
+        "bias_instability",
+        "rate_random_walk",
+        "floor_bound",
+        "floor_tau",
+        "chi2_per_dof",
+    )
+    out: Dict[str, Any] = {}
+    for k in keys:
+        v = np.array([f[k] for f in fits])
+        out[k] = float(v[0]) if single else v
+    out["taus"] = fits[0]["taus"]
+    for k in ("adev", "edf"):
+        v = np.array([f[k] for f in fits])
+        out[k] = v[0] if single else v
+    return out

@@ -89,3 +89,15 @@ def synthesize(
     seed: int = 0,
 ) -> Dict[str, Any]: ...
 def sensor_text(sensor: str) -> str: ...
+def allan_deviation(
+    x: F64,
+    rate: float,
+    factors: Optional[List[int]] = None,
+    per_decade: Optional[int] = None,
+) -> Tuple[F64, F64, npt.NDArray[np.uint64], F64]: ...
+def allan_characterize(
+    x: F64,
+    rate: float,
+    fit_from: float = 0.0,
+    per_decade: Optional[int] = None,
+) -> Dict[str, Any]: ...

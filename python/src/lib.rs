@@ -20,6 +20,7 @@ use numpy::{
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+mod allan;
 mod estimation;
 mod propagation;
 mod rotation;
@@ -237,5 +238,6 @@ fn _gyrostat(m: &Bound<'_, PyModule>) -> PyResult<()> {
     simulation::register(m)?;
     estimation::register(m)?;
     synthesis::register(m)?;
+    allan::register(m)?;
     Ok(())
 }

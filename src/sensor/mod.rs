@@ -19,13 +19,17 @@
 //!   iron.
 //! - [`mounting`]: the 24 proper signed axis permutations and an arbitrary mounting rotation.
 //! - [`raw`]: LSB scales and clipping.
+//! - [`variance`]: streaming rest-noise statistics (Welford mean and variance, the
+//!   successive-difference variance, the white noise density) per axis.
 
 pub mod calibration;
 pub mod mounting;
 pub mod raw;
 pub mod timing;
+pub mod variance;
 
 pub use calibration::{InertialCalibration, MagnetometerCalibration};
 pub use mounting::{AxisRemap, Mounting};
 pub use raw::{ClipGuard, ClipLimit, ClipPolicy, Clipped, RawScale};
 pub use timing::{Interval, MicrosClock, SampleClock};
+pub use variance::{RestNoise, RunningVariance};

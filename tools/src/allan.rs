@@ -180,7 +180,7 @@ pub fn overlapping(y: &[f64], rate: f64, ms: &[usize]) -> Result<Vec<AllanPoint>
                     d * d
                 })
                 .sum();
-            let tau = m as f64 * tau0;
+            let tau = m as f64 / rate;
             let avar = sum / (2.0 * tau * tau * terms as f64);
             Ok(AllanPoint {
                 tau,
@@ -239,6 +239,12 @@ pub struct Fit {
     pub floor_bound: f64,
     /// The τ of that minimum, s.
     pub floor_tau: f64,
+    /// How well the model fits: `Σ (σ² − model)²·edf/(2·model²)` over the fitted points,
+    /// divided by their number less the coefficients fitted (≈ 1 when the model holds and the
+    /// edf are right; the points are correlated, so a few is still a good fit; tens or more:
+    /// the curve has a shape the three terms cannot take, such as correlated noise from the
+    /// sensor's low-pass filter or a vibration at short τ).
+    pub chi2_per_dof: f64,
 }
 
 impl Fit {
@@ -265,7 +271,7 @@ impl Fit {
 }
 
 /// Fits N, B and K to a curve (see the module documentation) and sets each point's `edf` to
-/// the noise type the fit says dominates there. `samples` is the length of the data (for the
+/// the noise type the fit says dominates there. The floor bound is the minimum of these points. `samples` is the length of the data (for the
 /// `edf`).
 pub fn fit(points: &mut [AllanPoint], samples: usize) -> Result<Fit, AllanError> {
     if points.len() < 2 {
@@ -294,10 +300,15 @@ pub fn fit(points: &mut [AllanPoint], samples: usize) -> Result<Fit, AllanError>
             *w = edf(big_n, p.m, f.dominant(p.tau)) / (2.0 * s2 * s2);
         }
     }
-    let f = to_fit(coef, floor_adev, floor_tau);
+    let mut f = to_fit(coef, floor_adev, floor_tau);
+    let mut chi2 = 0.0;
     for p in points.iter_mut() {
         p.edf = edf(big_n, p.m, f.dominant(p.tau));
+        let model = f.allan_deviation(p.tau).powi(2).max(f64::MIN_POSITIVE);
+        chi2 += (p.adev * p.adev - model).powi(2) * p.edf / (2.0 * model * model);
     }
+    let fitted = coef.iter().filter(|&&c| c > 0.0).count();
+    f.chi2_per_dof = chi2 / (points.len().saturating_sub(fitted).max(1)) as f64;
     Ok(f)
 }
 
@@ -308,6 +319,7 @@ fn to_fit(coef: [f64; 3], floor_adev: f64, floor_tau: f64) -> Fit {
         rate_random_walk: (3.0 * coef[2]).sqrt(),
         floor_bound: floor_adev / FLICKER_FLOOR,
         floor_tau,
+        chi2_per_dof: f64::NAN,
     }
 }
 
@@ -406,15 +418,23 @@ pub struct Characterization {
     pub fit: Fit,
 }
 
-/// The curve of `y` at `rate` Hz on the grid `spacing` and its fit.
+/// The curve of `y` at `rate` Hz on the grid `spacing` and its fit over the points with
+/// τ ≥ `fit_from` seconds (0: every point; the points below are kept in the curve, with their
+/// white-noise edf). A sensor whose output is low-pass filtered, or that vibrates, has
+/// correlated noise at short τ that the three terms cannot represent: fit above it.
 pub fn characterize(
     y: &[f64],
     rate: f64,
     spacing: Spacing,
+    fit_from: f64,
 ) -> Result<Characterization, AllanError> {
     let ms = factors(y.len(), spacing);
     let mut points = overlapping(y, rate, &ms)?;
-    let fit = fit(&mut points, y.len())?;
+    let start = points
+        .iter()
+        .position(|p| p.tau >= fit_from)
+        .unwrap_or(points.len());
+    let fit = fit(&mut points[start..], y.len())?;
     Ok(Characterization { points, fit })
 }
 
@@ -469,6 +489,7 @@ mod tests {
             rate_random_walk: k,
             floor_bound: 0.0,
             floor_tau: 0.0,
+            chi2_per_dof: 0.0,
         };
         let mut pts: Vec<AllanPoint> = factors(1 << 22, Spacing::Octave)
             .into_iter()

@@ -7,6 +7,7 @@
 //! - [`mounting`]: the 24 remaps against the proper signed permutation matrices enumerated
 //!   independently, parsing, mounting rotations and attitudes.
 //! - [`raw`]: clipping flags and policies, LSB scales in every number format.
+//! - [`variance`]: the streaming rest-noise statistics against a two-pass f64 computation.
 //! - [`unequal`]: the 2-sample coning rule for unequal sub-intervals and Magnus-4 on unequal
 //!   sample times, on jittered clocks against the closed-form coning motion.
 
@@ -15,6 +16,7 @@ mod mounting;
 mod raw;
 mod timing;
 mod unequal;
+mod variance;
 
 /// A small deterministic generator (xorshift64*), uniform in `[0, 1)`: inputs that do not repeat.
 pub struct Rng(u64);

@@ -6,7 +6,8 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
 
-/// The path of the tool `name` (`convert`, `propagate`, `simulate` or `estimate`).
+/// The path of the tool `name` (`convert`, `propagate`, `simulate`, `estimate` or
+/// `characterize`).
 pub fn tool(name: &str) -> PathBuf {
     PathBuf::from(match name {
         "convert" => env!("CARGO_BIN_EXE_convert"),
@@ -14,6 +15,7 @@ pub fn tool(name: &str) -> PathBuf {
         "simulate" => env!("CARGO_BIN_EXE_simulate"),
         "estimate" => env!("CARGO_BIN_EXE_estimate"),
         "synthesize" => env!("CARGO_BIN_EXE_synthesize"),
+        "characterize" => env!("CARGO_BIN_EXE_characterize"),
         other => panic!("no tool {other}"),
     })
 }

@@ -11,6 +11,8 @@
 //! - [`fixed`]: `propagate --fixed` reproduces the firmware's Q1.30 bits.
 //! - [`estimate`]: convergence on a closed-form motion, BROAD's metric against `score.py` and
 //!   `host_tests::broad`, input dialects, frames, f32, the plot, the error paths.
+//! - [`characterize`]: the Allan characterisation recovers simulated noise (N, K within 10 %,
+//!   B within 25 %), the tool's tables, files, plot and errors, BROAD's rest phases.
 //! - [`campaign`]: garbage input, bad flags, overflowing values and closed pipes for all three.
 //! - [`timed`]: `propagate --time-column` and the sensor options on the real Fusion log and on
 //!   jittered synthetic streams.
@@ -19,6 +21,7 @@
 //! - [`cli`]: the tools as processes (`CARGO_BIN_EXE_*`).
 
 mod campaign;
+mod characterize;
 mod cli;
 mod convert;
 mod estimate;

@@ -9,15 +9,15 @@
 mod plot;
 
 use std::fmt::Debug;
-use std::fs::File;
-use std::io::{self, Read, Write};
-use std::path::{Path, PathBuf};
+use std::io::{self, Write};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use gyrostat::estimation::{EarthFrame, Estimator, Gains, MAX_STEP, Outcome, Params, SensorUse};
 use gyrostat::{Error, Real, Vec3};
 use gyrostat_tools::calibration::{self, CalibrationFile};
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
+use gyrostat_tools::imu_log::{self, Layout, OpenError, Sample, Scales, parse_row};
 use gyrostat_tools::stream::{self, Csv, Lines};
 use gyrostat_tools::units::{AccelUnit, GyroUnit, MagUnit, TimeUnit};
 
@@ -262,262 +262,7 @@ impl From<io::Error> for Failure {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Input: the stream, its columns and its units
-
-/// The input, decompressed when it starts with gzip's magic bytes.
-fn open_input(file: Option<&Path>) -> Result<Box<dyn Read>, Failure> {
-    let mut raw: Box<dyn Read> = match file {
-        Some(path) => Box::new(
-            File::open(path).map_err(|e| Failure::Other(format!("{}: {e}", path.display())))?,
-        ),
-        None => Box::new(io::stdin().lock()),
-    };
-    // The first two bytes decide (a pipe may deliver them in separate reads).
-    let mut magic = Vec::with_capacity(2);
-    while magic.len() < 2 {
-        let mut byte = [0u8; 1];
-        match raw.read(&mut byte) {
-            Ok(0) => break,
-            Ok(_) => magic.extend_from_slice(&byte),
-            Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
-            Err(e) => return Err(Failure::Io(e)),
-        }
-    }
-    let gzip = magic == [0x1f, 0x8b];
-    let whole = io::Cursor::new(magic).chain(raw);
-    Ok(if gzip {
-        Box::new(flate2::read::MultiGzDecoder::new(whole))
-    } else {
-        Box::new(whole)
-    })
-}
-
-/// A group of columns: its names in the header and the unit the names state.
-struct Names<const N: usize, U> {
-    names: [&'static str; N],
-    unit: Option<U>,
-}
-
-const TIME: [Names<1, TimeUnit>; 3] = [
-    Names {
-        names: ["t"],
-        unit: None,
-    },
-    Names {
-        names: ["t_s"],
-        unit: Some(TimeUnit::Second),
-    },
-    Names {
-        names: ["Time (s)"],
-        unit: Some(TimeUnit::Second),
-    },
-];
-const GYRO: [Names<3, GyroUnit>; 3] = [
-    Names {
-        names: ["gx", "gy", "gz"],
-        unit: None,
-    },
-    Names {
-        names: ["gyr_x_rad_s", "gyr_y_rad_s", "gyr_z_rad_s"],
-        unit: Some(GyroUnit::RadPerSecond),
-    },
-    Names {
-        names: [
-            "Gyroscope X (deg/s)",
-            "Gyroscope Y (deg/s)",
-            "Gyroscope Z (deg/s)",
-        ],
-        unit: Some(GyroUnit::DegPerSecond),
-    },
-];
-const ACCEL: [Names<3, AccelUnit>; 3] = [
-    Names {
-        names: ["ax", "ay", "az"],
-        unit: None,
-    },
-    Names {
-        names: ["acc_x_m_s2", "acc_y_m_s2", "acc_z_m_s2"],
-        unit: Some(AccelUnit::MeterPerSecondSquared),
-    },
-    Names {
-        names: [
-            "Accelerometer X (g)",
-            "Accelerometer Y (g)",
-            "Accelerometer Z (g)",
-        ],
-        unit: Some(AccelUnit::StandardGravity),
-    },
-];
-const MAG: [Names<3, MagUnit>; 3] = [
-    Names {
-        names: ["mx", "my", "mz"],
-        unit: None,
-    },
-    Names {
-        names: ["mag_x_uT", "mag_y_uT", "mag_z_uT"],
-        unit: Some(MagUnit::MicroTesla),
-    },
-    Names {
-        names: [
-            "Magnetometer X (uT)",
-            "Magnetometer Y (uT)",
-            "Magnetometer Z (uT)",
-        ],
-        unit: Some(MagUnit::MicroTesla),
-    },
-];
-const TRUTH: [Names<4, ()>; 2] = [
-    Names {
-        names: ["qw", "qx", "qy", "qz"],
-        unit: None,
-    },
-    Names {
-        names: ["opt_qw", "opt_qx", "opt_qy", "opt_qz"],
-        unit: None,
-    },
-];
-
-/// The first group of `options` whose names are all in `head`: their positions and unit.
-fn find<const N: usize, U: Copy>(
-    head: &[&str],
-    options: &[Names<N, U>],
-) -> Option<([usize; N], Option<U>)> {
-    options.iter().find_map(|o| {
-        let mut idx = [0; N];
-        for (slot, name) in idx.iter_mut().zip(o.names) {
-            *slot = head.iter().position(|h| *h == name)?;
-        }
-        Some((idx, o.unit))
-    })
-}
-
-/// Where a row's fields are.
-struct Layout {
-    /// Column names (for messages); positional input has the short names.
-    names: Vec<String>,
-    time: usize,
-    gyro: [usize; 3],
-    accel: [usize; 3],
-    mag: Option<[usize; 3]>,
-    truth: Option<[usize; 4]>,
-    movement: Option<usize>,
-    /// The units the column names state.
-    time_unit: Option<TimeUnit>,
-    gyro_unit: Option<GyroUnit>,
-    accel_unit: Option<AccelUnit>,
-    mag_unit: Option<MagUnit>,
-    /// Whether the first line was a header (not a sample).
-    header: bool,
-}
-
-impl Layout {
-    /// The layout from the first non-blank line (a header, or the first sample).
-    fn from_first_line(text: &str) -> Result<Layout, String> {
-        let fields: Vec<&str> = text.split(',').map(str::trim).collect();
-        let header = fields.iter().any(|f| f.parse::<f64>().is_err());
-        if header {
-            let missing = |what: &str| format!("the header names no {what} columns (see --help)");
-            let (t, time_unit) =
-                find(&fields, &TIME).ok_or_else(|| missing("time (t, t_s or Time (s))"))?;
-            let (gyro, gyro_unit) = find(&fields, &GYRO).ok_or_else(|| missing("gyroscope"))?;
-            let (accel, accel_unit) =
-                find(&fields, &ACCEL).ok_or_else(|| missing("accelerometer"))?;
-            let (mag, mag_unit) = match find(&fields, &MAG) {
-                Some((i, u)) => (Some(i), u),
-                None => (None, None),
-            };
-            return Ok(Layout {
-                names: fields.iter().map(|s| s.to_string()).collect(),
-                time: t[0],
-                gyro,
-                accel,
-                mag,
-                truth: find(&fields, &TRUTH).map(|(i, _)| i),
-                movement: fields.iter().position(|h| *h == "movement"),
-                time_unit,
-                gyro_unit,
-                accel_unit,
-                mag_unit,
-                header: true,
-            });
-        }
-        let (mag, truth) = match fields.len() {
-            7 => (None, None),
-            10 => (Some([7, 8, 9]), None),
-            11 => (None, Some([7, 8, 9, 10])),
-            14 => (Some([7, 8, 9]), Some([10, 11, 12, 13])),
-            n => {
-                return Err(format!(
-                    "expected 7, 10, 11 or 14 comma-separated fields without a header \
-                     (t,gx,gy,gz,ax,ay,az[,mx,my,mz][,qw,qx,qy,qz]), found {n}"
-                ));
-            }
-        };
-        let short = [
-            "t", "gx", "gy", "gz", "ax", "ay", "az", "mx", "my", "mz", "qw", "qx", "qy", "qz",
-        ];
-        let mut names: Vec<&str> = short.iter().take(7).copied().collect();
-        if mag.is_some() {
-            names.extend(short.iter().skip(7).take(3));
-        }
-        if truth.is_some() {
-            names.extend(short.iter().skip(10));
-        }
-        Ok(Layout {
-            names: names.into_iter().map(|s| s.to_string()).collect(),
-            time: 0,
-            gyro: [1, 2, 3],
-            accel: [4, 5, 6],
-            mag,
-            truth,
-            movement: None,
-            time_unit: None,
-            gyro_unit: None,
-            accel_unit: None,
-            mag_unit: None,
-            header: false,
-        })
-    }
-}
-
-/// A unit flag against the unit a column name states: the flag's, the name's, or the default.
-fn unit<U: Copy + PartialEq + Default>(
-    flag: &str,
-    given: Option<U>,
-    named: Option<U>,
-    name: fn(U) -> &'static str,
-    column: &str,
-) -> Result<U, Failure> {
-    match (given, named) {
-        (Some(g), Some(n)) if g != n => Err(Failure::Usage(format!(
-            "{flag} {}: the input's column '{column}' is in {}",
-            name(g),
-            name(n)
-        ))),
-        (Some(u), _) | (None, Some(u)) => Ok(u),
-        (None, None) => Ok(U::default()),
-    }
-}
-
-/// The conversion of the input to SI units.
-struct Scales {
-    time: f64,
-    gyro: f64,
-    accel: f64,
-    mag: f64,
-}
-
-/// One parsed sample.
-struct Sample<'a> {
-    t_text: &'a str,
-    t: f64,
-    gyro: [f64; 3],
-    accel: [f64; 3],
-    mag: Option<[f64; 3]>,
-    truth: Option<[f64; 4]>,
-    scored: bool,
-}
-
+// Input: the stream, its columns and its units are `gyrostat_tools::imu_log`'s
 /// The sample's gyro, accelerometer and magnetometer readings through the calibration file's
 /// models (as read without one).
 fn calibrated(cal: Option<&CalibrationFile>, s: &Sample) -> ([f64; 3], [f64; 3], Option<[f64; 3]>) {
@@ -530,97 +275,6 @@ fn calibrated(cal: Option<&CalibrationFile>, s: &Sample) -> ([f64; 3], [f64; 3],
         c.accel.apply(v(s.accel)).to_array(),
         s.mag.map(|m| c.mag.apply(v(m)).to_array()),
     )
-}
-
-/// Parses one row by `layout` (the reference and movement only when `truth`).
-fn parse_row<'a>(
-    text: &'a str,
-    layout: &Layout,
-    s: &Scales,
-    truth: bool,
-) -> Result<Sample<'a>, String> {
-    let fields: Vec<&str> = text.split(',').map(str::trim).collect();
-    if fields.len() != layout.names.len() {
-        return Err(format!(
-            "expected {} comma-separated fields ({}), found {}",
-            layout.names.len(),
-            if layout.header {
-                "as the header"
-            } else {
-                "as the first row"
-            },
-            fields.len()
-        ));
-    }
-    let field = |i: usize| fields.get(i).copied().unwrap_or("");
-    let number = |i: usize| -> Result<f64, String> {
-        let f = field(i);
-        f.parse::<f64>().map_err(|_| {
-            format!(
-                "column {} ({}): invalid number '{f}'",
-                i + 1,
-                layout.names.get(i).map_or("", String::as_str)
-            )
-        })
-    };
-    let finite = |i: usize, what: &str| -> Result<f64, String> {
-        let x = number(i)?;
-        if x.is_finite() {
-            Ok(x)
-        } else {
-            Err(format!(
-                "column {} ({}): non-finite {what} '{}'{}",
-                i + 1,
-                layout.names.get(i).map_or("", String::as_str),
-                field(i),
-                if what == "gyroscope value" {
-                    " (the estimator cannot propagate across it)"
-                } else {
-                    ""
-                }
-            ))
-        }
-    };
-    let t = finite(layout.time, "time stamp")?;
-    let mut gyro = [0.0; 3];
-    for (g, &i) in gyro.iter_mut().zip(&layout.gyro) {
-        *g = finite(i, "gyroscope value")? * s.gyro;
-    }
-    let mut accel = [0.0; 3];
-    for (a, &i) in accel.iter_mut().zip(&layout.accel) {
-        *a = number(i)? * s.accel;
-    }
-    let mag = match layout.mag {
-        Some(idx) if idx.iter().all(|&i| field(i).is_empty()) => None,
-        Some(idx) => {
-            let mut m = [0.0; 3];
-            for (m, &i) in m.iter_mut().zip(&idx) {
-                *m = number(i)? * s.mag;
-            }
-            Some(m)
-        }
-        None => None,
-    };
-    let truth_q = match layout.truth {
-        Some(idx) if truth && !field(idx[0]).is_empty() => {
-            let mut q = [0.0; 4];
-            for (q, &i) in q.iter_mut().zip(&idx) {
-                *q = finite(i, "reference")?;
-            }
-            Some(q)
-        }
-        _ => None,
-    };
-    let scored = layout.movement.is_none_or(|i| field(i) == "1");
-    Ok(Sample {
-        t_text: field(layout.time),
-        t,
-        gyro,
-        accel,
-        mag,
-        truth: truth_q,
-        scored,
-    })
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -728,7 +382,11 @@ struct Done {
 
 /// Reads the input, runs the estimator in `T` and prints the rows.
 fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done, Failure> {
-    let mut lines = Lines::new(open_input(args.file.as_deref())?);
+    let input = imu_log::open_input(args.file.as_deref()).map_err(|e| match e {
+        OpenError::File(e) => Failure::Other(e),
+        OpenError::Io(e) => Failure::Io(e),
+    })?;
+    let mut lines = Lines::new(input);
     let mut last_line = 0u64;
     // The first non-blank line: the header or the first sample.
     let first = loop {
@@ -751,44 +409,8 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
         }
     };
     let layout = Layout::from_first_line(&first.1).map_err(|e| Failure::Row(first.0, e))?;
-    let column = |i: usize| layout.names.get(i).cloned().unwrap_or_default();
-    let scales = Scales {
-        time: unit(
-            "--time-unit",
-            args.time,
-            layout.time_unit,
-            TimeUnit::name,
-            &column(layout.time),
-        )?
-        .to_si(),
-        gyro: unit(
-            "--gyro-unit",
-            args.gyro,
-            layout.gyro_unit,
-            GyroUnit::name,
-            &column(layout.gyro[0]),
-        )?
-        .to_si(),
-        accel: unit(
-            "--accel-unit",
-            args.accel,
-            layout.accel_unit,
-            AccelUnit::name,
-            &column(layout.accel[0]),
-        )?
-        .to_si(),
-        mag: match (args.mag, layout.mag_unit) {
-            (Some(MagUnit::Any), _) => 1.0,
-            (given, named) => unit(
-                "--mag-unit",
-                given,
-                named,
-                MagUnit::name,
-                &column(layout.mag.map_or(0, |m| m[0])),
-            )?
-            .to_micro_tesla(),
-        },
-    };
+    let scales = Scales::resolve(&layout, args.time, args.gyro, args.accel, args.mag)
+        .map_err(Failure::Usage)?;
     let six_d = match (args.sensors, layout.mag.is_some()) {
         (Sensors::NineD, false) => {
             return Err(Failure::Usage(
