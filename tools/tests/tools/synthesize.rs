@@ -674,3 +674,71 @@ fn presets_print_and_errors_are_one_line() {
         assert!(out.stderr.contains(want), "{args:?}: {}", out.stderr);
     }
 }
+
+/// The loop the spec file closes: a rest log of the industrial preset, characterised by
+/// `characterize --spec`, gives a spec `synthesize` reads; its white noise densities are the
+/// preset's (within 10 %: 1 h at 200 Hz; the Allan helper's tests hold the rest of the fit).
+#[test]
+fn characterize_writes_a_spec_synthesize_reads() {
+    let log = run(
+        "synthesize",
+        &[
+            "--motion",
+            "rest",
+            "--rest",
+            "3600",
+            "--phases",
+            "0",
+            "--sensor",
+            "industrial",
+            "--seed",
+            "2",
+        ],
+        "",
+    );
+    ok(&log);
+    let spec = write_spec("characterized.spec", "");
+    let out = run(
+        "characterize",
+        &["--spec", spec.to_str().unwrap()],
+        &log.stdout,
+    );
+    ok(&out);
+    let printed = run(
+        "synthesize",
+        &["--sensor", spec.to_str().unwrap(), "--print-sensor"],
+        "",
+    );
+    ok(&printed);
+    let value = |key: &str| -> f64 {
+        let line = printed
+            .stdout
+            .lines()
+            .find(|l| l.starts_with(&format!("{key} =")))
+            .unwrap_or_else(|| panic!("{key} in {}", printed.stdout));
+        line.split(['=', '#'])
+            .nth(1)
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap()
+    };
+    assert!((value("gyro_noise_density") / 9.9e-5 - 1.0).abs() < 0.1);
+    assert!((value("accel_noise_density") / 6.2e-4 - 1.0).abs() < 0.1);
+    assert!((value("rate") / 200.0 - 1.0).abs() < 1e-6);
+    let again = run(
+        "synthesize",
+        &[
+            "--sensor",
+            spec.to_str().unwrap(),
+            "--motion",
+            "rest",
+            "--rest",
+            "1",
+            "--phases",
+            "0",
+        ],
+        "",
+    );
+    ok(&again);
+}
