@@ -26,7 +26,8 @@ Disturbances (the flags given to synthesize):
                                               the middle of each phase: up to 25 uT)
     fixed-magnet    --magnet-fixed 20,-10,15 (a magnet fixed on the device a third into the
                                               first phase: 27 uT of extra hard iron)
-    taps            --taps 30                (a 30 m/s^2, 60 Hz decaying pulse every 1.5-3 s)
+    taps            --taps 30                (a 60 Hz pulse decaying in 10 ms, peak 20 m/s^2,
+                                              every 1.5-3 s)
     steel           --steel 10,-8,12         (the field changes by up to 18 uT near steel)
 
 Scoring: BROAD's metric (total / heading / inclination RMSE in degrees over the movement phases,

@@ -90,8 +90,9 @@ MOTION:
                         about 15 A m/s^2 peak acceleration), exact in closed form
     --vibration A,F     vibration: a body-frame acceleration of amplitude A m/s^2 near F Hz
                         (F, 1.13 F, 0.89 F on x, y, z) during the movement phases
-    --taps A            taps: every 1.5-3 s of a movement phase, a decaying 60 Hz acceleration
-                        pulse of peak about A m/s^2 (10 ms decay) along a seeded direction
+    --taps A            taps: every 1.5-3 s of a movement phase, a body-frame acceleration
+                        A e^(-u/10 ms) sin(2 pi 60 Hz u) for 0.1 s along a seeded direction
+                        (its peak is 0.68 A, 3.5 ms after the tap)
 
 MAGNETIC DISTURBANCES:
     --magnet-pass M,D,V  in the middle of each movement phase a magnetic dipole of M A m^2

@@ -491,6 +491,64 @@ fn magnetic_disturbances_match_their_physics() {
         peak = peak.max(dist(got, [0.0; 3]));
     }
     assert!(peak > 10.0, "the pass disturbs: {peak} uT");
+    // Steel: the field changes by w·ΔB, w = sin²(π u/L) over the middle half of the phase
+    // (u from a quarter in, L half the phase: from t = 6 s for 10 s here), earth frame.
+    let steel = log(&[&base[..], &["--steel", "10,-8,12"]].concat());
+    for (c, p) in clean.iter().zip(&steel) {
+        let u = c.t() - 6.0;
+        let w = if (0.0..10.0).contains(&u) {
+            (std::f64::consts::PI * u / 10.0).sin().powi(2)
+        } else {
+            0.0
+        };
+        let got: [f64; 3] = core::array::from_fn(|i| p.mag().unwrap()[i] - c.mag().unwrap()[i]);
+        assert!(
+            dist(got, [10.0 * w, -8.0 * w, 12.0 * w]) < 1e-9,
+            "t {}: {got:?}",
+            c.t()
+        );
+    }
+}
+
+/// Vibration and taps: the specific force is `R(q)ᵀ(a + g ẑ)` plus the body-frame acceleration
+/// the `--kinematics` columns give, which is zero at rest and reaches the taps' amplitude.
+#[test]
+fn vibration_and_taps_add_in_the_sensor_frame() {
+    let rows = log(&[
+        "--motion",
+        "handheld",
+        "--vibration",
+        "3,40",
+        "--taps",
+        "20",
+        "--rate",
+        "1000",
+        "--rest",
+        "1",
+        "--duration",
+        "8",
+        "--phases",
+        "1",
+        "--kinematics",
+        "--seed",
+        "4",
+    ]);
+    let mut peak: f64 = 0.0;
+    for r in &rows {
+        let a = r.extra(2);
+        let f = to_body(r.q(), [a[0], a[1], a[2] + G]);
+        let b = r.extra(3);
+        let want = [f[0] + b[0], f[1] + b[1], f[2] + b[2]];
+        assert!(dist(r.acc(), want) < 1e-12, "t {}", r.t());
+        if !r.moving() {
+            assert_eq!(b, [0.0; 3]);
+        }
+        peak = peak.max(dist(b, [0.0; 3]));
+    }
+    assert!(
+        peak > 15.0 && peak < 20.0 + 3.0 * 3f64.sqrt(),
+        "peak body acceleration {peak}"
+    );
 }
 
 /// White noise: at rest, the gyro's sample standard deviation is `N·√rate` (within 3 %: 3 × 20
