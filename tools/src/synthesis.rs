@@ -202,8 +202,12 @@ impl Synth {
     /// The number of samples.
     pub fn len(&self) -> u64 {
         match &self.motion.rotation {
-            Rotation::File(f) => self.motion.file_rest_samples() + f.attitudes.len() as u64,
-            _ => (self.motion.timeline.total() * self.spec.rate).floor() as u64 + 1,
+            Rotation::File(f) => self
+                .motion
+                .file_rest_samples()
+                .saturating_add(f.attitudes.len() as u64),
+            // `as` saturates: an absurd length is caught by `Options::build`'s limit.
+            _ => ((self.motion.timeline.total() * self.spec.rate).floor() as u64).saturating_add(1),
         }
     }
 

@@ -20,7 +20,7 @@ use host_tests::reference::{
     M3, mat_mul, mat_vec, qmul, quat_angle, quat_exp, quat_matrix, transpose,
 };
 
-use crate::cli::{Output, run};
+use crate::cli::{Closed, Output, run, run_closed};
 
 const HEADER: &str = "t_s,gyr_x_rad_s,gyr_y_rad_s,gyr_z_rad_s,acc_x_m_s2,acc_y_m_s2,acc_z_m_s2,mag_x_uT,mag_y_uT,mag_z_uT,opt_qw,opt_qx,opt_qy,opt_qz,movement";
 const G: f64 = 9.81;
@@ -799,4 +799,26 @@ fn characterize_writes_a_spec_synthesize_reads() {
         "",
     );
     ok(&again);
+}
+
+/// Absurd lengths are usage errors before any output; a closed stdout ends a run quietly.
+#[test]
+fn huge_logs_and_closed_pipes() {
+    for args in [
+        &["--duration", "1e300"][..],
+        &["--rest", "1e300"][..],
+        &["--rate", "1e12", "--duration", "1"][..],
+    ] {
+        let out = run("synthesize", args, "");
+        assert_eq!(out.status, Some(2), "{args:?}: {}", out.stderr);
+        assert!(
+            out.stderr.contains("more than 100000000"),
+            "{args:?}: {}",
+            out.stderr
+        );
+        assert!(out.stdout.is_empty());
+    }
+    let (status, stderr) = run_closed("synthesize", &["--rate", "1000"], "", Closed::Stdout);
+    assert_eq!(status, Some(0), "{stderr}");
+    assert!(stderr.is_empty(), "{stderr}");
 }
