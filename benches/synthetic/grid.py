@@ -7,6 +7,7 @@
     python3 benches/synthetic/grid.py --vqf                  # + VQF (PyPI vqf, from /work/venv)
     python3 benches/synthetic/grid.py --estimator 'mine=path/to/filter {log} > {out}'
     python3 benches/synthetic/grid.py --set rest.gyro=0.05   # estimate with a parameter changed
+    python3 benches/synthetic/grid.py --estimate-bin ../other/target/release/estimate  # another build
 
 Grid: sample rate (--rates, default 25, 50, 100, 285.714285714 (BROAD's), 1000 Hz) x sensor
 grade (--sensors, the presets of `synthesize --sensor`: consumer, industrial, tactical) x
@@ -192,7 +193,7 @@ def cell(args, score, rate, sensor, dist, seed, check_score):
         raise RuntimeError(f"{shlex.join(synth)}: {p.stderr.strip()}")
     results = []
     est_out = logs / f"{name}.estimate.csv"
-    est = [str(args.bin / "estimate"), "--truth", *sum((["--set", s] for s in args.set), []),
+    est = [str(args.estimate_bin), "--truth", *sum((["--set", s] for s in args.set), []),
            str(log)]
     with open(est_out, "w") as f:
         p = subprocess.run(est, stdout=f, stderr=subprocess.PIPE, text=True)
@@ -268,7 +269,11 @@ def main(argv):
     ap.add_argument("--estimator", action="append", default=[], metavar="LABEL=CMD")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                     help="an estimate parameter (estimate --set)")
-    ap.add_argument("--bin", type=Path, default=ROOT / "target" / "release")
+    ap.add_argument("--bin", type=Path, default=ROOT / "target" / "release",
+                    help="the directory of the synthesize and estimate binaries")
+    ap.add_argument("--estimate-bin", type=Path, default=None,
+                    help="the estimate binary to score (default: BIN/estimate), e.g. another "
+                         "checkout's target/release/estimate")
     ap.add_argument("--score", type=Path, default=ROOT.parent / "shared" / "real-data" / "broad" / "score.py")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--keep", action="store_true", help="keep the logs and estimates")
@@ -292,9 +297,10 @@ def main(argv):
     if any(len(e) != 2 for e in args.estimator):
         ap.error("--estimator takes LABEL=CMD")
     args.peers = ["vqf"] if args.vqf else []
-    for tool in ("synthesize", "estimate"):
-        if not (args.bin / tool).exists():
-            ap.error(f"{args.bin / tool} not found: cargo build --release -p gyrostat-tools "
+    args.estimate_bin = args.estimate_bin or args.bin / "estimate"
+    for exe in (args.bin / "synthesize", args.estimate_bin):
+        if not exe.exists():
+            ap.error(f"{exe} not found: cargo build --release -p gyrostat-tools "
                      "--bin synthesize --bin estimate")
     score = load_score(args.score)
     if score is None and (args.peers or args.estimator):
