@@ -154,8 +154,9 @@ rate = 100
 
 const CONSUMER: &str = "\
 # consumer: a 6-axis MEMS IMU of the InvenSense ICM-42688-P class with a Bosch BMM150
-# magnetometer. Figures as read from the datasheets (ICM-42688-P DS-000347; BMM150 BST-BMM150-DS001),
-# typical values, converted to SI (1 deg = pi/180 rad, 1 g = 9.80665 m/s^2):
+# magnetometer. Typical values of the public datasheets (InvenSense ICM-42688-P, Bosch BMM150),
+# quoted from them without a revision number (check a figure against the current sheet before
+# relying on it), converted to SI (1 deg = pi/180 rad, 1 g = 9.80665 m/s^2):
 rate = 100
 clock_jitter = 20e-6              # host time stamps, not a datasheet figure
 # gyro: rate noise spectral density 0.0028 dps/sqrt(Hz) = 4.89e-5 rad/s/sqrt(Hz); the datasheet
@@ -199,8 +200,8 @@ mag_rate = 25
 
 const INDUSTRIAL: &str = "\
 # industrial: an Analog Devices ADIS16470-class tactical-MEMS IMU (no magnetometer of its own)
-# with a PNI RM3100-class magnetometer. Figures as read from the datasheets (ADIS16470 Rev. C;
-# RM3100 r11), converted to SI:
+# with a PNI RM3100-class magnetometer. Typical values of the public datasheets (Analog Devices
+# ADIS16470, PNI RM3100), quoted without a revision number, converted to SI:
 rate = 200
 clock_jitter = 5e-6
 # gyro: angle random walk 0.34 deg/sqrt(h) = 0.34/60 deg/s/sqrt(Hz) = 9.9e-5 rad/s/sqrt(Hz)
@@ -243,7 +244,8 @@ mag_rate = 100
 
 const TACTICAL: &str = "\
 # tactical: a KVH 1750-class fibre-optic gyro IMU with a fluxgate-class magnetometer. Figures
-# as read from the KVH 1750 IMU datasheet, converted to SI:
+# of the public KVH 1750 IMU datasheet (limits, used as typical values), quoted without a
+# revision number, converted to SI:
 rate = 1000
 clock_jitter = 1e-6
 # gyro: angle random walk <= 0.012 deg/sqrt(h) = 0.012/60 deg/s/sqrt(Hz) = 3.5e-6
