@@ -42,6 +42,9 @@ __all__ = [
     "Estimate",
     "estimate",
     "estimator_defaults",
+    "SyntheticLog",
+    "synthesize",
+    "sensor_text",
     "allan_deviation",
     "characterize",
 ]
@@ -460,6 +463,98 @@ def estimate(
     )
 
 
+# -- synthetic logs -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class SyntheticLog:
+    """A synthetic IMU log with its exact truth, the rows of ``synthesize``'s CSV as arrays.
+
+    ``t`` (N,; the time stamps, with the clock jitter), ``gyr`` (N, 3; rad/s), ``acc`` (N, 3;
+    m/s^2, the specific force: +g up at rest), ``mag`` (N, 3; uT, NaN rows between the samples
+    of a slower magnetometer), ``q`` (N, 4; the true attitude at ``t_true``, ``w, x, y, z``,
+    sensor -> earth, ENU), ``movement`` (N,; bool, inside a movement phase), and the true motion:
+    ``t_true`` (the nominal sample instants), ``rate`` (N, 3; body rate), ``pos`` (N, 3; m,
+    earth frame), ``lin_acc`` (N, 3; earth frame, without gravity), ``body_acc`` (N, 3;
+    vibration and taps, sensor frame).
+    """
+
+    t: Array
+    gyr: Array
+    acc: Array
+    mag: Array
+    q: Array
+    movement: npt.NDArray[np.bool_]
+    t_true: Array
+    rate: Array
+    pos: Array
+    lin_acc: Array
+    body_acc: Array
+
+
+def synthesize(
+    *,
+    motion: str = "handheld",
+    sensor: str = "ideal",
+    rate: Optional[float] = None,
+    duration: Optional[float] = None,
+    rest: Optional[float] = None,
+    phases: Optional[int] = None,
+    ramp: Optional[float] = None,
+    q0: Optional[Sequence[float]] = None,
+    translation: Optional[float] = None,
+    vibration: Optional[Tuple[float, float]] = None,
+    taps: Optional[float] = None,
+    magnet_pass: Optional[Tuple[float, float, float]] = None,
+    magnet_fixed: Optional[Sequence[float]] = None,
+    steel: Optional[Sequence[float]] = None,
+    seed: int = 0,
+    motion_rows: Optional[Any] = None,
+) -> SyntheticLog:
+    """A synthetic IMU log: the ``synthesize`` tool's flags as keywords (the same checks and
+    the same numbers, byte for byte; ``synthesize --help`` describes each).
+
+    ``motion``: ``handheld``, ``axes``, ``rest`` or ``spin:WX,WY,WZ``; or give ``motion_rows``,
+    a :class:`Simulation` (or any object with uniformly spaced ``t``, ``q`` and ``omega``
+    arrays) to use its rows as the samples, as ``simulate ... | synthesize --motion -`` does.
+    ``sensor``: a preset (``ideal``, ``consumer``, ``industrial``, ``tactical``) or the path of a
+    sensor spec file (:func:`sensor_text` prints a preset). ``vibration`` = (A m/s^2, F Hz),
+    ``magnet_pass`` = (M A m^2, D m, V m/s), ``magnet_fixed`` = (HX, HY, HZ[, T]) uT, ``steel`` =
+    (DX, DY, DZ) uT. Invalid arguments raise :class:`GyrostatError`.
+    """
+    kw: Dict[str, Any] = {}
+    if motion_rows is not None:
+        kw = dict(
+            motion="rows",
+            motion_t=np.ascontiguousarray(motion_rows.t, dtype=np.float64),
+            motion_q=_rows(motion_rows.q, 4, "motion_rows.q")[0],
+            motion_omega=_rows(motion_rows.omega, 3, "motion_rows.omega")[0],
+        )
+    else:
+        kw = dict(motion=motion)
+    d = _gyrostat.synthesize(
+        sensor=sensor,
+        rate=rate,
+        duration=duration,
+        rest=rest,
+        phases=phases,
+        ramp=ramp,
+        q0=None if q0 is None else [float(x) for x in q0],
+        translation=translation,
+        vibration=None if vibration is None else [float(x) for x in vibration],
+        taps=taps,
+        magnet_pass=None if magnet_pass is None else [float(x) for x in magnet_pass],
+        magnet_fixed=None if magnet_fixed is None else [float(x) for x in magnet_fixed],
+        steel=None if steel is None else [float(x) for x in steel],
+        seed=seed,
+        **kw,
+    )
+    return SyntheticLog(**d)
+
+
+def sensor_text(sensor: str) -> str:
+    """The text of a sensor preset (with its datasheet sources) or spec file."""
+    return _gyrostat.sensor_text(sensor)
 # -- noise characterisation ----------------------------------------------------------------------
 
 

@@ -67,6 +67,28 @@ def estimate(
     skip_errors: bool,
 ) -> Dict[str, Any]: ...
 def estimator_defaults() -> Dict[str, float]: ...
+def synthesize(
+    *,
+    motion: str = ...,
+    motion_t: Optional[F64] = None,
+    motion_q: Optional[F64] = None,
+    motion_omega: Optional[F64] = None,
+    sensor: str = ...,
+    rate: Optional[float] = None,
+    duration: Optional[float] = None,
+    rest: Optional[float] = None,
+    phases: Optional[int] = None,
+    ramp: Optional[float] = None,
+    q0: Optional[List[float]] = None,
+    translation: Optional[float] = None,
+    vibration: Optional[List[float]] = None,
+    taps: Optional[float] = None,
+    magnet_pass: Optional[List[float]] = None,
+    magnet_fixed: Optional[List[float]] = None,
+    steel: Optional[List[float]] = None,
+    seed: int = 0,
+) -> Dict[str, Any]: ...
+def sensor_text(sensor: str) -> str: ...
 def allan_deviation(
     x: F64,
     rate: float,

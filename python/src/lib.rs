@@ -25,6 +25,7 @@ mod estimation;
 mod propagation;
 mod rotation;
 mod simulation;
+mod synthesis;
 
 pyo3::create_exception!(
     _gyrostat,
@@ -236,6 +237,7 @@ fn _gyrostat(m: &Bound<'_, PyModule>) -> PyResult<()> {
     propagation::register(m)?;
     simulation::register(m)?;
     estimation::register(m)?;
+    synthesis::register(m)?;
     allan::register(m)?;
     Ok(())
 }

@@ -1,17 +1,20 @@
 //! The command-line tools of gyrostat (`convert`, `propagate`, `simulate`, `estimate`,
-//! `characterize`) and what they share: one flag dialect and error style ([`flags`]), one stream
-//! reader and CSV writer ([`stream`]), the units of sensor data on the command line ([`units`]),
-//! the IMU log columns of `estimate` and `characterize` ([`imu_log`]), the plots' colours
-//! ([`plot`]), the scenarios of `simulate` ([`simulation`], with the external torque of
-//! [`torque`]), the sensor noise model ([`noise`]) and its characterisation by the Allan
-//! deviation ([`allan`], [`characterization`]), which the Python package (`python/`) runs too.
+//! `characterize`, `synthesize`) and what they share: one flag dialect and error style
+//! ([`flags`]), one stream reader and CSV writer ([`stream`]), the units of sensor data on the
+//! command line ([`units`]), the IMU log columns of `estimate` and `characterize` ([`imu_log`]),
+//! the plots' colours ([`plot`]), the scenarios of `simulate` ([`simulation`], with the external
+//! torque of [`torque`]), the sensor noise model ([`noise`]) and its characterisation by the
+//! Allan deviation ([`allan`], [`characterization`]), which the Python package (`python/`) runs
+//! too; and the synthetic logs of `synthesize`: closed-form motions ([`motion`]), the sensor
+//! spec file and its presets ([`sensor_spec`]) and the sensor model that turns a motion into
+//! measurements ([`synthesis`]).
 //!
 //! The tools are binaries of this crate (`src/bin/`); install them with
 //! `cargo install --path tools`, or run them from a checkout with the cargo aliases of
 //! `.cargo/config.toml` (`cargo simulate`, `cargo convert ...`, `cargo propagate ...`,
-//! `cargo estimate ...`, `cargo characterize ...`). Their interfaces (flags, formats, exit
-//! statuses) are in each tool's `--help` and in README.md; the library itself (`gyrostat`) stays
-//! `no_std` and knows nothing of them.
+//! `cargo estimate ...`, `cargo characterize ...`, `cargo synthesize ...`). Their interfaces
+//! (flags, formats, exit statuses) are in each tool's `--help` and in README.md; the library
+//! itself (`gyrostat`) stays `no_std` and knows nothing of them.
 //!
 //! A further tool is one more file in `src/bin/` that declares its [`flags::Cli`] and reads its
 //! input with [`stream::Lines`].
@@ -21,9 +24,12 @@ pub mod calibration;
 pub mod characterization;
 pub mod flags;
 pub mod imu_log;
+pub mod motion;
 pub mod noise;
 pub mod plot;
+pub mod sensor_spec;
 pub mod simulation;
 pub mod stream;
+pub mod synthesis;
 pub mod torque;
 pub mod units;

@@ -14,6 +14,7 @@ pub fn tool(name: &str) -> PathBuf {
         "propagate" => env!("CARGO_BIN_EXE_propagate"),
         "simulate" => env!("CARGO_BIN_EXE_simulate"),
         "estimate" => env!("CARGO_BIN_EXE_estimate"),
+        "synthesize" => env!("CARGO_BIN_EXE_synthesize"),
         "characterize" => env!("CARGO_BIN_EXE_characterize"),
         other => panic!("no tool {other}"),
     })

@@ -16,6 +16,8 @@
 //! - [`campaign`]: garbage input, bad flags, overflowing values and closed pipes for all three.
 //! - [`timed`]: `propagate --time-column` and the sensor options on the real Fusion log and on
 //!   jittered synthetic streams.
+//! - [`synthesize`]: synthetic logs against closed-form motion and an independent sensor
+//!   model, `estimate --truth` on them, a slice of the synthetic benchmark grid.
 //! - [`cli`]: the tools as processes (`CARGO_BIN_EXE_*`).
 
 mod campaign;
@@ -26,4 +28,5 @@ mod estimate;
 mod fixed;
 mod propagate;
 mod simulate;
+mod synthesize;
 mod timed;
