@@ -82,7 +82,7 @@ mod firmware {
             sink(f.attitude_std());
             sink(f.covariance());
             sink(f.field_reference());
-            sink(f.mag_delay(dt));
+            sink(f.mag_delay());
         }
     }
 

@@ -2129,6 +2129,8 @@ pub struct gyro_estimator_params_f32 {
     pub mag_heading_noise: f32,
     /// Correlation time (s) of that error.
     pub mag_correlation_time: f32,
+    /// Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
+    pub gyro_delay: f32,
     /// Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
     pub mag_delay: f32,
     /// Averaging time (s of rotation in an undisturbed field) of the online estimate of the
@@ -2203,6 +2205,8 @@ pub struct gyro_estimator_params_f64 {
     pub mag_heading_noise: f64,
     /// Correlation time (s) of that error.
     pub mag_correlation_time: f64,
+    /// Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
+    pub gyro_delay: f64,
     /// Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
     pub mag_delay: f64,
     /// Averaging time (s of rotation in an undisturbed field) of the online estimate of the
@@ -2270,6 +2274,7 @@ macro_rules! params_io {
                     accel_reject: self.accel_reject,
                     mag_heading_noise: self.mag_heading_noise,
                     mag_correlation_time: self.mag_correlation_time,
+                    gyro_delay: self.gyro_delay,
                     mag_delay: self.mag_delay,
                     mag_delay_estimation_time: self.mag_delay_estimation_time,
                     mag_disturbance_weight: self.mag_disturbance_weight,
@@ -2319,6 +2324,7 @@ macro_rules! params_io {
                     accel_reject: p.accel_reject,
                     mag_heading_noise: p.mag_heading_noise,
                     mag_correlation_time: p.mag_correlation_time,
+                    gyro_delay: p.gyro_delay,
                     mag_delay: p.mag_delay,
                     mag_delay_estimation_time: p.mag_delay_estimation_time,
                     mag_disturbance_weight: p.mag_disturbance_weight,

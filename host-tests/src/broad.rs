@@ -247,6 +247,8 @@ pub struct EstimateRow {
     pub q: [f64; 4],
     /// The gyroscope bias estimate, rad/s.
     pub bias: [f64; 3],
+    /// The magnetometer delay in use after the row, s ([`Estimator::mag_delay`]).
+    pub mag_delay: f64,
     /// What the update did; `None` when the filter rejected the row (see `error`).
     pub outcome: Option<Outcome>,
     /// The filter's error for a rejected row (the previous attitude is repeated).
@@ -317,6 +319,7 @@ fn run<T: Real>(
             t: row.t,
             q,
             bias: b,
+            mag_delay: f.mag_delay().to_f64(),
             outcome,
             error,
         });

@@ -5,7 +5,7 @@
 //! (the angle below the horizontal, `δ = atan2(−B_up, |B_horizontal|)` in the earth frame; 69°
 //! in Berlin). A nearby iron object or magnet changes one or both. The monitor keeps a
 //! reference `(|B|_ref, δ_ref)`, learned from the first sample on and followed slowly (first
-//! order, time constant `τ_ref`) while undisturbed; a sample whose norm differs by more than a
+//! order, time constant `τ_ref`, [`first_order_gain`]) while undisturbed; a sample whose norm differs by more than a
 //! fraction `th_B` or whose dip differs by more than `th_δ` is disturbed, and so is every sample
 //! until the field has been back within the thresholds for `t_back` seconds.
 //!
@@ -15,6 +15,7 @@
 //! faster than `ω_new` (so that the field is homogeneous, not a magnet turning with the sensor,
 //! whose reading would change with the orientation), the candidate becomes the reference.
 
+use super::lowpass::first_order_gain;
 use crate::Real;
 
 /// The disturbance monitor's settings (see the module docs).
@@ -77,7 +78,7 @@ impl<T: Real> FieldMonitor<T> {
     /// Feeds the field of one sample (`norm`, `dip`), taken `dt` after the previous one while the
     /// sensor turns at `rate` (rad/s); returns whether it is disturbed.
     pub fn update(&mut self, norm: T, dip: T, dt: T, rate: T, th: &FieldThresholds<T>) -> bool {
-        let k = dt / (th.reference_time_constant + dt);
+        let k = first_order_gain(dt, th.reference_time_constant);
         let within = |n: T, d: T| (norm - n).abs() < th.norm * n && (dip - d).abs() < th.dip;
         if within(self.norm, self.dip) {
             self.undisturbed_for += dt;

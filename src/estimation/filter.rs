@@ -4,7 +4,7 @@
 use super::covariance::Covariance;
 use super::field::{FieldMonitor, FieldThresholds};
 use super::init::{attitude_from_gravity, attitude_from_gravity_and_field};
-use super::lowpass::LowPass;
+use super::lowpass::{LowPass, first_order_gain};
 use super::rest::{RestDetector, RestThresholds};
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
 
@@ -24,7 +24,7 @@ pub enum Gains<T> {
     /// Kalman gains from the error covariance (the measurement variances below).
     Kalman,
     /// Complementary: the low-passed inclination is applied in full at every sample and the
-    /// heading error with the first-order gain `Δt/(τ + Δt)`; the bias still from the Kalman
+    /// heading error with the first-order gain `1 − exp(−Δt/τ)`; the bias still from the Kalman
     /// update.
     Fixed {
         /// `τ` (s) of the heading correction.
@@ -58,6 +58,12 @@ pub struct Params<T> {
     pub gyro_bias_max: T,
     /// The gyroscope's full scale, rad/s: a component at or beyond it is saturated.
     pub gyro_range: T,
+    /// Delay (s) of the gyroscope's samples behind the motion: the group delay of its digital
+    /// low-pass filter (datasheets give it per bandwidth setting) and of the sampling chain.
+    /// The filter integrates the samples as they come and [`Estimator::attitude`] carries its
+    /// result forward by this time at the current rate, `q̂ ⊗ exp((ω − b̂)·d_g)`; the
+    /// corrections are unaffected. 0 outputs the attitude of the samples' own time.
+    pub gyro_delay: T,
     /// The accelerometer's full scale, m/s²: a component at or beyond it is saturated.
     pub accel_range: T,
     /// Time constant (s) of the low-pass filter of the specific force in the gyroscope's
@@ -114,6 +120,7 @@ impl<T: Real> Default for Params<T> {
             gyro_bias_time: v(100.0),
             gyro_bias_max: deg(2.0),
             gyro_range: v(f64::INFINITY),
+            gyro_delay: v(0.0029),
             accel_range: v(f64::INFINITY),
             accel_time_constant: v(3.0),
             accel_tilt_noise: deg(0.3),
@@ -148,7 +155,7 @@ impl<T: Copy> Params<T> {
     /// The names of the numeric parameters, as [`Params::parameter_mut`] takes them: the field
     /// names, those of [`Params::field`] and [`Params::rest`] prefixed `field.` and `rest.`
     /// (the heading time constant of [`Gains::Fixed`] is a choice of gains, not among them).
-    pub const NAMES: [&'static str; 29] = [
+    pub const NAMES: [&'static str; 30] = [
         "gyro_noise_density",
         "gyro_scale_noise",
         "gyro_bias_initial",
@@ -156,6 +163,7 @@ impl<T: Copy> Params<T> {
         "gyro_bias_time",
         "gyro_bias_max",
         "gyro_range",
+        "gyro_delay",
         "accel_range",
         "accel_time_constant",
         "accel_tilt_noise",
@@ -191,6 +199,7 @@ impl<T: Copy> Params<T> {
             "gyro_bias_time" => &mut self.gyro_bias_time,
             "gyro_bias_max" => &mut self.gyro_bias_max,
             "gyro_range" => &mut self.gyro_range,
+            "gyro_delay" => &mut self.gyro_delay,
             "accel_range" => &mut self.accel_range,
             "accel_time_constant" => &mut self.accel_time_constant,
             "accel_tilt_noise" => &mut self.accel_tilt_noise,
@@ -256,6 +265,7 @@ impl<T: Copy> Params<T> {
             gyro_bias_time: f(self.gyro_bias_time),
             gyro_bias_max: f(self.gyro_bias_max),
             gyro_range: f(self.gyro_range),
+            gyro_delay: f(self.gyro_delay),
             accel_range: f(self.accel_range),
             accel_time_constant: f(self.accel_time_constant),
             accel_tilt_noise: f(self.accel_tilt_noise),
@@ -332,32 +342,47 @@ pub struct Estimator<T> {
     /// Gyroscope frame → earth (ENU): the accumulated corrections.
     q_corr: UnitQuat<T>,
     bias: Vec3<T>,
+    /// The previous gyroscope sample (clipped), for the mean rate over a step.
+    last_gyro: Vec3<T>,
     p: Covariance<T>,
     accel_lp: LowPass<T>,
     rest: RestDetector<T>,
     field: FieldMonitor<T>,
     field_started: bool,
     last: Outcome,
+    /// The strapdown attitude `q_g` (sensor → gyroscope frame) on a time grid of step
+    /// [`MAG_HISTORY_STEP`]: `history[head]` at the newest grid time `g₀ ≤ t`, the slot before
+    /// it at `g₀ − h`, and so on (a ring).
     history: [UnitQuat<T>; MAG_HISTORY],
     head: usize,
-    /// How many attitudes `history` (sensor → gyroscope frame) holds (up to [`MAG_HISTORY`]).
+    /// How many grid attitudes `history` holds (up to [`MAG_HISTORY`]).
     filled: usize,
-    /// The estimated magnetometer delay, samples (fractional).
+    /// `t − g₀`, s: how long ago the newest grid attitude was, in `[0, h)`.
+    grid_age: T,
+    /// The estimated magnetometer delay, s.
     lag: T,
-    /// Per candidate delay `k` samples: the mean earth-frame field and the mean squared sine
-    /// of its heading deviation from that mean.
+    /// Per candidate delay `k·h`: the mean field in the gyroscope frame and the mean squared
+    /// sine of its heading deviation from that mean.
     lag_mean: [Vec3<T>; MAG_HISTORY],
     lag_residual: [T; MAG_HISTORY],
     /// Time (s) the delay statistics have been fed.
     lag_time: T,
 }
 
-/// The number of past attitudes kept for [`Params::mag_delay`].
-pub const MAG_HISTORY: usize = 8;
+/// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
+/// magnetometer's delay, and the spacing of the candidate delays of its online estimate.
+pub const MAG_HISTORY_STEP: f64 = 0.005;
 
-/// Time constant (s) of the mean earth-frame field against which each candidate delay's
-/// heading deviation is measured: longer than a sample, shorter than the drift of the
-/// gyroscope frame.
+/// The number of grid attitudes kept: delays from 0 to `(MAG_HISTORY − 1)·h` =
+/// [`MAG_DELAY_MAX`] at any sample rate (an attitude between two samples is interpolated).
+pub const MAG_HISTORY: usize = 11;
+
+/// The longest magnetometer delay (s) the filter compensates: [`Params::mag_delay`] and the
+/// online estimate are clipped to it.
+pub const MAG_DELAY_MAX: f64 = MAG_HISTORY_STEP * (MAG_HISTORY - 1) as f64;
+
+/// Time constant (s) of the mean field against which each candidate delay's heading deviation
+/// is measured: longer than a sample, shorter than the drift of the gyroscope frame.
 const LAG_MEAN_TIME: f64 = 1.0;
 
 /// The longest step [`Estimator::update`] takes, s: a longer gap is an error (restart the
@@ -382,6 +407,7 @@ impl<T: Real> Estimator<T> {
             p.gyro_bias_stability,
             p.gyro_bias_time,
             p.gyro_bias_max,
+            p.gyro_delay,
             p.accel_time_constant,
             p.accel_tilt_noise,
             p.accel_correlation_time,
@@ -437,6 +463,7 @@ impl<T: Real> Estimator<T> {
             q_gyro: UnitQuat::IDENTITY,
             q_corr: UnitQuat::IDENTITY,
             bias: Vec3::ZERO,
+            last_gyro: Vec3::ZERO,
             p: Covariance::diagonal(T::ZERO, b0 * b0),
             accel_lp: LowPass::default(),
             rest: RestDetector::default(),
@@ -446,6 +473,7 @@ impl<T: Real> Estimator<T> {
             history: [UnitQuat::IDENTITY; MAG_HISTORY],
             head: 0,
             filled: 0,
+            grid_age: T::ZERO,
             lag: T::ZERO,
             lag_mean: [Vec3::ZERO; MAG_HISTORY],
             lag_residual: [T::ZERO; MAG_HISTORY],
@@ -559,7 +587,10 @@ impl<T: Real> Estimator<T> {
             return Ok(out);
         }
 
-        self.predict(gyro, dt, out.gyro_saturated);
+        // The mean rate over the step: the trapezoid of the two samples at its ends.
+        let mean_rate = (gyro + self.last_gyro).scale(T::HALF);
+        self.last_gyro = gyro;
+        self.predict(mean_rate, dt, out.gyro_saturated);
         let mut x = [T::ZERO; 6];
 
         if accel_use == SensorUse::Used {
@@ -605,6 +636,7 @@ impl<T: Real> Estimator<T> {
         self.q_corr = UnitQuat::IDENTITY;
         self.accel_lp = LowPass::at(q.rotate(accel));
         self.rest = RestDetector::new(gyro, accel);
+        self.last_gyro = gyro;
         // The first sample's direction errors: the inclination from one accelerometer sample
         // and (with a magnetometer) the heading from one field sample.
         let s_tilt = self.params.accel_tilt_noise;
@@ -623,10 +655,12 @@ impl<T: Real> Estimator<T> {
 
     fn predict(&mut self, gyro: Vec3<T>, dt: T, saturated: bool) {
         let w = gyro - self.bias;
+        let before = self.q_gyro;
         self.q_gyro = self
             .q_gyro
             .mul_exp_unchecked(w.scale(dt))
             .renormalize_fast();
+        self.advance_grid(before, dt);
         let r = self.attitude_enu().to_rotation_matrix();
         let f = r.scale(-dt);
         let pr = &self.params;
@@ -639,6 +673,76 @@ impl<T: Real> Estimator<T> {
             // per step is unknown.
             let a = pr.gyro_range * dt;
             self.p.inflate_attitude(a * a);
+        }
+    }
+
+    /// Pushes the strapdown attitudes at the grid times passed in this step (from `before`, at
+    /// `t − dt`, to `q_g` now): linear between the two, renormalised, as the exponential map
+    /// of a constant rate over the step would place them to first order.
+    fn advance_grid(&mut self, before: UnitQuat<T>, dt: T) {
+        let h = T::from_f64(MAG_HISTORY_STEP);
+        let mut age = self.grid_age + dt;
+        // A step longer than the history: only its last MAG_HISTORY grid times matter.
+        let span = h * T::from_f64(MAG_HISTORY as f64);
+        if age >= span + h {
+            age -= ((age - span) / h).floor() * h;
+        }
+        let (a, b) = (before.into_quat(), self.q_gyro.into_quat());
+        for _ in 0..=MAG_HISTORY {
+            if age < h {
+                break;
+            }
+            age -= h;
+            // The grid time t − age lies at the fraction (dt − age)/dt of the step.
+            let f = ((dt - age) / dt).max(T::ZERO).min(T::ONE);
+            let q = UnitQuat::new_unchecked(a + (b - a).scale(f)).renormalize_fast();
+            self.head = (self.head + 1) % MAG_HISTORY;
+            if let Some(slot) = self.history.get_mut(self.head) {
+                *slot = q;
+            }
+            self.filled = (self.filled + 1).min(MAG_HISTORY);
+        }
+        self.grid_age = age.max(T::ZERO).min(h);
+    }
+
+    /// The grid attitude `j` steps back (0: the newest), the current attitude when the grid
+    /// does not reach that far yet.
+    fn grid(&self, j: usize) -> UnitQuat<T> {
+        if j >= self.filled {
+            return self.q_gyro;
+        }
+        let idx = (self.head + MAG_HISTORY - j.min(MAG_HISTORY - 1)) % MAG_HISTORY;
+        self.history.get(idx).copied().unwrap_or(self.q_gyro)
+    }
+
+    /// The field sample mapped to the gyroscope frame by the attitude `delay` seconds ago
+    /// (linear between the two neighbouring attitudes of the grid, or between the newest grid
+    /// attitude and now; the oldest kept when the grid is shorter).
+    fn field_at(&self, mag: Vec3<T>, delay: T) -> Vec3<T> {
+        let now = self.q_gyro.rotate(mag);
+        if delay <= T::ZERO || self.filled == 0 {
+            return now;
+        }
+        let age = self.grid_age;
+        if delay <= age {
+            let u0 = self.grid(0).rotate(mag);
+            return now + (u0 - now).scale(delay / age);
+        }
+        let h = T::from_f64(MAG_HISTORY_STEP);
+        let x = (delay - age) / h;
+        let j = x.floor();
+        let frac = x - j;
+        let last = self.filled - 1;
+        let mut back = 0usize;
+        while back < last && T::from_f64(back as f64 + 0.5) < j {
+            back += 1;
+        }
+        let a = self.grid(back).rotate(mag);
+        if back < last && frac > T::ZERO {
+            let b = self.grid(back + 1).rotate(mag);
+            a + (b - a).scale(frac)
+        } else {
+            a
         }
     }
 
@@ -704,37 +808,14 @@ impl<T: Real> Estimator<T> {
 
     fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
         let pr = self.params;
-        let now = self.q_gyro;
-        self.head = (self.head + 1) % MAG_HISTORY;
-        if let Some(slot) = self.history.get_mut(self.head) {
-            *slot = now;
-        }
-        self.filled = (self.filled + 1).min(MAG_HISTORY);
         let estimating = pr.mag_delay_estimation_time > T::ZERO;
         let lag = if estimating && self.lag_time >= pr.mag_delay_estimation_time {
             self.lag
         } else {
-            pr.mag_delay / dt
+            pr.mag_delay
         };
-        // The field at the fractional delay: linear between the two neighbouring samples'
-        // attitudes (the newest when the history is shorter).
-        let lag = lag.max(T::ZERO).min(T::from_f64((MAG_HISTORY - 1) as f64));
-        let whole = lag.floor();
-        let frac = lag - whole;
-        let mut back = 0usize;
-        while back + 1 < self.filled && T::from_f64(back as f64 + 0.5) < whole {
-            back += 1;
-        }
-        let at = |b: usize| {
-            let idx = (self.head + MAG_HISTORY - b.min(MAG_HISTORY - 1)) % MAG_HISTORY;
-            self.history.get(idx).copied().unwrap_or(now).rotate(mag)
-        };
-        let m_gyro = if frac > T::ZERO && back + 1 < self.filled {
-            let (a, b) = (at(back), at(back + 1));
-            a + (b - a).scale(frac)
-        } else {
-            at(back)
-        };
+        let lag = lag.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX));
+        let m_gyro = self.field_at(mag, lag);
         let m = self.q_corr.rotate(m_gyro);
         let (norm, dip) = norm_dip(m);
         if !self.field_started {
@@ -773,7 +854,7 @@ impl<T: Real> Estimator<T> {
             Gains::Fixed {
                 heading_time_constant,
             } => {
-                let k = dt / (heading_time_constant + dt) * (s * s / var);
+                let k = first_order_gain(dt, heading_time_constant) * (s * s / var);
                 self.p.update_attitude_axis_only(2, k, r);
                 k
             }
@@ -791,30 +872,44 @@ impl<T: Real> Estimator<T> {
 
     /// Feeds the delay statistics with one field sample (rotating, undisturbed) and, after
     /// `τ_d` of them, moves the delay to their minimum (refined by a parabola).
+    ///
+    /// Candidate `k` is the delay `k·h`: the field mapped by the attitude at `t − k·h`, linear
+    /// between the grid attitudes `k − 1` and `k` at the same fraction `1 − age/h` for every
+    /// `k ≥ 1` (the grid is uniform), so each grid attitude rotates the sample once. The heading
+    /// deviation is measured about the earth's vertical seen in the gyroscope frame.
     fn estimate_lag(&mut self, mag: Vec3<T>, dt: T) {
         let tau = self.params.mag_delay_estimation_time;
-        let k_mean = dt / (T::from_f64(LAG_MEAN_TIME) + dt);
-        let k_res = dt / (tau + dt);
+        let k_mean = first_order_gain(dt, T::from_f64(LAG_MEAN_TIME));
+        let k_res = first_order_gain(dt, tau);
         let first = self.lag_time <= T::ZERO;
-        for (b, (mean, res)) in self
-            .lag_mean
-            .iter_mut()
-            .zip(self.lag_residual.iter_mut())
-            .enumerate()
-        {
-            let idx = (self.head + MAG_HISTORY - b) % MAG_HISTORY;
-            let Some(q) = self.history.get(idx) else {
+        let h = T::from_f64(MAG_HISTORY_STEP);
+        let frac = T::ONE - self.grid_age / h;
+        let up = self.q_corr.inverse_rotate(Vec3::Z);
+        let now = self.q_gyro.rotate(mag);
+        let mut newer = self.grid(0).rotate(mag);
+        for k in 0..MAG_HISTORY {
+            let m = if k == 0 {
+                now
+            } else {
+                let older = self.grid(k).rotate(mag);
+                let m = newer + (older - newer).scale(frac);
+                newer = older;
+                m
+            };
+            let (Some(mean), Some(res)) = (self.lag_mean.get_mut(k), self.lag_residual.get_mut(k))
+            else {
                 continue;
             };
-            let m = self.q_corr.rotate(q.rotate(mag));
             if first {
                 *mean = m;
             }
             let d = m - *mean;
-            let hm = m.x * m.x + m.y * m.y;
-            let hn = mean.x * mean.x + mean.y * mean.y;
-            let c = m.x * mean.y - m.y * mean.x;
-            let e = if hm * hn > T::ZERO {
+            let vm = m.dot(up);
+            let vn = mean.dot(up);
+            let hm = m.norm_squared() - vm * vm;
+            let hn = mean.norm_squared() - vn * vn;
+            let c = m.cross(*mean).dot(up);
+            let e = if hm > T::ZERO && hn > T::ZERO {
                 c * c / (hm * hn)
             } else {
                 T::ZERO
@@ -846,21 +941,21 @@ impl<T: Real> Estimator<T> {
                 lag += off.max(-T::HALF).min(T::HALF);
             }
         }
-        self.lag = lag;
+        self.lag = lag * h;
     }
 
     /// The magnetometer's delay behind the gyroscope in use, s: [`Params::mag_delay`], or, once
-    /// estimated ([`Params::mag_delay_estimation_time`]), the estimate in samples times `dt`,
-    /// the step between magnetometer samples (the delay is counted in the updates that carry
-    /// one, as the attitude history is).
-    pub fn mag_delay(&self, dt: T) -> T {
-        if self.params.mag_delay_estimation_time > T::ZERO
+    /// estimated ([`Params::mag_delay_estimation_time`]), the estimate; both clipped to
+    /// [`MAG_DELAY_MAX`].
+    pub fn mag_delay(&self) -> T {
+        let d = if self.params.mag_delay_estimation_time > T::ZERO
             && self.lag_time >= self.params.mag_delay_estimation_time
         {
-            self.lag * dt
+            self.lag
         } else {
             self.params.mag_delay
-        }
+        };
+        d.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX))
     }
 
     /// A sequential scalar Kalman update of error-state component `i` with measurement `z`:
@@ -890,10 +985,18 @@ impl<T: Real> Estimator<T> {
         self.q_corr * self.q_gyro
     }
 
-    /// The attitude, sensor → earth, in the frame of [`Params::frame`]. The identity before the
-    /// first usable sample.
+    /// The attitude, sensor → earth, in the frame of [`Params::frame`], at the time of the
+    /// motion the last samples describe: the filter's attitude carried forward by
+    /// [`Params::gyro_delay`] at the last rate. The identity before the first usable sample.
     pub fn attitude(&self) -> UnitQuat<T> {
         let q = self.attitude_enu();
+        let d = self.params.gyro_delay;
+        let q = if d > T::ZERO && self.initialized {
+            q.mul_exp_unchecked((self.last_gyro - self.bias).scale(d))
+                .renormalize_fast()
+        } else {
+            q
+        };
         match self.params.frame {
             EarthFrame::Enu => q,
             EarthFrame::Ned => {

@@ -112,7 +112,7 @@ OPTIONS:
                    in rad; a value ending in deg or deg/s is converted): gains=kalman,
                    heading_time_constant (complementary gains), gyro_noise_density,
                    gyro_scale_noise, gyro_bias_initial, gyro_bias_stability, gyro_bias_time,
-                   gyro_bias_max, gyro_range, accel_range, accel_time_constant,
+                   gyro_bias_max, gyro_range, gyro_delay, accel_range, accel_time_constant,
                    accel_tilt_noise, accel_correlation_time, accel_reject, mag_heading_noise,
                    mag_correlation_time, mag_delay, mag_delay_estimation_time,
                    mag_disturbance_weight, field.norm, field.dip,
