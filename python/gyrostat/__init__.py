@@ -420,6 +420,7 @@ def estimate(
     frame: str = "enu",
     precision: str = "f64",
     heading_time_constant: Optional[float] = None,
+    params_file: Optional[str] = None,
     skip_errors: bool = False,
     **params: float,
 ) -> Estimate:
@@ -428,8 +429,11 @@ def estimate(
     sensor frame. Sample ``k`` is propagated over ``t[k] - t[k-1]`` (the first over the median
     step; the first usable sample initialises the attitude). ``frame``: ``enu`` (x east,
     y magnetic north, z up) or ``ned``. ``heading_time_constant`` switches to fixed
-    (complementary) gains. Any other keyword overrides a parameter of
-    :func:`estimator_defaults`. A bad gyroscope sample or time step raises naming the row, or
+    (complementary) gains. ``params_file``: a parameter file (``name = value  # comment`` per
+    line, the library's names such as ``field.norm``, SI units; the format of
+    ``gyrostat::estimation::params_text``, read by the library's one parser; a bad line raises
+    naming it), applied to the defaults before the keywords. Any other keyword overrides a
+    parameter of :func:`estimator_defaults`. A bad gyroscope sample or time step raises naming the row, or
     with ``skip_errors`` is skipped (the state unchanged, its row repeats the attitude); a bad
     accelerometer or magnetometer sample is never an error (``accel_used``/``mag_used`` say
     so)."""
@@ -437,6 +441,10 @@ def estimate(
     g, _ = _rows(gyro, 3, "gyro")
     a, _ = _rows(accel, 3, "accel")
     m = None if mag is None else _rows(mag, 3, "mag")[0]
+    text = None
+    if params_file is not None:
+        with open(params_file, encoding="utf-8") as f:
+            text = f.read()
     d = _gyrostat.estimate(
         tt,
         g,
@@ -445,6 +453,7 @@ def estimate(
         frame,
         precision,
         heading_time_constant,
+        text,
         [(str(k), float(v)) for k, v in params.items()],
         bool(skip_errors),
     )

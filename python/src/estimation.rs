@@ -45,16 +45,22 @@ fn estimator_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     Ok(d)
 }
 
-/// The parameters in `T`: the defaults with `overrides`, `frame` and fixed gains applied.
+/// The parameters in `T`: the defaults with the parameter file's text
+/// (`gyrostat::estimation::params_text`), then `overrides`, `frame` and fixed gains applied.
 fn params<T: Real>(
     frame: EarthFrame,
     heading_time_constant: Option<f64>,
+    params_text: Option<&str>,
     overrides: &[(String, f64)],
 ) -> Result<Params<T>, RowError> {
     let mut p = Params::<T> {
         frame,
         ..Params::default()
     };
+    if let Some(text) = params_text {
+        p.set_from_text(text)
+            .map_err(|e| RowError::call(format!("params_file: {e}")))?;
+    }
     if let Some(tau) = heading_time_constant {
         p.gains = Gains::Fixed {
             heading_time_constant: T::from_f64(tau),
@@ -163,7 +169,7 @@ fn run<T: Real>(
 /// `q` (sensor → earth, `w, x, y, z`), `bias` (rad/s), `accel_used`, `mag_used`, `at_rest`,
 /// `attitude_std` (heading, inclination; rad).
 #[pyfunction]
-#[pyo3(signature = (t, gyro, accel, mag, frame, precision, heading_time_constant, params, skip_errors))]
+#[pyo3(signature = (t, gyro, accel, mag, frame, precision, heading_time_constant, params_text, params, skip_errors))]
 #[allow(clippy::too_many_arguments)]
 fn estimate<'py>(
     py: Python<'py>,
@@ -174,6 +180,7 @@ fn estimate<'py>(
     frame: &str,
     precision: &str,
     heading_time_constant: Option<f64>,
+    params_text: Option<String>,
     params: Vec<(String, f64)>,
     skip_errors: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -204,11 +211,21 @@ fn estimate<'py>(
     };
     let tr = match precision {
         "f64" => {
-            let p = self::params::<f64>(frame, heading_time_constant, &params)?;
+            let p = self::params::<f64>(
+                frame,
+                heading_time_constant,
+                params_text.as_deref(),
+                &params,
+            )?;
             py.detach(|| run(p, &t, &g, &a, m.as_deref(), skip_errors))?
         }
         "f32" => {
-            let p = self::params::<f32>(frame, heading_time_constant, &params)?;
+            let p = self::params::<f32>(
+                frame,
+                heading_time_constant,
+                params_text.as_deref(),
+                &params,
+            )?;
             py.detach(|| run(p, &t, &g, &a, m.as_deref(), skip_errors))?
         }
         other => {

@@ -149,6 +149,7 @@ pub mod field;
 pub mod filter;
 pub mod init;
 pub mod lowpass;
+pub mod params_text;
 pub mod rest;
 
 pub use covariance::Covariance;
@@ -159,4 +160,5 @@ pub use filter::{
 };
 pub use init::{attitude_from_gravity, attitude_from_gravity_and_field};
 pub use lowpass::{LowPass, first_order_gain};
+pub use params_text::{ParamsTextError, ParamsTextErrorKind};
 pub use rest::{RestDetector, RestThresholds};

@@ -7,6 +7,8 @@
 //!   --f32            run the filter in f32 (default f64)
 //!   --both           run f64 and f32 and print the largest difference of the scores
 //!   --6d             no magnetometer (inclination is the meaningful score)
+//!   --params FILE    parameters from a parameter file (gyrostat::estimation::params_text),
+//!                    applied where it stands among the --set options
 //!   --set NAME=VALUE a parameter (SI units; a value ending in `deg` is converted to rad,
 //!                    `deg/s` too); repeatable. Names: host_tests::broad::set_param
 //!   --out DIR        write each estimate as DIR/NN.csv (t,qw,qx,qy,qz,bx,by,bz)
@@ -77,6 +79,23 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             },
+            "--params" => {
+                let Some(path) = args.next() else {
+                    eprintln!("error: --params needs FILE");
+                    return ExitCode::from(2);
+                };
+                let text = match std::fs::read_to_string(&path) {
+                    Ok(t) => t,
+                    Err(e) => {
+                        eprintln!("error: --params: {path}: {e}");
+                        return ExitCode::from(2);
+                    }
+                };
+                if let Err(e) = params.set_from_text(&text) {
+                    eprintln!("error: --params: {path}: {e}");
+                    return ExitCode::from(2);
+                }
+            }
             "--set" => {
                 let Some(kv) = args.next() else {
                     eprintln!("error: --set needs NAME=VALUE");

@@ -187,6 +187,70 @@ fn ok(out: &Output) {
     assert_eq!(out.status, Some(0), "stderr: {}", out.stderr);
 }
 
+/// `--params FILE`: a parameter file gives the same run as the same values by `--set` (bit
+/// for bit: one parser, the same numbers), and differs from the defaults' run; `--set` applies
+/// after the file; a bad line is a usage error naming the file and its line.
+#[test]
+fn params_file_equals_set_flags() {
+    let text = csv(&synthetic(1500), Some(PLAIN), 1.0, 1.0, Some(1.0));
+    let file = tmp("estimate-params.txt");
+    std::fs::write(
+        &file,
+        "# a slower sensor\naccel_time_constant = 1.5   # s\n\nmag_heading_noise = 0.07\n",
+    )
+    .unwrap();
+    let path = file.to_str().unwrap();
+    let by_file = run("estimate", &["--params", path], &text);
+    let by_set = run(
+        "estimate",
+        &[
+            "--set",
+            "accel_time_constant=1.5",
+            "--set",
+            "mag_heading_noise=0.07",
+        ],
+        &text,
+    );
+    let defaults = run("estimate", &[], &text);
+    ok(&by_file);
+    ok(&by_set);
+    ok(&defaults);
+    assert_eq!(by_file.stdout, by_set.stdout);
+    assert_ne!(by_file.stdout, defaults.stdout);
+    let overridden = run(
+        "estimate",
+        &[
+            "--params",
+            path,
+            "--set",
+            "accel_time_constant=3",
+            "--set",
+            "mag_heading_noise=2deg",
+        ],
+        &text,
+    );
+    ok(&overridden);
+    assert_eq!(overridden.stdout, defaults.stdout);
+    for (content, line) in [
+        ("accel_time_constant = 1\nbogus = 2\n", "line 2"),
+        ("\n\naccel_time_constant 1\n", "line 3"),
+        ("accel_time_constant = 1 2\n", "line 1"),
+        (
+            "accel_time_constant = 1\naccel_time_constant = 2\n",
+            "line 2",
+        ),
+    ] {
+        std::fs::write(&file, content).unwrap();
+        let bad = run("estimate", &["--params", path], &text);
+        assert_eq!(bad.status, Some(2), "{}", bad.stderr);
+        assert!(
+            bad.stderr.starts_with("error: --params: ") && bad.stderr.contains(line),
+            "{content:?}: {}",
+            bad.stderr
+        );
+    }
+}
+
 /// The largest angle between the rows of two runs (rad).
 fn largest_difference(a: &[Est], b: &[Est]) -> f64 {
     assert_eq!(a.len(), b.len());
@@ -730,7 +794,7 @@ fn usage_errors() {
         (
             &["--set", "accel_tilt_noise=0"],
             six,
-            "error: --set: the parameters are invalid",
+            "error: --set/--params: the parameters are invalid",
         ),
         (
             &["a.csv", "b.csv"],

@@ -36,6 +36,7 @@ const CLI: Cli = Cli {
         Flag::switch("--truth"),
         Flag::value("--plot"),
         Flag::value("--calibration"),
+        Flag::value("--params"),
         Flag::repeated("--set"),
     ],
 };
@@ -46,7 +47,8 @@ estimate: attitude and gyroscope bias from an IMU log (gyrostat's attitude estim
 USAGE:
     estimate [--6d | --9d] [--f32] [--frame enu|ned] [--gyro-unit rad/s|deg/s]
              [--accel-unit m/s^2|g] [--mag-unit uT|nT|G|any] [--time-unit s|ms|us]
-             [--calibration FILE] [--truth] [--plot FILE.svg] [--set NAME=VALUE]... [FILE]
+             [--calibration FILE] [--params FILE] [--truth] [--plot FILE.svg]
+             [--set NAME=VALUE]... [FILE]
 
     Reads FILE (standard input without FILE, or with FILE `-`); gzip-compressed input (BROAD's
     .csv.gz files) is recognised by its first bytes and decompressed. Flags take their value as
@@ -108,6 +110,10 @@ OPTIONS:
                    heading, inclination; --truth); the bias estimate; the rest and
                    disturbance flags. About 2000 points per curve (each flag: whether it was
                    set anywhere in the rows a point stands for).
+    --params FILE  the estimator's parameters from a parameter file (the format of
+                   gyrostat::estimation::params_text: `name = value  # comment` per line,
+                   names as for --set, SI units; the characterisation tool writes it);
+                   names it does not give keep their defaults; --set applies after it
     --set NAME=VALUE  an estimator parameter (gyrostat::estimation::Params; SI units, angles
                    in rad; a value ending in deg or deg/s is converted): gains=kalman,
                    heading_time_constant (complementary gains), gyro_noise_density,
@@ -187,6 +193,12 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         frame,
         ..Params::default()
     };
+    if let Some(path) = f.value("--params") {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("--params: {path}: {e}"))?;
+        params
+            .set_from_text(&text)
+            .map_err(|e| format!("--params: {path}: {e}"))?;
+    }
     for kv in f.values("--set") {
         let (name, value) = kv
             .split_once('=')
@@ -194,7 +206,8 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         set_param(&mut params, name.trim(), value.trim()).map_err(|e| format!("--set: {e}"))?;
     }
     // The parameters are checked here, so that a bad one is a usage error before any input.
-    Estimator::try_new(params).map_err(|e| format!("--set: the parameters are invalid: {e}"))?;
+    Estimator::try_new(params)
+        .map_err(|e| format!("--set/--params: the parameters are invalid: {e}"))?;
     let file = match operands.as_slice() {
         [] => None,
         [one] if one == "-" => None,
