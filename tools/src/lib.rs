@@ -14,10 +14,15 @@
 //! A further tool is one more file in `src/bin/` that declares its [`flags::Cli`] and reads its
 //! input with [`stream::Lines`].
 
+pub mod allan;
 pub mod calibration;
 pub mod flags;
+pub mod motion;
+pub mod noise;
 pub mod plot;
+pub mod sensor_spec;
 pub mod simulation;
 pub mod stream;
+pub mod synthesis;
 pub mod torque;
 pub mod units;
