@@ -367,6 +367,8 @@ pub struct Estimator<T> {
     lag_residual: [T; MAG_HISTORY],
     /// Time (s) the delay statistics have been fed.
     lag_time: T,
+    /// Time (s) since the delay statistics were last offered a sample.
+    lag_clock: T,
 }
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
@@ -384,6 +386,11 @@ pub const MAG_DELAY_MAX: f64 = MAG_HISTORY_STEP * (MAG_HISTORY - 1) as f64;
 /// Time constant (s) of the mean field against which each candidate delay's heading deviation
 /// is measured: longer than a sample, shorter than the drift of the gyroscope frame.
 const LAG_MEAN_TIME: f64 = 1.0;
+
+/// The delay statistics take a sample at most once per this time (s): averages over seconds
+/// need no more, and their cost per update then falls as the rate rises (at 285.7 Hz a third
+/// of the updates feed them).
+const LAG_FEED_STEP: f64 = 0.01;
 
 /// The longest step [`Estimator::update`] takes, s: a longer gap is an error (restart the
 /// estimator after it).
@@ -478,6 +485,7 @@ impl<T: Real> Estimator<T> {
             lag_mean: [Vec3::ZERO; MAG_HISTORY],
             lag_residual: [T::ZERO; MAG_HISTORY],
             lag_time: T::ZERO,
+            lag_clock: T::ZERO,
         })
     }
 
@@ -824,12 +832,14 @@ impl<T: Real> Estimator<T> {
         }
         let rate = (gyro - self.bias).norm();
         let disturbed = self.field.update(norm, dip, dt, rate, &pr.field);
-        if estimating
-            && !disturbed
-            && self.filled == MAG_HISTORY
-            && rate >= pr.field.new_field_min_rate
-        {
-            self.estimate_lag(mag, dt);
+        if estimating {
+            self.lag_clock += dt;
+            if self.lag_clock >= T::from_f64(LAG_FEED_STEP) {
+                if !disturbed && self.filled == MAG_HISTORY && rate >= pr.field.new_field_min_rate {
+                    self.estimate_lag(mag, self.lag_clock);
+                }
+                self.lag_clock = T::ZERO;
+            }
         }
         let g = pr.mag_disturbance_weight;
         if disturbed && g <= T::ZERO {
@@ -870,8 +880,9 @@ impl<T: Real> Estimator<T> {
         }
     }
 
-    /// Feeds the delay statistics with one field sample (rotating, undisturbed) and, after
-    /// `τ_d` of them, moves the delay to their minimum (refined by a parabola).
+    /// Feeds the delay statistics with one field sample (rotating, undisturbed) standing for
+    /// the time `dt` since the last offer ([`LAG_FEED_STEP`]) and, after `τ_d` of them, moves the
+    /// delay to their minimum (refined by a parabola).
     ///
     /// Candidate `k` is the delay `k·h`: the field mapped by the attitude at `t − k·h`, linear
     /// between the grid attitudes `k − 1` and `k` at the same fraction `1 − age/h` for every
