@@ -8,6 +8,10 @@ use super::lowpass::{LowPass, first_order_gain};
 use super::rest::{RestDetector, RestThresholds};
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
 
+// The light mode (its own file; a child module for the estimator's private state).
+#[path = "light.rs"]
+mod light;
+
 /// The earth frame of the output attitude (sensor → earth).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum EarthFrame {
@@ -32,6 +36,22 @@ pub enum Gains<T> {
     },
 }
 
+/// How much work an update does (the corrections are the same; see the module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Mode<T> {
+    /// Every part of the filter on every sample.
+    #[default]
+    Full,
+    /// The prediction and the accelerometer's low-pass filter on every sample, the covariance
+    /// and the corrections once per `correction_period` (s), no magnetometer-delay estimate
+    /// (a fixed delay applied to first order; see the module docs of `light.rs`, and
+    /// BENCHMARKS.md for its cost and accuracy).
+    Light {
+        /// The time (s) between two corrections.
+        correction_period: T,
+    },
+}
+
 /// The estimator's parameters, in SI units (angles in rad). [`Params::default`] holds values
 /// that work on BROAD without tuning per recording (see the module docs for how they were
 /// chosen).
@@ -41,6 +61,8 @@ pub struct Params<T> {
     pub frame: EarthFrame,
     /// How corrections are weighted.
     pub gains: Gains<T>,
+    /// Full or light update ([`Mode`]).
+    pub mode: Mode<T>,
     /// Gyroscope white noise, rad/s/√Hz (angle random walk).
     pub gyro_noise_density: T,
     /// Rate-proportional gyroscope error, 1/√Hz: scale-factor and axis-misalignment errors
@@ -113,6 +135,7 @@ impl<T: Real> Default for Params<T> {
         Self {
             frame: EarthFrame::Enu,
             gains: Gains::Kalman,
+            mode: Mode::Full,
             gyro_noise_density: deg(0.01),
             gyro_scale_noise: v(0.002),
             gyro_bias_initial: deg(0.5),
@@ -236,6 +259,12 @@ impl<T: Copy> Params<T> {
             };
             return true;
         }
+        if name == "light_period" {
+            self.mode = Mode::Light {
+                correction_period: value,
+            };
+            return true;
+        }
         match self.parameter_mut(name) {
             Some(slot) => {
                 *slot = value;
@@ -256,6 +285,12 @@ impl<T: Copy> Params<T> {
                     heading_time_constant,
                 } => Gains::Fixed {
                     heading_time_constant: f(heading_time_constant),
+                },
+            },
+            mode: match self.mode {
+                Mode::Full => Mode::Full,
+                Mode::Light { correction_period } => Mode::Light {
+                    correction_period: f(correction_period),
                 },
             },
             gyro_noise_density: f(self.gyro_noise_density),
@@ -369,6 +404,8 @@ pub struct Estimator<T> {
     lag_time: T,
     /// Time (s) since the delay statistics were last offered a sample.
     lag_clock: T,
+    /// The light mode's accumulators ([`Mode::Light`]).
+    light: light::LightState<T>,
 }
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
@@ -463,6 +500,11 @@ impl<T: Real> Estimator<T> {
         {
             return Err(Error::InvalidArgument);
         }
+        if let Mode::Light { correction_period } = p.mode
+            && !(correction_period.is_finite() && correction_period >= T::ZERO)
+        {
+            return Err(Error::InvalidArgument);
+        }
         let b0 = p.gyro_bias_initial;
         Ok(Self {
             params,
@@ -486,6 +528,7 @@ impl<T: Real> Estimator<T> {
             lag_residual: [T::ZERO; MAG_HISTORY],
             lag_time: T::ZERO,
             lag_clock: T::ZERO,
+            light: light::LightState::default(),
         })
     }
 
@@ -595,6 +638,18 @@ impl<T: Real> Estimator<T> {
             return Ok(out);
         }
 
+        if let Mode::Light { correction_period } = self.params.mode {
+            return Ok(self.update_light(
+                gyro,
+                accel,
+                mag,
+                accel_use,
+                mag_use,
+                out,
+                dt,
+                correction_period,
+            ));
+        }
         // The mean rate over the step: the trapezoid of the two samples at its ends.
         let mean_rate = (gyro + self.last_gyro).scale(T::HALF);
         self.last_gyro = gyro;

@@ -155,7 +155,7 @@ pub mod rest;
 pub use covariance::Covariance;
 pub use field::{FieldMonitor, FieldThresholds};
 pub use filter::{
-    EarthFrame, Estimator, Gains, MAG_DELAY_MAX, MAG_HISTORY, MAG_HISTORY_STEP, MAX_STEP, Outcome,
+    EarthFrame, Estimator, Gains, MAG_DELAY_MAX, MAG_HISTORY, MAG_HISTORY_STEP, MAX_STEP, Mode, Outcome,
     Params, SensorUse,
 };
 pub use init::{attitude_from_gravity, attitude_from_gravity_and_field};
