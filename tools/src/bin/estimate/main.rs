@@ -1,7 +1,7 @@
 //! `estimate`: attitude and gyroscope bias from an IMU log (`gyrostat::estimation::Estimator`).
 //!
 //! ```text
-//! estimate [--6d | --9d] [--f32] [--frame enu|ned] [--gyro-unit U] [--accel-unit U]
+//! estimate [--6d | --9d] [--f32] [--mode full|light] [--frame enu|ned] [--gyro-unit U] [--accel-unit U]
 //!     [--mag-unit U] [--time-unit U] [--truth] [--plot FILE.svg] [--set NAME=VALUE]... [FILE]
 //! ```
 //! Run with `--help` for the full description of the input and output formats.
@@ -14,7 +14,9 @@ use std::io::{self, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use gyrostat::estimation::{EarthFrame, Estimator, Gains, MAX_STEP, Outcome, Params, SensorUse};
+use gyrostat::estimation::{
+    EarthFrame, Estimator, Gains, MAX_STEP, Mode, Outcome, Params, SensorUse,
+};
 use gyrostat::{Error, Real, Vec3};
 use gyrostat_tools::calibration::{self, CalibrationFile};
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
@@ -28,6 +30,7 @@ const CLI: Cli = Cli {
         Flag::switch("--6d"),
         Flag::switch("--9d"),
         Flag::switch("--f32"),
+        Flag::value("--mode"),
         Flag::value("--frame"),
         Flag::value("--gyro-unit"),
         Flag::value("--accel-unit"),
@@ -45,7 +48,8 @@ const HELP: &str = "\
 estimate: attitude and gyroscope bias from an IMU log (gyrostat's attitude estimator)
 
 USAGE:
-    estimate [--6d | --9d] [--f32] [--frame enu|ned] [--gyro-unit rad/s|deg/s]
+    estimate [--6d | --9d] [--f32] [--mode full|light] [--frame enu|ned]
+             [--gyro-unit rad/s|deg/s]
              [--accel-unit m/s^2|g] [--mag-unit uT|nT|G|any] [--time-unit s|ms|us]
              [--calibration FILE] [--params FILE] [--truth] [--plot FILE.svg]
              [--set NAME=VALUE]... [FILE]
@@ -78,6 +82,10 @@ OPTIONS:
     --f32          run the estimator in f32 (inputs, after the unit conversion, rounded to
                    f32; the steps are differences of the time stamps taken in f64); the output
                    prints the f32 values
+    --mode M       full (default: every part of the filter on every sample) or light (the
+                   prediction every sample, the covariance and the corrections every 25 ms,
+                   a fixed magnetometer delay; about a fifth of the cost; --set
+                   light_period=S selects light with another correction period)
     --frame F      the earth frame of the output attitude: enu (default: x east, y magnetic
                    north, z up; BROAD's frame: its reference rotates the resting accelerometer
                    onto +z and the magnetometer's horizontal part onto +y) or ned (x magnetic
@@ -116,7 +124,8 @@ OPTIONS:
                    names it does not give keep their defaults; --set applies after it
     --set NAME=VALUE  an estimator parameter (gyrostat::estimation::Params; SI units, angles
                    in rad; a value ending in deg or deg/s is converted): gains=kalman,
-                   heading_time_constant (complementary gains), gyro_noise_density,
+                   heading_time_constant (complementary gains), light_period (light mode, s),
+                   gyro_noise_density,
                    gyro_scale_noise, gyro_bias_initial, gyro_bias_stability, gyro_bias_time,
                    gyro_bias_max, gyro_range, gyro_delay, accel_range, accel_time_constant,
                    accel_tilt_noise, accel_correlation_time, accel_reject, mag_heading_noise,
@@ -189,8 +198,14 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         Some("ned") => EarthFrame::Ned,
         Some(other) => return Err(format!("--frame must be enu or ned, got '{other}'")),
     };
+    let mode = match f.value("--mode").map(str::trim) {
+        None | Some("full") => Mode::Full,
+        Some("light") => Mode::light(),
+        Some(other) => return Err(format!("--mode must be full or light, got '{other}'")),
+    };
     let mut params = Params::<f64> {
         frame,
+        mode,
         ..Params::default()
     };
     if let Some(path) = f.value("--params") {
