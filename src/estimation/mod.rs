@@ -155,8 +155,8 @@ pub mod rest;
 pub use covariance::Covariance;
 pub use field::{FieldMonitor, FieldThresholds};
 pub use filter::{
-    EarthFrame, Estimator, Gains, MAG_DELAY_MAX, MAG_HISTORY, MAG_HISTORY_STEP, MAX_STEP, Mode, Outcome,
-    Params, SensorUse,
+    EarthFrame, Estimator, Gains, MAG_DELAY_MAX, MAG_HISTORY, MAG_HISTORY_STEP, MAX_STEP, Mode,
+    Outcome, Params, SensorUse,
 };
 pub use init::{attitude_from_gravity, attitude_from_gravity_and_field};
 pub use lowpass::{LowPass, first_order_gain};
