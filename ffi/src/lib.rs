@@ -2136,6 +2136,8 @@ pub struct gyro_estimator_params_f32 {
     /// Averaging time (s of rotation in an undisturbed field) of the online estimate of the
     /// magnetometer's delay; 0 keeps `mag_delay` fixed.
     pub mag_delay_estimation_time: f32,
+    /// Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
+    pub mag_hard_iron_time: f32,
     /// Weight of a disturbed field's heading error (0: rejected outright).
     pub mag_disturbance_weight: f32,
     /// Disturbance monitor: the largest relative change of the field's norm.
@@ -2212,6 +2214,8 @@ pub struct gyro_estimator_params_f64 {
     /// Averaging time (s of rotation in an undisturbed field) of the online estimate of the
     /// magnetometer's delay; 0 keeps `mag_delay` fixed.
     pub mag_delay_estimation_time: f64,
+    /// Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
+    pub mag_hard_iron_time: f64,
     /// Weight of a disturbed field's heading error (0: rejected outright).
     pub mag_disturbance_weight: f64,
     /// Disturbance monitor: the largest relative change of the field's norm.
@@ -2277,6 +2281,7 @@ macro_rules! params_io {
                     gyro_delay: self.gyro_delay,
                     mag_delay: self.mag_delay,
                     mag_delay_estimation_time: self.mag_delay_estimation_time,
+                    mag_hard_iron_time: self.mag_hard_iron_time,
                     mag_disturbance_weight: self.mag_disturbance_weight,
                     rest_bias_noise: self.rest_bias_noise,
                     field: FieldThresholds {
@@ -2327,6 +2332,7 @@ macro_rules! params_io {
                     gyro_delay: p.gyro_delay,
                     mag_delay: p.mag_delay,
                     mag_delay_estimation_time: p.mag_delay_estimation_time,
+                    mag_hard_iron_time: p.mag_hard_iron_time,
                     mag_disturbance_weight: p.mag_disturbance_weight,
                     rest_bias_noise: p.rest_bias_noise,
                     field_norm: p.field.norm,

@@ -249,6 +249,10 @@ pub struct EstimateRow {
     pub bias: [f64; 3],
     /// The magnetometer delay in use after the row, s ([`Estimator::mag_delay`]).
     pub mag_delay: f64,
+    /// The hard-iron offset subtracted after the row (input units), the fit's estimate, and
+    /// the standard deviations of its x and y components and its consistency (mean
+    /// normalised innovation squared) ([`Estimator::hard_iron`]).
+    pub hard_iron: [[f64; 3]; 3],
     /// What the update did; `None` when the filter rejected the row (see `error`).
     pub outcome: Option<Outcome>,
     /// The filter's error for a rejected row (the previous attitude is repeated).
@@ -320,6 +324,12 @@ fn run<T: Real>(
             q,
             bias: b,
             mag_delay: f.mag_delay().to_f64(),
+            hard_iron: {
+                let (applied, fit) = f.hard_iron();
+                let (h, sd) = fit.estimate();
+                let sd = Vec3::new(sd.x, sd.y, fit.consistency());
+                [applied, h, sd].map(|v| v.to_array().map(Real::to_f64))
+            },
             outcome,
             error,
         });

@@ -75,6 +75,12 @@ impl<T: Real> FieldMonitor<T> {
         self.disturbed
     }
 
+    /// How far a field of this norm and dip is from the reference: `||B| − |B|_ref|/|B|_ref +
+    /// |δ − δ_ref|` (rad).
+    pub fn deviation(&self, norm: T, dip: T) -> T {
+        (norm - self.norm).abs() / self.norm + (dip - self.dip).abs()
+    }
+
     /// Feeds the field of one sample (`norm`, `dip`), taken `dt` after the previous one while the
     /// sensor turns at `rate` (rad/s); returns whether it is disturbed.
     pub fn update(&mut self, norm: T, dip: T, dt: T, rate: T, th: &FieldThresholds<T>) -> bool {

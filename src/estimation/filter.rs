@@ -3,6 +3,7 @@
 
 use super::covariance::Covariance;
 use super::field::{FieldMonitor, FieldThresholds};
+use super::hard_iron::HardIron;
 use super::init::{attitude_from_gravity, attitude_from_gravity_and_field};
 use super::lowpass::{LowPass, first_order_gain};
 use super::rest::{RestDetector, RestThresholds};
@@ -116,6 +117,15 @@ pub struct Params<T> {
     /// delay (0 to `MAG_HISTORY − 1` samples, fractional) whose earth-frame field heading
     /// deviates least from its recent mean (see the module docs; [`Estimator::mag_delay`]).
     pub mag_delay_estimation_time: T,
+    /// Random-walk time `τ_h` (s) of the online hard-iron estimate ([`super::hard_iron`]): the
+    /// offset may drift by 1 % of the field's norm over `τ_h` (a magnet attached or removed is
+    /// a jump, found again by the fit's reset); 0 switches the estimate off (the field is used
+    /// as it comes, calibrated or not). Once the fit has converged (each component known to
+    /// 1 % of the field's norm, the samples on one sphere) an offset larger than
+    /// [`FieldThresholds::norm`] of the field's norm is subtracted from a field sample when
+    /// the corrected field is closer to the disturbance monitor's reference
+    /// (relative norm plus dip) than the raw one; otherwise none is.
+    pub mag_hard_iron_time: T,
     /// Weight of a disturbed field's heading error: 0 rejects a disturbed field outright; a
     /// positive `g` uses it with the heading variance increased by `(g·ε·|B|/|B_h|)²`, where
     /// `ε = ||B| − |B|_ref|/|B|_ref + |δ − δ_ref|` bounds the relative size of the disturbance.
@@ -154,6 +164,7 @@ impl<T: Real> Default for Params<T> {
             mag_disturbance_weight: v(0.3),
             mag_delay: v(0.0),
             mag_delay_estimation_time: v(10.0),
+            mag_hard_iron_time: v(10.0),
             field: FieldThresholds {
                 norm: v(0.1),
                 dip: deg(10.0),
@@ -178,7 +189,7 @@ impl<T: Copy> Params<T> {
     /// The names of the numeric parameters, as [`Params::parameter_mut`] takes them: the field
     /// names, those of [`Params::field`] and [`Params::rest`] prefixed `field.` and `rest.`
     /// (the heading time constant of [`Gains::Fixed`] is a choice of gains, not among them).
-    pub const NAMES: [&'static str; 30] = [
+    pub const NAMES: [&'static str; 31] = [
         "gyro_noise_density",
         "gyro_scale_noise",
         "gyro_bias_initial",
@@ -196,6 +207,7 @@ impl<T: Copy> Params<T> {
         "mag_correlation_time",
         "mag_delay",
         "mag_delay_estimation_time",
+        "mag_hard_iron_time",
         "mag_disturbance_weight",
         "field.norm",
         "field.dip",
@@ -232,6 +244,7 @@ impl<T: Copy> Params<T> {
             "mag_correlation_time" => &mut self.mag_correlation_time,
             "mag_delay" => &mut self.mag_delay,
             "mag_delay_estimation_time" => &mut self.mag_delay_estimation_time,
+            "mag_hard_iron_time" => &mut self.mag_hard_iron_time,
             "mag_disturbance_weight" => &mut self.mag_disturbance_weight,
             "field.norm" => &mut self.field.norm,
             "field.dip" => &mut self.field.dip,
@@ -310,6 +323,7 @@ impl<T: Copy> Params<T> {
             mag_correlation_time: f(self.mag_correlation_time),
             mag_delay: f(self.mag_delay),
             mag_delay_estimation_time: f(self.mag_delay_estimation_time),
+            mag_hard_iron_time: f(self.mag_hard_iron_time),
             mag_disturbance_weight: f(self.mag_disturbance_weight),
             field: FieldThresholds {
                 norm: f(self.field.norm),
@@ -404,6 +418,11 @@ pub struct Estimator<T> {
     lag_time: T,
     /// Time (s) since the delay statistics were last offered a sample.
     lag_clock: T,
+    /// The online hard-iron fit and the offset subtracted from the field samples.
+    hard_iron: HardIron<T>,
+    hard_iron_applied: Vec3<T>,
+    /// Time (s) since the hard-iron fit was last fed.
+    hard_iron_clock: T,
     /// The light mode's accumulators ([`Mode::Light`]).
     light: light::LightState<T>,
 }
@@ -461,6 +480,7 @@ impl<T: Real> Estimator<T> {
             p.mag_disturbance_weight,
             p.mag_delay,
             p.mag_delay_estimation_time,
+            p.mag_hard_iron_time,
             p.field.norm,
             p.field.dip,
             p.field.reference_time_constant,
@@ -528,6 +548,9 @@ impl<T: Real> Estimator<T> {
             lag_residual: [T::ZERO; MAG_HISTORY],
             lag_time: T::ZERO,
             lag_clock: T::ZERO,
+            hard_iron: HardIron::default(),
+            hard_iron_applied: Vec3::ZERO,
+            hard_iron_clock: T::ZERO,
             light: light::LightState::default(),
         })
     }
@@ -871,6 +894,17 @@ impl<T: Real> Estimator<T> {
 
     fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
         let pr = self.params;
+        if pr.mag_hard_iron_time > T::ZERO {
+            self.hard_iron_clock += dt;
+            let turning = (gyro - self.bias).norm() >= pr.field.new_field_min_rate;
+            if self.hard_iron_clock >= T::from_f64(LAG_FEED_STEP) {
+                if turning {
+                    self.hard_iron
+                        .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
+                }
+                self.hard_iron_clock = T::ZERO;
+            }
+        }
         let estimating = pr.mag_delay_estimation_time > T::ZERO;
         let lag = if estimating && self.lag_time >= pr.mag_delay_estimation_time {
             self.lag
@@ -878,9 +912,26 @@ impl<T: Real> Estimator<T> {
             pr.mag_delay
         };
         let lag = lag.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX));
-        let m_gyro = self.field_at(mag, lag);
-        let m = self.q_corr.rotate(m_gyro);
-        let (norm, dip) = norm_dip(m);
+        let mut m = self.q_corr.rotate(self.field_at(mag, lag));
+        let (mut norm, mut dip) = norm_dip(m);
+        // The hard-iron offset of a converged fit is subtracted when it is larger than the
+        // disturbance monitor's norm threshold (a smaller one leaves a field the monitor
+        // accepts, and is of the size of the model's own errors: soft iron, calibration, a
+        // field that varies over the room) and the corrected field is closer to the reference
+        // (relative norm plus dip) than the raw one.
+        self.hard_iron_applied = Vec3::ZERO;
+        if self.field_started
+            && let Some(h) = self.hard_iron.offset()
+            && h.norm() > pr.field.norm * self.field.reference().0
+        {
+            let mc = self.q_corr.rotate(self.field_at(mag - h, lag));
+            let (nc, dc) = norm_dip(mc);
+            if self.field.deviation(nc, dc) < self.field.deviation(norm, dip) {
+                (m, norm, dip) = (mc, nc, dc);
+                self.hard_iron_applied = h;
+            }
+        }
+        let mag = mag - self.hard_iron_applied;
         if !self.field_started {
             self.field = FieldMonitor::new(norm, dip);
             self.field_started = true;
@@ -1101,6 +1152,12 @@ impl<T: Real> Estimator<T> {
     /// The last update's report.
     pub fn last_outcome(&self) -> Outcome {
         self.last
+    }
+
+    /// The hard-iron offset subtracted from the last field sample (input units, sensor frame;
+    /// zero when none was, [`Params::mag_hard_iron_time`]), and the online fit.
+    pub fn hard_iron(&self) -> (Vec3<T>, HardIron<T>) {
+        (self.hard_iron_applied, self.hard_iron)
     }
 
     /// The magnetic reference (norm in input units, dip in rad), once a field was seen.

@@ -147,6 +147,7 @@
 pub mod covariance;
 pub mod field;
 pub mod filter;
+pub mod hard_iron;
 pub mod init;
 pub mod lowpass;
 pub mod params_text;
@@ -158,6 +159,7 @@ pub use filter::{
     EarthFrame, Estimator, Gains, MAG_DELAY_MAX, MAG_HISTORY, MAG_HISTORY_STEP, MAX_STEP, Mode,
     Outcome, Params, SensorUse,
 };
+pub use hard_iron::HardIron;
 pub use init::{attitude_from_gravity, attitude_from_gravity_and_field};
 pub use lowpass::{LowPass, first_order_gain};
 pub use params_text::{ParamsTextError, ParamsTextErrorKind};

@@ -148,7 +148,7 @@ fn main() -> ExitCode {
         return ExitCode::from(1);
     }
 
-    type Run = (Score, Option<Score>, broad::UseCounts, f64);
+    type Run = (Score, Option<Score>, broad::UseCounts, f64, [[f64; 3]; 3]);
     let run_one = |job: &Job| -> Result<Run, String> {
         let mut log: Log = open_log(&job.path, Units::SI).map_err(|e| e.to_string())?;
         if every > 1 {
@@ -188,6 +188,7 @@ fn main() -> ExitCode {
             other,
             broad::use_counts(&rows),
             delay,
+            rows.last().map_or([[0.0; 3]; 3], |r| r.hard_iron),
         ))
     };
 
@@ -214,17 +215,17 @@ fn main() -> ExitCode {
     let mut worst_diff = 0.0f64;
     if !quiet {
         println!(
-            "| trial | total ° | heading ° | inclination ° | n | rest | acc rej | mag rej | delay ms |{}",
+            "| trial | total ° | heading ° | inclination ° | n | rest | acc rej | mag rej | delay ms | hard iron (fit ± sd) |{}",
             if both { " f32−f64 total °|" } else { "" }
         );
         println!(
-            "|---|---|---|---|---|---|---|---|---|{}",
+            "|---|---|---|---|---|---|---|---|---|---|{}",
             if both { "---|" } else { "" }
         );
     }
     for (job, r) in &results {
         match r {
-            Ok((s, other, c, delay)) => {
+            Ok((s, other, c, delay, hi)) => {
                 let half = if HALF_A.contains(&job.name.as_str()) {
                     Some(3)
                 } else if HALF_B.contains(&job.name.as_str()) {
@@ -248,7 +249,7 @@ fn main() -> ExitCode {
                 });
                 if !quiet {
                     println!(
-                        "| {} | {:.3} | {:.3} | {:.3} | {} | {} | {} | {} | {:.2} |{}",
+                        "| {} | {:.3} | {:.3} | {:.3} | {} | {} | {} | {} | {:.2} | {:.1} ({:.1} {:.1} {:.1} ± {:.1}) |{}",
                         job.name,
                         s.total,
                         s.heading,
@@ -258,6 +259,11 @@ fn main() -> ExitCode {
                         c.accel_disturbed,
                         c.mag_disturbed,
                         delay * 1e3,
+                        hi[0].iter().map(|v| v * v).sum::<f64>().sqrt(),
+                        hi[1][0],
+                        hi[1][1],
+                        hi[1][2],
+                        hi[2].iter().copied().fold(0.0, f64::max),
                         diff.unwrap_or_default()
                     );
                 }

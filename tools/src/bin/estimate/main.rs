@@ -130,6 +130,7 @@ OPTIONS:
                    gyro_bias_max, gyro_range, gyro_delay, accel_range, accel_time_constant,
                    accel_tilt_noise, accel_correlation_time, accel_reject, mag_heading_noise,
                    mag_correlation_time, mag_delay, mag_delay_estimation_time,
+                   mag_hard_iron_time,
                    mag_disturbance_weight, field.norm, field.dip,
                    field.reference_time_constant, field.min_undisturbed,
                    field.new_field_time, field.new_field_min_rate, rest.time_constant,
