@@ -805,6 +805,9 @@ impl<T: Real> Estimator<T> {
     /// (linear between the two neighbouring attitudes of the grid, or between the newest grid
     /// attitude and now; the oldest kept when the grid is shorter).
     fn field_at(&self, mag: Vec3<T>, delay: T) -> Vec3<T> {
+        if let Mode::Light { .. } = self.params.mode {
+            return self.light_field(mag);
+        }
         let now = self.q_gyro.rotate(mag);
         if delay <= T::ZERO || self.filled == 0 {
             return now;
@@ -894,7 +897,8 @@ impl<T: Real> Estimator<T> {
 
     fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
         let pr = self.params;
-        if pr.mag_hard_iron_time > T::ZERO {
+        // (The light mode feeds the fit itself, every sample: `light.rs`.)
+        if pr.mag_hard_iron_time > T::ZERO && pr.mode == Mode::Full {
             self.hard_iron_clock += dt;
             let turning = (gyro - self.bias).norm() >= pr.field.new_field_min_rate;
             if self.hard_iron_clock >= T::from_f64(LAG_FEED_STEP) {

@@ -24,7 +24,9 @@
 //! Between corrections the [`Outcome`] reports the accelerometer sample as used (it fed the
 //! low-pass filter) and a valid magnetometer sample with the report of the last correction.
 
-use super::{Estimator, GRAVITY, Gains, Mode, Outcome, Params, SensorUse};
+use super::{
+    Estimator, GRAVITY, Gains, LAG_FEED_STEP, MAG_DELAY_MAX, Mode, Outcome, Params, SensorUse,
+};
 use crate::estimation::lowpass::LowPass;
 use crate::{Real, Vec3};
 
@@ -43,6 +45,8 @@ pub(super) struct LightState<T> {
     at_rest: bool,
     /// The magnetometer's report at the last correction.
     mag: SensorUse,
+    /// The bias-corrected rate (rad/s) at the correction, for the field's delay.
+    rate: Vec3<T>,
 }
 
 impl<T: Real> Mode<T> {
@@ -106,6 +110,20 @@ impl<T: Real> Estimator<T> {
             }
             self.light.accel_fed = true;
         }
+        if let (Some(m), SensorUse::Used) = (mag, mag_use)
+            && pr.mag_hard_iron_time > T::ZERO
+        {
+            // The hard-iron fit at the full mode's feed rate (at most every LAG_FEED_STEP):
+            // its information grows with the samples it is fed, not with the corrections.
+            self.hard_iron_clock += dt;
+            if self.hard_iron_clock >= T::from_f64(LAG_FEED_STEP) {
+                if w.norm_squared() >= pr.field.new_field_min_rate * pr.field.new_field_min_rate {
+                    self.hard_iron
+                        .update(m, self.hard_iron_clock, pr.mag_hard_iron_time);
+                }
+                self.hard_iron_clock = T::ZERO;
+            }
+        }
         out.at_rest = self.light.at_rest && accel_use == SensorUse::Used;
         out.accel = accel_use;
         let mag_ok = mag_use == SensorUse::Used;
@@ -139,22 +157,28 @@ impl<T: Real> Estimator<T> {
         }
         self.inject(&x);
 
+        self.light.rate = w;
         self.light.mag = match (mag, mag_use) {
-            (Some(m), SensorUse::Used) => {
-                // The sample of `d` ago in the current sensor frame, to first order.
-                let d = if pr.mag_delay_estimation_time > T::ZERO {
-                    T::from_f64(Mode::<T>::LIGHT_MAG_DELAY)
-                } else {
-                    pr.mag_delay
-                };
-                let m = m - w.cross(m).scale(d);
-                self.mag_update(m, gyro, tc)
-            }
+            (Some(m), SensorUse::Used) => self.mag_update(m, gyro, tc),
             (_, u) => u,
         };
         out.mag = self.light.mag;
         self.last = out;
         out
+    }
+
+    /// The light mode's field sample (sensor frame; raw or hard-iron corrected) in the
+    /// gyroscope frame: the sample of `d` ago carried to the current sensor frame to first
+    /// order, `m − d·(ω × m)`, then rotated by `q_g` (see the module docs for `d`).
+    pub(super) fn light_field(&self, mag: Vec3<T>) -> Vec3<T> {
+        let pr = &self.params;
+        let d = if pr.mag_delay_estimation_time > T::ZERO {
+            T::from_f64(Mode::<T>::LIGHT_MAG_DELAY)
+        } else {
+            pr.mag_delay.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX))
+        };
+        self.q_gyro
+            .rotate(mag - self.light.rate.cross(mag).scale(d))
     }
 
     /// The inclination update from the low-passed specific force `v` (gyroscope frame): the
