@@ -419,6 +419,7 @@ def estimate(
     *,
     frame: str = "enu",
     precision: str = "f64",
+    mode: str = "full",
     heading_time_constant: Optional[float] = None,
     params_file: Optional[str] = None,
     skip_errors: bool = False,
@@ -428,7 +429,9 @@ def estimate(
     (N, 3) rad/s, ``accel`` (N, 3) m/s^2 and, for 9D, ``mag`` (N, 3) in any unit, all in the
     sensor frame. Sample ``k`` is propagated over ``t[k] - t[k-1]`` (the first over the median
     step; the first usable sample initialises the attitude). ``frame``: ``enu`` (x east,
-    y magnetic north, z up) or ``ned``. ``heading_time_constant`` switches to fixed
+    y magnetic north, z up) or ``ned``. ``mode``: ``full`` (every part of the filter on every
+    sample) or ``light`` (the covariance and the corrections every 25 ms, a fixed magnetometer
+    delay: about a fifth of the cost; ``gyrostat::estimation::Mode``). ``heading_time_constant`` switches to fixed
     (complementary) gains. ``params_file``: a parameter file (``name = value  # comment`` per
     line, the library's names such as ``field.norm``, SI units; the format of
     ``gyrostat::estimation::params_text``, read by the library's one parser; a bad line raises
@@ -452,6 +455,7 @@ def estimate(
         m,
         frame,
         precision,
+        mode,
         heading_time_constant,
         text,
         [(str(k), float(v)) for k, v in params.items()],

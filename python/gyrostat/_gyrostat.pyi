@@ -62,6 +62,7 @@ def estimate(
     mag: Optional[F64],
     frame: str,
     precision: str,
+    mode: str,
     heading_time_constant: Optional[float],
     params_text: Optional[str],
     params: List[Tuple[str, float]],

@@ -9,7 +9,7 @@ use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use gyrostat::estimation::{EarthFrame, Estimator, Gains, Params, SensorUse};
+use gyrostat::estimation::{EarthFrame, Estimator, Gains, Mode, Params, SensorUse};
 use gyrostat::{Real, Vec3};
 
 use crate::{RowError, array2, rows, values};
@@ -49,12 +49,14 @@ fn estimator_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 /// (`gyrostat::estimation::params_text`), then `overrides`, `frame` and fixed gains applied.
 fn params<T: Real>(
     frame: EarthFrame,
+    mode: Mode<T>,
     heading_time_constant: Option<f64>,
     params_text: Option<&str>,
     overrides: &[(String, f64)],
 ) -> Result<Params<T>, RowError> {
     let mut p = Params::<T> {
         frame,
+        mode,
         ..Params::default()
     };
     if let Some(text) = params_text {
@@ -167,9 +169,10 @@ fn run<T: Real>(
 /// The estimator run over a record: time stamps `t` (s), gyroscope (rad/s), accelerometer
 /// (m/s²) and optionally magnetometer (any unit) rows, sensor frame. Returns a dict of arrays:
 /// `q` (sensor → earth, `w, x, y, z`), `bias` (rad/s), `accel_used`, `mag_used`, `at_rest`,
-/// `attitude_std` (heading, inclination; rad).
+/// `attitude_std` (heading, inclination; rad). `mode`: `full` or `light`
+/// (`gyrostat::estimation::Mode`).
 #[pyfunction]
-#[pyo3(signature = (t, gyro, accel, mag, frame, precision, heading_time_constant, params_text, params, skip_errors))]
+#[pyo3(signature = (t, gyro, accel, mag, frame, precision, mode, heading_time_constant, params_text, params, skip_errors))]
 #[allow(clippy::too_many_arguments)]
 fn estimate<'py>(
     py: Python<'py>,
@@ -179,6 +182,7 @@ fn estimate<'py>(
     mag: Option<PyReadonlyArray2<'py, f64>>,
     frame: &str,
     precision: &str,
+    mode: &str,
     heading_time_constant: Option<f64>,
     params_text: Option<String>,
     params: Vec<(String, f64)>,
@@ -209,10 +213,18 @@ fn estimate<'py>(
             return Err(RowError::call(format!("frame: unknown {other:?} (enu, ned)")).into());
         }
     };
+    let light = match mode {
+        "full" => false,
+        "light" => true,
+        other => {
+            return Err(RowError::call(format!("mode: unknown {other:?} (full, light)")).into());
+        }
+    };
     let tr = match precision {
         "f64" => {
             let p = self::params::<f64>(
                 frame,
+                if light { Mode::light() } else { Mode::Full },
                 heading_time_constant,
                 params_text.as_deref(),
                 &params,
@@ -222,6 +234,7 @@ fn estimate<'py>(
         "f32" => {
             let p = self::params::<f32>(
                 frame,
+                if light { Mode::light() } else { Mode::Full },
                 heading_time_constant,
                 params_text.as_deref(),
                 &params,

@@ -67,6 +67,26 @@ def test_synthetic_9d_and_6d():
     assert not est6.mag_used.any()
 
 
+def test_light_mode():
+    # The light mode on the same synthetic record: near the full mode, not equal to it.
+    t, gyro, accel, mag, q = synthetic(4000)
+    full = gyrostat.estimate(t, gyro, accel, mag)
+    light = gyrostat.estimate(t, gyro, accel, mag, mode="light")
+    light32 = gyrostat.estimate(t, gyro, accel, mag, mode="light", precision="f32")
+    r_full = Rotation.from_quat(full.q, scalar_first=True)
+    r_light = Rotation.from_quat(light.q, scalar_first=True)
+    r_true = Rotation.from_quat(q, scalar_first=True)
+    late = slice(len(t) // 2, None)
+    err_full = np.degrees((r_full[late] * r_true[late].inv()).magnitude())
+    err_light = np.degrees((r_light[late] * r_true[late].inv()).magnitude())
+    assert err_light.max() < 1.0
+    assert err_light.mean() < err_full.mean() + 0.1
+    assert not np.array_equal(full.q, light.q)
+    assert np.abs(light32.q - light.q).max() < 1e-3
+    with pytest.raises(GyrostatError, match='mode: unknown "heavy"'):
+        gyrostat.estimate(t, gyro, accel, mode="heavy")
+
+
 def test_parameters_and_errors():
     t, gyro, accel, mag, _ = synthetic(2000)
     d = gyrostat.estimator_defaults()
