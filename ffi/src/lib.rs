@@ -39,7 +39,7 @@ use core::mem::{align_of, size_of};
 
 use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
 use gyrostat::estimation::{
-    EarthFrame, Estimator, FieldThresholds, Gains, Outcome, Params, RestThresholds, SensorUse,
+    EarthFrame, Estimator, FieldThresholds, Gains, Mode, Outcome, Params, RestThresholds, SensorUse,
 };
 use gyrostat::fixed::{CarriedAttitude, Fixed, IncrementQuantizer, IncrementScale, Q30};
 use gyrostat::propagation::{
@@ -166,6 +166,12 @@ pub const GYRO_GIMBAL_CLOSEST_TO: u32 = 2;
 pub const GYRO_FRAME_ENU: u32 = 0;
 /// Estimator earth frame: x magnetic north, y east, z down.
 pub const GYRO_FRAME_NED: u32 = 1;
+
+/// Estimator mode: every part of the filter on every sample (the default).
+pub const GYRO_MODE_FULL: u32 = 0;
+/// Estimator mode: the prediction every sample, the covariance and the corrections once per
+/// `correction_period` (the library's `Mode::Light`).
+pub const GYRO_MODE_LIGHT: u32 = 1;
 
 /// A sensor sample corrected the estimate.
 pub const GYRO_SENSOR_USED: u32 = 0;
@@ -2064,9 +2070,9 @@ pub unsafe extern "C" fn gyro_gyrostat_f64_step(
 // --- Estimator ---------------------------------------------------------------------------------
 
 /// Words of `gyro_estimator_f32`'s storage.
-pub const GYRO_ESTIMATOR_F32_WORDS: usize = 112;
+pub const GYRO_ESTIMATOR_F32_WORDS: usize = 120;
 /// Words of `gyro_estimator_f64`'s storage.
-pub const GYRO_ESTIMATOR_F64_WORDS: usize = 208;
+pub const GYRO_ESTIMATOR_F64_WORDS: usize = 236;
 
 /// The attitude and gyro-bias estimator, f32 (`Estimator`, the library's default parameters).
 /// Contents private.
@@ -2101,6 +2107,11 @@ pub struct gyro_estimator_params_f32 {
     pub fixed_gains: u32,
     /// `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
     pub heading_time_constant: f32,
+    /// `GYRO_MODE_FULL` (the default) or `GYRO_MODE_LIGHT`.
+    pub mode: u32,
+    /// The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored otherwise;
+    /// the defaults hold 0.025).
+    pub correction_period: f32,
     /// Gyroscope white noise, rad/s/√Hz (angle random walk).
     pub gyro_noise_density: f32,
     /// Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
@@ -2179,6 +2190,11 @@ pub struct gyro_estimator_params_f64 {
     pub fixed_gains: u32,
     /// `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
     pub heading_time_constant: f64,
+    /// `GYRO_MODE_FULL` (the default) or `GYRO_MODE_LIGHT`.
+    pub mode: u32,
+    /// The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored otherwise;
+    /// the defaults hold 0.025).
+    pub correction_period: f64,
     /// Gyroscope white noise, rad/s/√Hz (angle random walk).
     pub gyro_noise_density: f64,
     /// Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
@@ -2261,9 +2277,17 @@ macro_rules! params_io {
                     },
                     _ => return Err(GYRO_INVALID_ARGUMENT),
                 };
+                let mode = match self.mode {
+                    GYRO_MODE_FULL => Mode::Full,
+                    GYRO_MODE_LIGHT => Mode::Light {
+                        correction_period: self.correction_period,
+                    },
+                    _ => return Err(GYRO_INVALID_ARGUMENT),
+                };
                 Ok(Params {
                     frame,
                     gains,
+                    mode,
                     gyro_noise_density: self.gyro_noise_density,
                     gyro_scale_noise: self.gyro_scale_noise,
                     gyro_bias_initial: self.gyro_bias_initial,
@@ -2308,7 +2332,13 @@ macro_rules! params_io {
                         heading_time_constant,
                     } => (1, heading_time_constant),
                 };
+                let (mode, correction_period) = match p.mode {
+                    Mode::Full => (GYRO_MODE_FULL, <$t>::from_f64(Mode::<$t>::LIGHT_PERIOD)),
+                    Mode::Light { correction_period } => (GYRO_MODE_LIGHT, correction_period),
+                };
                 $c {
+                    mode,
+                    correction_period,
                     frame: match p.frame {
                         EarthFrame::Enu => GYRO_FRAME_ENU,
                         EarthFrame::Ned => GYRO_FRAME_NED,
@@ -2555,7 +2585,7 @@ pub unsafe extern "C" fn gyro_estimator_f64_default_params(
 ///
 /// Errors: `GYRO_NON_FINITE` for a NaN parameter (infinite ranges are allowed);
 /// `GYRO_INVALID_ARGUMENT` for a negative one, a zero time constant that divides, or an
-/// unknown `frame` or `fixed_gains`.
+/// unknown `frame`, `fixed_gains` or `mode`.
 ///
 /// # Safety
 /// Every pointer is NULL or points to a valid object of its type.
