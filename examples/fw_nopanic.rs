@@ -56,7 +56,7 @@ mod firmware {
     /// errors), and its outputs.
     fn estimator<T: gyrostat::Real>() {
         use gyrostat::estimation::{
-            Estimator, Params, attitude_from_gravity, attitude_from_gravity_and_field,
+            Estimator, Mode, Params, attitude_from_gravity, attitude_from_gravity_and_field,
         };
         let c = |x: f64| black_box(T::from_f64(x));
         let g = Vec3::new(c(0.01), c(-0.02), c(0.3));
@@ -83,6 +83,25 @@ mod firmware {
             sink(f.covariance());
             sink(f.field_reference());
             sink(f.mag_delay());
+        }
+        // The light mode (`Mode::Light`, corrections within the loop): the same entry points.
+        let params = Params::<T> {
+            mode: Mode::Light {
+                correction_period: c(0.007),
+            },
+            ..Params::light()
+        };
+        if let Ok(mut f) = Estimator::try_new(black_box(params)) {
+            for _ in 0..black_box(12) {
+                sink(f.update_9d(g, a, m, dt));
+                sink(f.update_6d(g, a, dt));
+                sink(f.update_increment(g.scale(dt), a, Some(m), dt));
+                sink(f.update(g, a, black_box(None), dt));
+            }
+            sink(f.attitude());
+            sink(f.bias());
+            sink(f.attitude_std());
+            sink(f.covariance());
         }
     }
 
