@@ -711,6 +711,10 @@ typedef struct {
    */
   float mag_correlation_time;
   /**
+   * Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
+   */
+  float gyro_delay;
+  /**
    * Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
    */
   float mag_delay;
@@ -719,6 +723,10 @@ typedef struct {
    * magnetometer's delay; 0 keeps `mag_delay` fixed.
    */
   float mag_delay_estimation_time;
+  /**
+   * Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
+   */
+  float mag_hard_iron_time;
   /**
    * Weight of a disturbed field's heading error (0: rejected outright).
    */
@@ -849,6 +857,10 @@ typedef struct {
    */
   double mag_correlation_time;
   /**
+   * Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
+   */
+  double gyro_delay;
+  /**
    * Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
    */
   double mag_delay;
@@ -857,6 +869,10 @@ typedef struct {
    * magnetometer's delay; 0 keeps `mag_delay` fixed.
    */
   double mag_delay_estimation_time;
+  /**
+   * Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
+   */
+  double mag_hard_iron_time;
   /**
    * Weight of a disturbed field's heading error (0: rejected outright).
    */
