@@ -33,9 +33,33 @@ pub enum Gains<T> {
     },
 }
 
-/// The estimator's parameters, in SI units (angles in rad). [`Params::default`] holds values
-/// that work on BROAD without tuning per recording (see the module docs for how they were
-/// chosen).
+/// The estimator's parameters, in SI units (angles in rad), every time in seconds (none in
+/// samples: the same parameters describe the same filter at any rate).
+///
+/// [`Params::default`] describes a typical consumer MEMS IMU from its datasheet figures
+/// (InvenSense MPU-9250 with its AK8963 magnetometer, the common 9-axis part; a characterisation
+/// of the actual sensor, written as a parameter file, replaces them), and the filter's own
+/// design choices:
+///
+/// | parameter | default | from the datasheet |
+/// |---|---|---|
+/// | `gyro_noise_density` | 0.01 °/s/√Hz | rate noise spectral density (MPU-9250: 0.01 °/s/√Hz); an Allan deviation's slope −½ at 1 s |
+/// | `gyro_scale_noise` | 0.002 /√Hz | sensitivity tolerance and cross-axis sensitivity (±3 %, ±2 % raw) after a calibration to 0.2 %, as a density over 1 s |
+/// | `gyro_bias_initial` | 0.5 °/s | zero-rate output after a power-on calibration (raw tolerance ±5 °/s) |
+/// | `gyro_bias_stability`, `gyro_bias_time` | 0.1 °/s per 100 s | zero-rate output's temperature drift (±30 °/s over −40…85 °C, 0.24 °/s/K) over the 0.4 K a device warms in 100 s; an Allan deviation's bias-instability floor is the lower bound |
+/// | `gyro_bias_max` | 2 °/s | a bound on the calibrated bias |
+/// | `gyro_range`, `accel_range` | ∞ | full scale (±2000 °/s, ±16 g); ∞ when the log is known not to clip |
+/// | `gyro_delay` | 2.9 ms | the gyroscope's digital low-pass delay at its common setting (MPU-9250 table: 184 Hz bandwidth, 2.9 ms) |
+/// | `accel_tilt_noise` | 0.3° | the zero-g offset after calibration (5 mg ≈ 0.3°); the noise density (300 µg/√Hz) averages out in the low-pass |
+/// | `mag_heading_noise` | 2° | the magnetometer's resolution and noise (AK8963: 0.6 µT) over a horizontal field of about 17 µT |
+/// | `mag_delay` | 0 | the magnetometer's sample delay behind the gyroscope when known (else estimated online) |
+///
+/// The others are the filter's design choices, not the sensor's: the low-pass and correlation
+/// times (`accel_time_constant` 3 s, `accel_correlation_time` 1 s, `mag_correlation_time` 5 s),
+/// the gates (`accel_reject`, [`FieldThresholds`], [`RestThresholds`]), the online estimates'
+/// times (`mag_delay_estimation_time` 10 s, `mag_hard_iron_time` 10 s) and
+/// `mag_disturbance_weight` (see the module docs for how they were chosen). The parameter file
+/// ([`super::params_text`]) sets any of them by name.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params<T> {
     /// The earth frame of [`Estimator::attitude`].
