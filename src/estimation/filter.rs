@@ -53,9 +53,33 @@ pub enum Mode<T> {
     },
 }
 
-/// The estimator's parameters, in SI units (angles in rad). [`Params::default`] holds values
-/// that work on BROAD without tuning per recording (see the module docs for how they were
-/// chosen).
+/// The estimator's parameters, in SI units (angles in rad), every time in seconds (none in
+/// samples: the same parameters describe the same filter at any rate).
+///
+/// [`Params::default`] describes a typical consumer MEMS IMU from its datasheet figures
+/// (InvenSense MPU-9250 with its AK8963 magnetometer, the common 9-axis part; a characterisation
+/// of the actual sensor, written as a parameter file, replaces them), and the filter's own
+/// design choices:
+///
+/// | parameter | default | from the datasheet |
+/// |---|---|---|
+/// | `gyro_noise_density` | 0.01 °/s/√Hz | rate noise spectral density (MPU-9250: 0.01 °/s/√Hz); an Allan deviation's slope −½ at 1 s |
+/// | `gyro_scale_noise` | 0.002 /√Hz | sensitivity tolerance and cross-axis sensitivity (±3 %, ±2 % raw) after a calibration to 0.2 %, as a density over 1 s |
+/// | `gyro_bias_initial` | 0.5 °/s | zero-rate output after a power-on calibration (raw tolerance ±5 °/s) |
+/// | `gyro_bias_stability`, `gyro_bias_time` | 0.1 °/s per 100 s | zero-rate output's temperature drift (±30 °/s over −40…85 °C, 0.24 °/s/K) over the 0.4 K a device warms in 100 s; an Allan deviation's bias-instability floor is the lower bound |
+/// | `gyro_bias_max` | 2 °/s | a bound on the calibrated bias |
+/// | `gyro_range`, `accel_range` | ∞ | full scale (±2000 °/s, ±16 g); ∞ when the log is known not to clip |
+/// | `gyro_delay` | 2.9 ms | the gyroscope's digital low-pass delay at its common setting (MPU-9250 table: 184 Hz bandwidth, 2.9 ms) |
+/// | `accel_tilt_noise` | 0.3° | the zero-g offset after calibration (5 mg ≈ 0.3°); the noise density (300 µg/√Hz) averages out in the low-pass |
+/// | `mag_heading_noise` | 2° | the magnetometer's resolution and noise (AK8963: 0.6 µT) over a horizontal field of about 17 µT |
+/// | `mag_delay` | 0 | the magnetometer's sample delay behind the gyroscope when known (else estimated online) |
+///
+/// The others are the filter's design choices, not the sensor's: the low-pass and correlation
+/// times (`accel_time_constant` 3 s, `accel_correlation_time` 1 s, `mag_correlation_time` 5 s),
+/// the gates (`accel_reject`, [`FieldThresholds`], [`RestThresholds`]), the online estimates'
+/// times (`mag_delay_estimation_time` 10 s, `mag_hard_iron_time` 10 s) and
+/// `mag_disturbance_weight` (see the module docs for how they were chosen). The parameter file
+/// ([`super::params_text`]) sets any of them by name.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params<T> {
     /// The earth frame of [`Estimator::attitude`].
@@ -420,6 +444,8 @@ pub struct Estimator<T> {
     lag_clock: T,
     /// The online hard-iron fit and the offset subtracted from the field samples.
     hard_iron: HardIron<T>,
+    /// The converged offset large enough to use (zero otherwise), updated as the fit is fed.
+    hard_iron_offer: Vec3<T>,
     hard_iron_applied: Vec3<T>,
     /// Time (s) since the hard-iron fit was last fed.
     hard_iron_clock: T,
@@ -429,11 +455,11 @@ pub struct Estimator<T> {
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
 /// magnetometer's delay, and the spacing of the candidate delays of its online estimate.
-pub const MAG_HISTORY_STEP: f64 = 0.005;
+pub const MAG_HISTORY_STEP: f64 = 0.01;
 
 /// The number of grid attitudes kept: delays from 0 to `(MAG_HISTORY − 1)·h` =
 /// [`MAG_DELAY_MAX`] at any sample rate (an attitude between two samples is interpolated).
-pub const MAG_HISTORY: usize = 11;
+pub const MAG_HISTORY: usize = 6;
 
 /// The longest magnetometer delay (s) the filter compensates: [`Params::mag_delay`] and the
 /// online estimate are clipped to it.
@@ -444,9 +470,12 @@ pub const MAG_DELAY_MAX: f64 = MAG_HISTORY_STEP * (MAG_HISTORY - 1) as f64;
 const LAG_MEAN_TIME: f64 = 1.0;
 
 /// The delay statistics take a sample at most once per this time (s): averages over seconds
-/// need no more, and their cost per update then falls as the rate rises (at 285.7 Hz a third
+/// need no more, and their cost per update then falls as the rate rises (at 285.7 Hz a sixth
 /// of the updates feed them).
-const LAG_FEED_STEP: f64 = 0.01;
+const LAG_FEED_STEP: f64 = 0.02;
+
+/// The hard-iron fit takes a sample at most once per this time (s) while turning.
+const HARD_IRON_FEED_STEP: f64 = 0.02;
 
 /// The longest step [`Estimator::update`] takes, s: a longer gap is an error (restart the
 /// estimator after it).
@@ -549,6 +578,7 @@ impl<T: Real> Estimator<T> {
             lag_time: T::ZERO,
             lag_clock: T::ZERO,
             hard_iron: HardIron::default(),
+            hard_iron_offer: Vec3::ZERO,
             hard_iron_applied: Vec3::ZERO,
             hard_iron_clock: T::ZERO,
             light: light::LightState::default(),
@@ -808,12 +838,12 @@ impl<T: Real> Estimator<T> {
         if let Mode::Light { .. } = self.params.mode {
             return self.light_field(mag);
         }
-        let now = self.q_gyro.rotate(mag);
         if delay <= T::ZERO || self.filled == 0 {
-            return now;
+            return self.q_gyro.rotate(mag);
         }
         let age = self.grid_age;
         if delay <= age {
+            let now = self.q_gyro.rotate(mag);
             let u0 = self.grid(0).rotate(mag);
             return now + (u0 - now).scale(delay / age);
         }
@@ -822,9 +852,12 @@ impl<T: Real> Estimator<T> {
         let j = x.floor();
         let frac = x - j;
         let last = self.filled - 1;
+        // back = j as an index (counted in T: no integer-float conversion on the hot path).
         let mut back = 0usize;
-        while back < last && T::from_f64(back as f64 + 0.5) < j {
+        let mut mid = T::HALF;
+        while back < last && mid < j {
             back += 1;
+            mid += T::ONE;
         }
         let a = self.grid(back).rotate(mag);
         if back < last && frac > T::ZERO {
@@ -846,11 +879,15 @@ impl<T: Real> Estimator<T> {
     }
 
     fn accel_update(&mut self, accel: Vec3<T>, dt: T, x: &mut [T; 6]) -> SensorUse {
-        let pr = self.params;
+        let (tau_a, reject, gains) = (
+            self.params.accel_time_constant,
+            self.params.accel_reject,
+            self.params.gains,
+        );
         // Filter in the gyroscope frame, map to the earth frame by the corrections.
         let a_gyro = self.q_gyro.rotate(accel);
-        let v = if pr.accel_time_constant > T::ZERO {
-            let k = LowPass::gain(pr.accel_time_constant, dt);
+        let v = if tau_a > T::ZERO {
+            let k = LowPass::gain(tau_a, dt);
             self.accel_lp.update(a_gyro, k)
         } else {
             a_gyro
@@ -858,7 +895,7 @@ impl<T: Real> Estimator<T> {
         // What the low-pass filter left of non-gravitational acceleration shows in its norm.
         let g = T::from_f64(GRAVITY);
         let residual = (v.norm() - g).abs() / g;
-        if residual > pr.accel_reject {
+        if residual > reject {
             return SensorUse::Disturbed;
         }
         let v = self.q_corr.rotate(v);
@@ -870,7 +907,7 @@ impl<T: Real> Estimator<T> {
         } else {
             (T::ZERO, T::ZERO)
         };
-        match pr.gains {
+        match gains {
             Gains::Kalman => {
                 let r = self.tilt_variance(dt);
                 self.scalar_update(x, 0, ex, r);
@@ -896,15 +933,24 @@ impl<T: Real> Estimator<T> {
     }
 
     fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
-        let pr = self.params;
-        // (The light mode feeds the fit itself, every sample: `light.rs`.)
-        if pr.mag_hard_iron_time > T::ZERO && pr.mode == Mode::Full {
+        let pr = MagParams::of(&self.params);
+        let rate = (gyro - self.bias).norm();
+        // (The light mode feeds the fit on every sample itself: `light.rs`.)
+        if pr.mag_hard_iron_time > T::ZERO && self.params.mode == Mode::Full {
             self.hard_iron_clock += dt;
-            let turning = (gyro - self.bias).norm() >= pr.field.new_field_min_rate;
-            if self.hard_iron_clock >= T::from_f64(LAG_FEED_STEP) {
+            let turning = rate >= pr.field.new_field_min_rate;
+            if self.hard_iron_clock >= T::from_f64(HARD_IRON_FEED_STEP) {
                 if turning {
                     self.hard_iron
                         .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
+                    // A converged offset larger than the disturbance monitor's norm threshold
+                    // (a smaller one leaves a field the monitor accepts, and is of the size of
+                    // the model's own errors: soft iron, calibration, a field that varies over
+                    // the room) is offered to the heading update.
+                    self.hard_iron_offer = match self.hard_iron.offset() {
+                        Some(h) if h.norm() > pr.field.norm * self.field.reference().0 => h,
+                        _ => Vec3::ZERO,
+                    };
                 }
                 self.hard_iron_clock = T::ZERO;
             }
@@ -918,16 +964,11 @@ impl<T: Real> Estimator<T> {
         let lag = lag.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX));
         let mut m = self.q_corr.rotate(self.field_at(mag, lag));
         let (mut norm, mut dip) = norm_dip(m);
-        // The hard-iron offset of a converged fit is subtracted when it is larger than the
-        // disturbance monitor's norm threshold (a smaller one leaves a field the monitor
-        // accepts, and is of the size of the model's own errors: soft iron, calibration, a
-        // field that varies over the room) and the corrected field is closer to the reference
-        // (relative norm plus dip) than the raw one.
+        // The offered hard-iron offset is subtracted when the corrected field is closer to
+        // the reference (relative norm plus dip) than the raw one.
         self.hard_iron_applied = Vec3::ZERO;
-        if self.field_started
-            && let Some(h) = self.hard_iron.offset()
-            && h.norm() > pr.field.norm * self.field.reference().0
-        {
+        let h = self.hard_iron_offer;
+        if self.field_started && h != Vec3::ZERO {
             let mc = self.q_corr.rotate(self.field_at(mag - h, lag));
             let (nc, dc) = norm_dip(mc);
             if self.field.deviation(nc, dc) < self.field.deviation(norm, dip) {
@@ -940,7 +981,6 @@ impl<T: Real> Estimator<T> {
             self.field = FieldMonitor::new(norm, dip);
             self.field_started = true;
         }
-        let rate = (gyro - self.bias).norm();
         let disturbed = self.field.update(norm, dip, dt, rate, &pr.field);
         if estimating {
             self.lag_clock += dt;
@@ -1167,6 +1207,35 @@ impl<T: Real> Estimator<T> {
     /// The magnetic reference (norm in input units, dip in rad), once a field was seen.
     pub fn field_reference(&self) -> Option<(T, T)> {
         self.field_started.then(|| self.field.reference())
+    }
+}
+
+/// The parameters the heading update reads, copied out of [`Params`] (the whole of it is
+/// larger than the update needs to copy).
+#[derive(Clone, Copy)]
+struct MagParams<T> {
+    gains: Gains<T>,
+    mag_heading_noise: T,
+    mag_correlation_time: T,
+    mag_delay: T,
+    mag_delay_estimation_time: T,
+    mag_hard_iron_time: T,
+    mag_disturbance_weight: T,
+    field: FieldThresholds<T>,
+}
+
+impl<T: Copy> MagParams<T> {
+    fn of(p: &Params<T>) -> Self {
+        Self {
+            gains: p.gains,
+            mag_heading_noise: p.mag_heading_noise,
+            mag_correlation_time: p.mag_correlation_time,
+            mag_delay: p.mag_delay,
+            mag_delay_estimation_time: p.mag_delay_estimation_time,
+            mag_hard_iron_time: p.mag_hard_iron_time,
+            mag_disturbance_weight: p.mag_disturbance_weight,
+            field: p.field,
+        }
     }
 }
 

@@ -26,14 +26,13 @@ use crate::{Real, Vec3};
 const PRIOR_OFFSET: f64 = 2.0;
 /// The prior standard deviation of `c`, in squared reference norms.
 const PRIOR_C: f64 = 4.0;
-/// Standard deviation of `|B|²` (squared reference norms) per 10 ms of samples: sensor noise
-/// and the model's error (soft iron, a field not quite homogeneous), 1.5 % of the norm.
+/// Standard deviation of one sample's `|B|²` (squared reference norms): sensor noise and the
+/// model's error (soft iron, a field not quite homogeneous, axes sampled at slightly different
+/// times in fast rotation), about 4 % of the norm.
 const MEASUREMENT_STD: f64 = 0.08;
 /// How far (reference norms) the offset may drift within the random-walk time `τ_h`; `c`
 /// twice as far.
 const DRIFT: f64 = 0.01;
-/// The time (s) `MEASUREMENT_STD` refers to: one independent measurement per this time.
-const MEASUREMENT_TIME: f64 = 0.01;
 /// Time constant (s) of the mean normalised innovation squared.
 const NIS_TIME: f64 = 1.0;
 /// A mean normalised innovation squared above this resets the covariance.
@@ -105,8 +104,9 @@ impl<T: Real> HardIron<T> {
         for (phi, row) in ph.iter_mut().zip(self.p.iter()) {
             *phi = row[0] * hv[0] + row[1] * hv[1] + row[2] * hv[2] + row[3] * hv[3];
         }
-        let r0 = T::from_f64(MEASUREMENT_STD * MEASUREMENT_STD * MEASUREMENT_TIME);
-        let r = r0 / dt.max(T::from_f64(MEASUREMENT_TIME));
+        // One raw sample's error, however long the time it stands for: the fit sees single
+        // samples, not averages.
+        let r = T::from_f64(MEASUREMENT_STD * MEASUREMENT_STD);
         let s = hv[0] * ph[0] + hv[1] * ph[1] + hv[2] * ph[2] + hv[3] * ph[3] + r;
         if !(s > T::ZERO && s.is_finite()) {
             self.reset();
