@@ -43,10 +43,15 @@ pub enum Mode<T> {
     /// Every part of the filter on every sample.
     #[default]
     Full,
-    /// The prediction and the accelerometer's low-pass filter on every sample, the covariance
-    /// and the corrections once per `correction_period` (s), no magnetometer-delay estimate
-    /// (a fixed delay applied to first order; see the module docs of `light.rs`, and
-    /// BENCHMARKS.md for its cost and accuracy).
+    /// The prediction, the rest detector, the accelerometer's low-pass filter and the
+    /// hard-iron fit on every sample; the covariance over the whole interval
+    /// (`Φ = [[I, −R̂·T_c], [0, I]]`, `R̂` at its end) and the rest, inclination and heading
+    /// updates (variances for one measurement per `T_c`) once per `correction_period` `T_c`
+    /// (s, sample time). No magnetometer-delay estimate: the field sample is carried back by a
+    /// fixed delay `d` to first order, `m − d·(ω × m)`, `d` = [`Params::mag_delay`] when
+    /// [`Params::mag_delay_estimation_time`] is 0, else [`Mode::LIGHT_MAG_DELAY`]. Between
+    /// corrections the [`Outcome`] reports a valid magnetometer sample as the last correction
+    /// did. Cost and accuracy: BENCHMARKS.md (about a fifth of the full mode's cost on the M4F).
     Light {
         /// The time (s) between two corrections.
         correction_period: T,
