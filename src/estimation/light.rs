@@ -117,7 +117,12 @@ impl<T: Real> Estimator<T> {
         out.accel = accel_use;
         let mag_ok = mag_use == SensorUse::Used;
         if self.light.elapsed < period {
-            out.mag = if mag_ok { self.light.mag } else { mag_use };
+            // A valid sample reports as the last correction did (as used before the first).
+            out.mag = match (mag_ok, self.light.mag) {
+                (true, SensorUse::Absent) => SensorUse::Used,
+                (true, last) => last,
+                (false, _) => mag_use,
+            };
             self.last = out;
             return out;
         }

@@ -7,8 +7,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use gyrostat::estimation::{
-    Covariance, Estimator, FieldMonitor, Gains, Mode, Params, RestDetector, SensorUse,
-    attitude_from_gravity, attitude_from_gravity_and_field,
+    Covariance, Estimator, FieldMonitor, Gains, Mode as FilterMode, Params, RestDetector,
+    SensorUse, attitude_from_gravity, attitude_from_gravity_and_field,
 };
 use gyrostat::{Error, Mat3, Vec3};
 use host_tests::broad::{self, Mode, Units};
@@ -292,7 +292,7 @@ host_tests::per_type! {
             mag_delay_estimation_time: T::ZERO,
             ..Params::default()
         };
-        let light = Params::<T> { mode: Mode::light(), ..full };
+        let light = Params::<T> { mode: FilterMode::light(), ..full };
         let mut f = Estimator::<T>::try_new(full).unwrap();
         let mut l = Estimator::<T>::try_new(light).unwrap();
         let mut rng = Lcg(5);
@@ -461,15 +461,15 @@ host_tests::per_type! {
         assert!(Estimator::try_new(Params::<T>::default()).is_ok());
         // The light mode's correction period: finite and not negative.
         for (period, want) in [(-1.0, Some(Error::InvalidArgument)), (f64::NAN, Some(Error::InvalidArgument)), (f64::INFINITY, Some(Error::InvalidArgument)), (0.0, None), (0.05, None)] {
-            let p = Params::<T> { mode: Mode::Light { correction_period: T::from_f64(period) }, ..Params::default() };
+            let p = Params::<T> { mode: FilterMode::Light { correction_period: T::from_f64(period) }, ..Params::default() };
             assert_eq!(Estimator::try_new(p).err(), want, "{period}");
         }
         // By name: `light_period` selects the light mode; `map` keeps it.
         let mut p = Params::<T>::default();
         assert!(p.set_by_name("light_period", T::from_f64(0.05)));
-        assert_eq!(p.mode, Mode::Light { correction_period: T::from_f64(0.05) });
-        assert_eq!(p.map(|x| x.to_f64()).mode, Mode::Light { correction_period: 0.05 });
-        assert_eq!(Params::<T>::light().mode, Mode::light());
+        assert_eq!(p.mode, FilterMode::Light { correction_period: T::from_f64(0.05) });
+        assert_eq!(p.map(|x| x.to_f64()).mode, FilterMode::Light { correction_period: T::from_f64(0.05).to_f64() });
+        assert_eq!(Params::<T>::light().mode, FilterMode::light());
     }
 }
 
