@@ -114,3 +114,22 @@ def test_broad_trial_07_against_the_optical_reference():
     # The library documents 1.56 deg mean over 16 trials (BROAD metric); the fast-rotation trial
     # 07 of a working filter stays within a few degrees, a wrong frame would be off by ~90.
     assert rmse < 4.0, rmse
+
+
+def test_params_file(tmp_path):
+    """``params_file=``: the library's parameter file gives the run of the same keywords (bit
+    for bit); keywords apply after it; a bad line raises naming the line."""
+    t, gyro, accel, mag, _ = synthetic(1500)
+    f = tmp_path / "sensor.txt"
+    f.write_text("# a slower sensor\naccel_time_constant = 1.5  # s\n\nfield.norm = 0.2\n")
+    by_file = gyrostat.estimate(t, gyro, accel, mag, params_file=str(f))
+    by_keyword = gyrostat.estimate(t, gyro, accel, mag, accel_time_constant=1.5, field_norm=0.2)
+    default = gyrostat.estimate(t, gyro, accel, mag)
+    assert (by_file.q == by_keyword.q).all()
+    assert not (by_file.q == default.q).all()
+    both = gyrostat.estimate(t, gyro, accel, mag, params_file=str(f), accel_time_constant=3.0,
+                             field_norm=0.1)
+    assert (both.q == default.q).all()
+    f.write_text("accel_time_constant = 1.5\nbogus = 1\n")
+    with pytest.raises(GyrostatError, match="params_file: line 2: unknown parameter name"):
+        gyrostat.estimate(t, gyro, accel, mag, params_file=str(f))

@@ -382,6 +382,11 @@ pub struct Estimator<T> {
     bias: Vec3<T>,
     /// The previous gyroscope sample (clipped), for the mean rate over a step.
     last_gyro: Vec3<T>,
+    /// The rate (bias removed) the output is carried forward with ([`Params::gyro_delay`]);
+    /// zero until the first propagation (the initial attitude is that of its own sample).
+    lead_rate: Vec3<T>,
+    /// Whether the rates given are means over the step (increments) rather than samples.
+    rate_is_mean: bool,
     p: Covariance<T>,
     accel_lp: LowPass<T>,
     rest: RestDetector<T>,
@@ -520,6 +525,8 @@ impl<T: Real> Estimator<T> {
             q_corr: UnitQuat::IDENTITY,
             bias: Vec3::ZERO,
             last_gyro: Vec3::ZERO,
+            lead_rate: Vec3::ZERO,
+            rate_is_mean: false,
             p: Covariance::diagonal(T::ZERO, b0 * b0),
             accel_lp: LowPass::default(),
             rest: RestDetector::default(),
@@ -572,7 +579,8 @@ impl<T: Real> Estimator<T> {
     }
 
     /// One update from a gyroscope increment `dtheta` (rad, the integral of the body rate over
-    /// the sample interval `dt`) instead of a rate: the rate `dtheta/dt` is used.
+    /// the sample interval `dt`) instead of a rate: the rate `dtheta/dt` is the mean over the
+    /// step as it is (no trapezoid with the previous sample).
     ///
     /// # Errors
     /// See [`Estimator::update`].
@@ -586,7 +594,10 @@ impl<T: Real> Estimator<T> {
         if !(dt.is_finite() && dt > T::ZERO) {
             return Err(Error::InvalidArgument);
         }
-        self.update(dtheta.scale(T::ONE / dt), accel, mag, dt)
+        self.rate_is_mean = true;
+        let r = self.update(dtheta.scale(T::ONE / dt), accel, mag, dt);
+        self.rate_is_mean = false;
+        r
     }
 
     /// One update: propagation by the gyroscope, then the corrections.
@@ -648,10 +659,16 @@ impl<T: Real> Estimator<T> {
             return Ok(out);
         }
 
-        // The mean rate over the step: the trapezoid of the two samples at its ends.
-        let mean_rate = (gyro + self.last_gyro).scale(T::HALF);
+        // The mean rate over the step: the trapezoid of the two samples at its ends (an
+        // increment's rate is that mean already).
+        let mean_rate = if self.rate_is_mean {
+            gyro
+        } else {
+            (gyro + self.last_gyro).scale(T::HALF)
+        };
         self.last_gyro = gyro;
         self.predict(mean_rate, dt, out.gyro_saturated);
+        self.lead_rate = gyro - self.bias;
         let mut x = [T::ZERO; 6];
 
         if accel_use == SensorUse::Used {
@@ -698,6 +715,7 @@ impl<T: Real> Estimator<T> {
         self.accel_lp = LowPass::at(q.rotate(accel));
         self.rest = RestDetector::new(gyro, accel);
         self.last_gyro = gyro;
+        self.lead_rate = Vec3::ZERO;
         // The first sample's direction errors: the inclination from one accelerometer sample
         // and (with a magnetometer) the heading from one field sample.
         let s_tilt = self.params.accel_tilt_noise;
@@ -1094,7 +1112,7 @@ impl<T: Real> Estimator<T> {
         let q = self.attitude_enu();
         let d = self.params.gyro_delay;
         let q = if d > T::ZERO && self.initialized {
-            q.mul_exp_unchecked((self.last_gyro - self.bias).scale(d))
+            q.mul_exp_unchecked(self.lead_rate.scale(d))
                 .renormalize_fast()
         } else {
             q
