@@ -630,16 +630,32 @@ impl<T: Real> Estimator<T> {
         let r = self.attitude_enu().to_rotation_matrix();
         let f = r.scale(-dt);
         let pr = &self.params;
-        let sw = pr.gyro_scale_noise * w.norm();
-        let q_theta = (pr.gyro_noise_density * pr.gyro_noise_density + sw * sw) * dt;
+        // The rate-proportional noise `(s·|ω|)²·Δt = θ²·s²/Δt` with `θ = |ω|·Δt` the step's
+        // rotation (at most π, checked by `update`): formed from `θ`, not from `|ω|`, which
+        // can overflow where `θ` is small, and bounded by `θ²` (an error as large as the
+        // rotation itself, a scale factor wrong by 100 %), which only binds for `Δt < s²`.
+        let theta2 = w.scale(dt).norm_squared();
+        let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
+        let q_scale = theta2 * (s2 / dt).min(T::ONE);
+        let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * dt + q_scale;
         let q_bias = pr.gyro_bias_stability * pr.gyro_bias_stability * dt / pr.gyro_bias_time;
         self.p.predict(f, q_theta, q_bias);
         if saturated {
             // The true rate is somewhere beyond the range: up to a range's worth of rotation
-            // per step is unknown.
-            let a = pr.gyro_range * dt;
+            // per step (at most a half turn) is unknown.
+            let a = (pr.gyro_range * dt).min(T::PI);
             self.p.inflate_attitude(a * a);
         }
+        self.p.bound(T::PI * T::PI, self.bias_variance_max());
+    }
+
+    /// The largest bias variance: the bias is clipped to [`Params::gyro_bias_max`], so its
+    /// uncertainty is at most that squared (or the initial variance, when that is larger).
+    fn bias_variance_max(&self) -> T {
+        let pr = &self.params;
+        let m = pr.gyro_bias_max * pr.gyro_bias_max;
+        let b0 = pr.gyro_bias_initial * pr.gyro_bias_initial;
+        m.max(b0)
     }
 
     /// At rest, the mean rate measures the bias: `z = ω̄ − b̂ = δb + noise`.
@@ -774,8 +790,7 @@ impl<T: Real> Estimator<T> {
                 heading_time_constant,
             } => {
                 let k = dt / (heading_time_constant + dt) * (s * s / var);
-                self.p.update_attitude_axis_only(2, k, r);
-                k
+                self.p.update_attitude_axis_only(2, k, r)
             }
         };
         // The heading correction: a turn about the earth vertical only.

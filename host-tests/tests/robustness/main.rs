@@ -17,3 +17,4 @@ mod rotation;
 mod second_campaign;
 mod sensor;
 mod soak;
+mod third_campaign;
