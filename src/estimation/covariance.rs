@@ -190,6 +190,11 @@ impl<T: Real> Covariance<T> {
         self.attitude = self.attitude + Mat3::from_diagonal(Vec3::new(v, v, v));
     }
 
+    /// Adds `v` to the heading variance (earth `z` axis) alone: `P ← P + v e_z e_zᵀ`.
+    pub fn inflate_heading(&mut self, v: T) {
+        self.attitude.m[2][2] += v;
+    }
+
     /// Bounds the variances: every attitude variance at most `attitude_max` and every bias
     /// variance at most `bias_max`, by the congruence `P ← D P D` with `D` diagonal, `Dⱼ =
     /// √(max/Pⱼⱼ)` for a variance above its bound and 1 otherwise. A congruence keeps `P`

@@ -56,9 +56,14 @@ pub struct Params<T> {
     pub gyro_bias_time: T,
     /// The largest bias magnitude per axis, rad/s (estimates are clipped to it).
     pub gyro_bias_max: T,
-    /// The gyroscope's full scale, rad/s: a component at or beyond it is saturated.
+    /// The gyroscope's full scale, rad/s: a component at or beyond it is saturated (clipped,
+    /// its uncertainty added). Default 2000 °/s, the largest range of consumer MEMS
+    /// gyroscopes; `+∞` disables the check. Set it to the sensor's range.
     pub gyro_range: T,
-    /// The accelerometer's full scale, m/s²: a component at or beyond it is saturated.
+    /// The accelerometer's full scale, m/s²: a component at or beyond it is saturated (the
+    /// sample is not used). Default 16 g (156.9 m/s²), the largest range of consumer MEMS
+    /// accelerometers, so that garbage values (1e30 m/s²) are not fed to the inclination
+    /// low-pass; `+∞` disables the check. Set it to the sensor's range.
     pub accel_range: T,
     /// Time constant (s) of the low-pass filter of the specific force in the gyroscope's
     /// (almost inertial) frame; 0 uses each sample as it is.
@@ -113,8 +118,8 @@ impl<T: Real> Default for Params<T> {
             gyro_bias_stability: deg(0.1),
             gyro_bias_time: v(100.0),
             gyro_bias_max: deg(2.0),
-            gyro_range: v(f64::INFINITY),
-            accel_range: v(f64::INFINITY),
+            gyro_range: deg(2000.0),
+            accel_range: v(16.0 * STANDARD_GRAVITY),
             accel_time_constant: v(3.0),
             accel_tilt_noise: deg(0.3),
             accel_correlation_time: v(1.0),
@@ -364,8 +369,14 @@ const LAG_MEAN_TIME: f64 = 1.0;
 /// estimator after it).
 pub const MAX_STEP: f64 = 1000.0;
 
+/// The variance (rad²) of a heading known to be anywhere: uniform over ±π, `π²/3`.
+const UNKNOWN_HEADING_VARIANCE: f64 = core::f64::consts::PI * core::f64::consts::PI / 3.0;
+
 /// The earth's gravity used for the accelerometer gate, m/s².
 const GRAVITY: f64 = 9.81;
+
+/// The standard gravity `g₀` (m/s²) of the accelerometer's range in g.
+const STANDARD_GRAVITY: f64 = 9.806_65;
 
 impl<T: Real> Estimator<T> {
     /// An estimator with these parameters, waiting for its first sample.
@@ -483,10 +494,13 @@ impl<T: Real> Estimator<T> {
     }
 
     /// One update from a gyroscope increment `dtheta` (rad, the integral of the body rate over
-    /// the sample interval `dt`) instead of a rate: the rate `dtheta/dt` is used.
+    /// the sample interval `dt`) instead of a rate: the rate `dtheta/dt` is used. Unlike a
+    /// rate sample, an increment needs its interval even on the first sample (to form the
+    /// rate the rest detector starts from).
     ///
     /// # Errors
-    /// See [`Estimator::update`].
+    /// [`Error::InvalidArgument`] for a `dt` that is not finite and positive; otherwise see
+    /// [`Estimator::update`].
     pub fn update_increment(
         &mut self,
         dtheta: Vec3<T>,
@@ -502,15 +516,22 @@ impl<T: Real> Estimator<T> {
 
     /// One update: propagation by the gyroscope, then the corrections.
     ///
-    /// The first sample with a usable accelerometer initialises the attitude (from the
-    /// magnetometer too, when given: [`super::init`]); `dt` of that sample is not used.
+    /// **The first-sample rule.** The first sample with a usable accelerometer initialises the
+    /// attitude (from the magnetometer too, when given: [`super::init`]) and does not
+    /// propagate; neither do the samples before it (no attitude yet). Until the estimator is
+    /// initialised ([`Estimator::is_initialized`]) `dt` is therefore neither used nor
+    /// checked: the first sample of a log, which has no previous time stamp, may be given any
+    /// value (NaN included), and a log that starts while the sensor turns fast is accepted.
+    /// From the sample after the initialising one on, `dt` is the time since the previous
+    /// sample and is checked as below.
     ///
     /// # Errors
+    /// [`Error::NonFinite`] for a non-finite gyroscope component; once initialised,
     /// [`Error::InvalidArgument`] for a `dt` that is not finite and positive or longer than
-    /// [`MAX_STEP`]; [`Error::NonFinite`] for a non-finite gyroscope component;
-    /// [`Error::StepTooLong`] when the (clipped) rate turns by more than half a turn in `dt`.
-    /// The sample is then ignored and the state is unchanged. A bad accelerometer or magnetometer sample is not an error:
-    /// the propagation goes on and the [`Outcome`] says why the correction was skipped.
+    /// [`MAX_STEP`] and [`Error::StepTooLong`] when the (clipped) rate turns by more than half a
+    /// turn in `dt`. The sample is then ignored and the state is unchanged. A bad accelerometer
+    /// or magnetometer sample is not an error: the propagation goes on and the [`Outcome`]
+    /// says why the correction was skipped.
     pub fn update(
         &mut self,
         gyro: Vec3<T>,
@@ -518,7 +539,7 @@ impl<T: Real> Estimator<T> {
         mag: Option<Vec3<T>>,
         dt: T,
     ) -> Result<Outcome, Error> {
-        if !(dt.is_finite() && dt > T::ZERO && dt <= T::from_f64(MAX_STEP)) {
+        if self.initialized && !(dt.is_finite() && dt > T::ZERO && dt <= T::from_f64(MAX_STEP)) {
             return Err(Error::InvalidArgument);
         }
         let gyro = gyro.try_finite()?;
@@ -535,7 +556,7 @@ impl<T: Real> Estimator<T> {
         // (`propagation::MAX_STEP_ANGLE`); an overflowing square fails too.
         let turn = gyro.scale(dt);
         let within = turn.norm_squared() <= T::PI * T::PI;
-        if !within {
+        if self.initialized && !within {
             return Err(Error::StepTooLong);
         }
         let accel_use = self.check(accel, self.params.accel_range);
@@ -758,7 +779,14 @@ impl<T: Real> Estimator<T> {
             self.field_started = true;
         }
         let rate = (gyro - self.bias).norm();
+        let was_confirmed = self.field.confirmed();
         let disturbed = self.field.update(norm, dip, dt, rate, &pr.field);
+        if !was_confirmed && self.field.replaced() {
+            // The heading came from a reference the field never agreed with (a disturbed first
+            // sample): it may be wrong by any angle, whatever its variance says.
+            self.p
+                .inflate_heading(T::from_f64(UNKNOWN_HEADING_VARIANCE));
+        }
         if estimating
             && !disturbed
             && self.filled == MAG_HISTORY
@@ -947,6 +975,16 @@ impl<T: Real> Estimator<T> {
     /// The last update's report.
     pub fn last_outcome(&self) -> Outcome {
         self.last
+    }
+
+    /// Whether the heading rests on a confirmed magnetic reference
+    /// ([`FieldMonitor::confirmed`]): `false` in 6D, before a field was seen, and while the
+    /// reference is still the one learned from the first field sample without the field having
+    /// agreed with it since (a first sample taken in a disturbed field gives a wrong heading
+    /// and a wrong reference; that heading is not trustworthy until the reference is replaced
+    /// by the true field, seen while turning for [`FieldThresholds::new_field_time`]).
+    pub fn heading_trusted(&self) -> bool {
+        self.field_started && self.field.confirmed()
     }
 
     /// The magnetic reference (norm in input units, dip in rad), once a field was seen.

@@ -815,7 +815,8 @@ fn data_errors_name_the_line() {
             "a step of 1999.99 s since the previous row",
         ),
         (
-            "0.02,400,0,0,0,0,9.81\n",
+            // 30 rad/s (within the default 2000 deg/s range) over 0.19 s: 5.7 rad.
+            "0.2,30,0,0,0,0,9.81\n",
             4,
             "the rate turns the sensor by more than half a turn",
         ),

@@ -134,7 +134,9 @@ OUTPUT (stdout): the header `t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag`, then o
     with --f32). The first row with a usable accelerometer sample initialises the attitude
     (TRIAD from gravity and the field; from gravity alone in 6D, heading zero); rows before it
     print nan for the attitude and the bias. The step of each update is the difference of its
-    time stamp and the previous row's.
+    time stamp and the previous row's. The first row has no step: no row propagates before
+    the attitude is initialised, so the rate of the rows up to that one is not checked
+    against the half-turn limit (a log may start while the sensor turns fast).
 
 ERRORS (stderr; the rows before them are kept):
     error: line N: reason    exit status 1, the run stops there: a row with the wrong number
@@ -832,10 +834,10 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
             }
         };
         let s = parse_row(&text, &layout, &scales, args.truth).map_err(|e| Failure::Row(n, e))?;
-        // The first row's step is never used (it initialises the attitude or, without a usable
-        // accelerometer sample, waits); any valid step stands in.
+        // The first row has no step: NaN, which the library neither uses nor checks until the
+        // attitude is initialised (its first-sample rule, `Estimator::update`).
         let dt = match prev_t {
-            None => 1.0,
+            None => f64::NAN,
             Some(p) => {
                 let dt = (s.t - p) * scales.time;
                 // NaN cannot arise (both stamps are finite), an overflow to ∞ is caught below.
