@@ -355,6 +355,9 @@ pub struct Estimator<T> {
     lag_residual: [T; MAG_HISTORY],
     /// Time (s) the delay statistics have been fed.
     lag_time: T,
+    /// Set by a saturated gyroscope sample: the rotation since the low-pass was fed is unknown,
+    /// so its gyroscope-frame average mixes frames; it restarts from the next usable sample.
+    lowpass_stale: bool,
 }
 
 /// The number of past attitudes kept for [`Params::mag_delay`].
@@ -461,6 +464,7 @@ impl<T: Real> Estimator<T> {
             lag_mean: [Vec3::ZERO; MAG_HISTORY],
             lag_residual: [T::ZERO; MAG_HISTORY],
             lag_time: T::ZERO,
+            lowpass_stale: false,
         })
     }
 
@@ -666,6 +670,10 @@ impl<T: Real> Estimator<T> {
             // per step (at most a half turn) is unknown.
             let a = (pr.gyro_range * dt).min(T::PI);
             self.p.inflate_attitude(a * a);
+            self.lowpass_stale = true;
+            // The attitudes kept for the magnetometer's delay are across an unknown rotation:
+            // the history refills before it is used (or feeds the delay estimate) again.
+            self.filled = 0;
         }
         self.p.bound(T::PI * T::PI, self.bias_variance_max());
     }
@@ -693,6 +701,10 @@ impl<T: Real> Estimator<T> {
         let pr = self.params;
         // Filter in the gyroscope frame, map to the earth frame by the corrections.
         let a_gyro = self.q_gyro.rotate(accel);
+        if self.lowpass_stale {
+            self.accel_lp = LowPass::at(a_gyro);
+            self.lowpass_stale = false;
+        }
         let v = if pr.accel_time_constant > T::ZERO {
             let k = LowPass::gain(pr.accel_time_constant, dt);
             self.accel_lp.update(a_gyro, k)

@@ -14,6 +14,7 @@ use gyrostat::estimation::{Covariance, Estimator, Params, attitude_from_gravity_
 use gyrostat::propagation::coning::two_sample_unequal_coefficient;
 use gyrostat::propagation::{CompensatedAttitude, Normalization, RateIntegrator, RateMethod};
 use gyrostat::{Real, UnitQuat, Vec3};
+use host_tests::campaign::covariance_ok;
 
 fn v<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
     Vec3::new(T::from_f64(x), T::from_f64(y), T::from_f64(z))
@@ -29,70 +30,12 @@ fn unbounded<T: Real>() -> Params<T> {
     }
 }
 
-/// `P` as a dense 6×6 matrix in f64 (`P = [[A, B], [Bᵀ, C]]`).
-pub fn dense<T: Real>(p: &Covariance<T>) -> [[f64; 6]; 6] {
-    let mut m = [[0.0; 6]; 6];
-    for i in 0..3 {
-        for j in 0..3 {
-            m[i][j] = p.attitude.m[i][j].to_f64();
-            m[i][j + 3] = p.cross.m[i][j].to_f64();
-            m[j + 3][i] = p.cross.m[i][j].to_f64();
-            m[i + 3][j + 3] = p.bias.m[i][j].to_f64();
-        }
-    }
-    m
-}
-
-/// Whether `m + δI` has a Cholesky factor (f64), `δ = tol·max diag`: `m` is positive
-/// semi-definite up to a perturbation of relative size `tol`.
-pub fn psd_within(m: &[[f64; 6]; 6], tol: f64) -> bool {
-    let scale = (0..6).map(|i| m[i][i].abs()).fold(0.0, f64::max);
-    let delta = tol * scale + f64::MIN_POSITIVE;
-    let mut l = [[0.0f64; 6]; 6];
-    for j in 0..6 {
-        let mut d = m[j][j] + delta;
-        for k in 0..j {
-            d -= l[j][k] * l[j][k];
-        }
-        if d.is_nan() || d <= 0.0 {
-            return false;
-        }
-        l[j][j] = d.sqrt();
-        for i in j + 1..6 {
-            let mut s = m[i][j];
-            for k in 0..j {
-                s -= l[i][k] * l[j][k];
-            }
-            l[i][j] = s / l[j][j];
-        }
-    }
-    true
-}
-
-/// The covariance contract: finite, exactly symmetric in its stored blocks (the attitude and
-/// bias blocks equal their transposes), positive semi-definite to 64 ε of the type relative
-/// to its largest variance.
-pub fn covariance_ok<T: Real>(p: &Covariance<T>) -> Result<(), String> {
-    let m = dense(p);
-    if m.iter().flatten().any(|x| !x.is_finite()) {
-        return Err(format!("non-finite covariance {m:?}"));
-    }
-    for i in 0..3 {
-        for j in 0..3 {
-            if p.attitude.m[i][j] != p.attitude.m[j][i] || p.bias.m[i][j] != p.bias.m[j][i] {
-                return Err(format!("asymmetric covariance {m:?}"));
-            }
-        }
-    }
-    if !psd_within(&m, 64.0 * T::EPSILON.to_f64()) {
-        return Err(format!("covariance not positive semi-definite {m:?}"));
-    }
-    Ok(())
-}
-
+/// The covariance contract of the campaign ([`covariance_ok`]): finite, its attitude and
+/// bias blocks exactly symmetric, positive semi-definite to 64 ε of the type relative to its
+/// largest variance.
 fn assert_covariance<T: Real>(p: &Covariance<T>) {
     if let Err(e) = covariance_ok(p) {
-        panic!("{e}");
+        panic!("{e:?}");
     }
 }
 
