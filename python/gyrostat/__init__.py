@@ -426,8 +426,10 @@ def estimate(
 ) -> Estimate:
     """Attitude and gyroscope bias from an IMU record: time stamps ``t`` (N,) in s, ``gyro``
     (N, 3) rad/s, ``accel`` (N, 3) m/s^2 and, for 9D, ``mag`` (N, 3) in any unit, all in the
-    sensor frame. Sample ``k`` is propagated over ``t[k] - t[k-1]`` (the first over the median
-    step; the first usable sample initialises the attitude). ``frame``: ``enu`` (x east,
+    sensor frame. Sample ``k`` is propagated over ``t[k] - t[k-1]``; the first usable sample
+    initialises the attitude, and no sample propagates before that or at it, so their steps
+    are not used or checked (the first-sample rule of the library; a record may start while
+    the sensor turns fast). ``frame``: ``enu`` (x east,
     y magnetic north, z up) or ``ned``. ``heading_time_constant`` switches to fixed
     (complementary) gains. ``params_file``: a parameter file (``name = value  # comment`` per
     line, the library's names such as ``field.norm``, SI units; the format of

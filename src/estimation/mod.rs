@@ -37,7 +37,14 @@
 //!    bias error. Its closed-form transition over a step is `Φ = [[I, −R̂Δt], [0, I]]` (an
 //!    earth-frame error is not turned by the motion; a bias error turns the estimate by
 //!    `−R̂ δb Δt`) and `Q = diag((σ_g² + (s|ω|)²)Δt·I, σ_b²Δt/τ_b·I)`: white rate noise plus a
-//!    rate-proportional term for scale-factor and misalignment errors ([`covariance`]).
+//!    rate-proportional term for scale-factor and misalignment errors ([`covariance`]); that
+//!    term is formed from the step's rotation `θ = |ω|Δt` as `θ²·min(s²/Δt, 1)` (no overflow
+//!    where `|ω|` is huge and `Δt` tiny; at most an error the size of the rotation). The
+//!    updates keep `P` symmetric and positive semi-definite in floating point (Joseph form for
+//!    the measured component's row and column, [`Covariance::update_component`]), and every
+//!    predict bounds the attitude variances by π² and the bias variances by the clip
+//!    ([`Covariance::bound`]); a measurement whose variance is infinite (a subnormal `Δt` in
+//!    `σ²·τ/Δt`) carries no information and is skipped.
 //! 3. **Inclination** — the specific force is rotated into the gyroscope frame and low-passed
 //!    there ([`LowPass`], time constant `τ_a`): in an inertial frame the non-gravitational
 //!    acceleration of any bounded motion integrates to a change of velocity, so it averages out
