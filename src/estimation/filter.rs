@@ -392,6 +392,8 @@ pub struct Estimator<T> {
     lead_rate: Vec3<T>,
     /// Whether the rates given are means over the step (increments) rather than samples.
     rate_is_mean: bool,
+    /// Whether `last_gyro` was saturated (clipped).
+    last_saturated: bool,
     p: Covariance<T>,
     accel_lp: LowPass<T>,
     rest: RestDetector<T>,
@@ -541,6 +543,7 @@ impl<T: Real> Estimator<T> {
             last_gyro: Vec3::ZERO,
             lead_rate: Vec3::ZERO,
             rate_is_mean: false,
+            last_saturated: false,
             p: Covariance::diagonal(T::ZERO, b0 * b0),
             accel_lp: LowPass::default(),
             rest: RestDetector::default(),
@@ -689,9 +692,22 @@ impl<T: Real> Estimator<T> {
         let mean_rate = if self.rate_is_mean {
             gyro
         } else {
-            (gyro + self.last_gyro).scale(T::HALF)
+            // Halved before the sum: two finite samples near the type's limit stay finite. A
+            // trapezoid turning by more than half a turn (a huge previous sample over a tiny
+            // step, then an ordinary step) is no mean of this step: the sample alone is used.
+            // A saturated sample at either end is no rate to average with.
+            let m = gyro.scale(T::HALF) + self.last_gyro.scale(T::HALF);
+            if !out.gyro_saturated
+                && !self.last_saturated
+                && m.scale(dt).norm_squared() <= T::PI * T::PI
+            {
+                m
+            } else {
+                gyro
+            }
         };
         self.last_gyro = gyro;
+        self.last_saturated = out.gyro_saturated;
         self.predict(mean_rate, dt, out.gyro_saturated);
         self.lead_rate = gyro - self.bias;
         let mut x = [T::ZERO; 6];
