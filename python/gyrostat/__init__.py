@@ -427,8 +427,10 @@ def estimate(
 ) -> Estimate:
     """Attitude and gyroscope bias from an IMU record: time stamps ``t`` (N,) in s, ``gyro``
     (N, 3) rad/s, ``accel`` (N, 3) m/s^2 and, for 9D, ``mag`` (N, 3) in any unit, all in the
-    sensor frame. Sample ``k`` is propagated over ``t[k] - t[k-1]`` (the first over the median
-    step; the first usable sample initialises the attitude). ``frame``: ``enu`` (x east,
+    sensor frame. Sample ``k`` is propagated over ``t[k] - t[k-1]``; the first usable sample
+    initialises the attitude, and no sample propagates before that or at it, so their steps
+    are not used or checked (the first-sample rule of the library; a record may start while
+    the sensor turns fast). ``frame``: ``enu`` (x east,
     y magnetic north, z up) or ``ned``. ``mode``: ``full`` (every part of the filter on every
     sample) or ``light`` (the covariance and the corrections every 25 ms, a fixed magnetometer
     delay: about a fifth of the cost; ``gyrostat::estimation::Mode``). ``heading_time_constant`` switches to fixed

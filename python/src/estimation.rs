@@ -1,9 +1,11 @@
 //! The attitude-and-bias estimator (`gyrostat::estimation::Estimator`) over arrays of samples
 //! with their time stamps.
 //!
-//! Sample `k` is propagated over `t[k] − t[k−1]`; the first sample over the median step of the
-//! record (the first usable sample initialises the attitude and does not use its step), as the
-//! BROAD runner of host-tests feeds the estimator.
+//! Sample `k` is propagated over `t[k] − t[k−1]`. The first sample has no step and is given
+//! NaN: the library's first-sample rule (`Estimator::update`) is that until the attitude is
+//! initialised no sample propagates and `dt` is neither used nor checked, so a record that
+//! starts while the sensor turns fast is accepted. The estimate tool and the BROAD runner of
+//! host-tests follow the same rule.
 
 use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -88,20 +90,6 @@ struct Track {
     std: Vec<f64>,
 }
 
-/// The median of the positive finite steps of `t` (0.01 s for fewer than two samples).
-fn median_step(t: &[f64]) -> f64 {
-    let mut d: Vec<f64> = t
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .filter(|d| d.is_finite() && *d > 0.0)
-        .collect();
-    if d.is_empty() {
-        return 0.01;
-    }
-    d.sort_by(f64::total_cmp);
-    d[d.len() / 2]
-}
-
 fn run<T: Real>(
     params: Params<T>,
     t: &[f64],
@@ -123,7 +111,6 @@ fn run<T: Real>(
             T::from_f64(a[3 * k + 2]),
         )
     };
-    let first = median_step(t);
     let mut tr = Track {
         q: Vec::with_capacity(4 * n),
         bias: Vec::with_capacity(3 * n),
@@ -133,7 +120,7 @@ fn run<T: Real>(
         std: Vec::with_capacity(2 * n),
     };
     for k in 0..n {
-        let dt = if k == 0 { first } else { t[k] - t[k - 1] };
+        let dt = if k == 0 { f64::NAN } else { t[k] - t[k - 1] };
         let m = mag.map(|m| v(m, k));
         match f.update(v(gyro, k), v(accel, k), m, T::from_f64(dt)) {
             Ok(o) => {

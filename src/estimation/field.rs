@@ -47,6 +47,8 @@ pub struct FieldMonitor<T> {
     candidate_norm: T,
     candidate_dip: T,
     candidate_for: T,
+    confirmed: bool,
+    replaced: bool,
 }
 
 impl<T: Real> FieldMonitor<T> {
@@ -60,7 +62,25 @@ impl<T: Real> FieldMonitor<T> {
             candidate_norm: norm,
             candidate_dip: dip,
             candidate_for: T::ZERO,
+            confirmed: false,
+            replaced: false,
         }
+    }
+
+    /// Whether the last [`FieldMonitor::update`] replaced the reference by the candidate.
+    #[inline]
+    pub fn replaced(&self) -> bool {
+        self.replaced
+    }
+
+    /// Whether the reference is confirmed: the field has agreed with it for `t_back` seconds
+    /// at least once, or it was replaced by a new homogeneous field seen while turning. A
+    /// reference learned from one sample is not (that sample may have been disturbed: every
+    /// later sample of the true field then differs from it, and the heading it gave stays
+    /// wrong until the reference is replaced).
+    #[inline]
+    pub fn confirmed(&self) -> bool {
+        self.confirmed
     }
 
     /// The reference norm (input units) and dip (rad).
@@ -84,12 +104,14 @@ impl<T: Real> FieldMonitor<T> {
     /// Feeds the field of one sample (`norm`, `dip`), taken `dt` after the previous one while the
     /// sensor turns at `rate` (rad/s); returns whether it is disturbed.
     pub fn update(&mut self, norm: T, dip: T, dt: T, rate: T, th: &FieldThresholds<T>) -> bool {
+        self.replaced = false;
         let k = first_order_gain(dt, th.reference_time_constant);
         let within = |n: T, d: T| (norm - n).abs() < th.norm * n && (dip - d).abs() < th.dip;
         if within(self.norm, self.dip) {
             self.undisturbed_for += dt;
             if self.undisturbed_for >= th.min_undisturbed {
                 self.disturbed = false;
+                self.confirmed = true;
                 self.norm += k * (norm - self.norm);
                 self.dip += k * (dip - self.dip);
             }
@@ -107,6 +129,8 @@ impl<T: Real> FieldMonitor<T> {
                 self.norm = self.candidate_norm;
                 self.dip = self.candidate_dip;
                 self.disturbed = false;
+                self.confirmed = true;
+                self.replaced = true;
                 self.undisturbed_for = th.min_undisturbed;
             }
         } else {

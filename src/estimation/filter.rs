@@ -73,7 +73,7 @@ pub enum Mode<T> {
 /// | `gyro_bias_initial` | 0.5 °/s | zero-rate output after a power-on calibration (raw tolerance ±5 °/s) |
 /// | `gyro_bias_stability`, `gyro_bias_time` | 0.1 °/s per 100 s | zero-rate output's temperature drift (±30 °/s over −40…85 °C, 0.24 °/s/K) over the 0.4 K a device warms in 100 s; an Allan deviation's bias-instability floor is the lower bound |
 /// | `gyro_bias_max` | 2 °/s | a bound on the calibrated bias |
-/// | `gyro_range`, `accel_range` | ∞ | full scale (±2000 °/s, ±16 g); ∞ when the log is known not to clip |
+/// | `gyro_range`, `accel_range` | 2000 °/s, 16 g | full scale, the largest ranges of consumer parts (MPU-9250: ±2000 °/s, ±16 g) |
 /// | `gyro_delay` | 2.9 ms | the gyroscope's digital low-pass delay at its common setting (MPU-9250 table: 184 Hz bandwidth, 2.9 ms) |
 /// | `accel_tilt_noise` | 0.3° | the zero-g offset after calibration (5 mg ≈ 0.3°); the noise density (300 µg/√Hz) averages out in the low-pass |
 /// | `mag_heading_noise` | 2° | the magnetometer's resolution and noise (AK8963: 0.6 µT) over a horizontal field of about 17 µT |
@@ -108,7 +108,9 @@ pub struct Params<T> {
     pub gyro_bias_time: T,
     /// The largest bias magnitude per axis, rad/s (estimates are clipped to it).
     pub gyro_bias_max: T,
-    /// The gyroscope's full scale, rad/s: a component at or beyond it is saturated.
+    /// The gyroscope's full scale, rad/s: a component at or beyond it is saturated (clipped,
+    /// its uncertainty added). Default 2000 °/s, the largest range of consumer MEMS
+    /// gyroscopes; `+∞` disables the check. Set it to the sensor's range.
     pub gyro_range: T,
     /// Delay (s) of the gyroscope's samples behind the motion: the group delay of its digital
     /// low-pass filter (datasheets give it per bandwidth setting) and of the sampling chain.
@@ -116,7 +118,10 @@ pub struct Params<T> {
     /// result forward by this time at the current rate, `q̂ ⊗ exp((ω − b̂)·d_g)`; the
     /// corrections are unaffected. 0 outputs the attitude of the samples' own time.
     pub gyro_delay: T,
-    /// The accelerometer's full scale, m/s²: a component at or beyond it is saturated.
+    /// The accelerometer's full scale, m/s²: a component at or beyond it is saturated (the
+    /// sample is not used). Default 16 g (156.9 m/s²), the largest range of consumer MEMS
+    /// accelerometers, so that garbage values (1e30 m/s²) are not fed to the inclination
+    /// low-pass; `+∞` disables the check. Set it to the sensor's range.
     pub accel_range: T,
     /// Time constant (s) of the low-pass filter of the specific force in the gyroscope's
     /// (almost inertial) frame; 0 uses each sample as it is.
@@ -181,9 +186,9 @@ impl<T: Real> Default for Params<T> {
             gyro_bias_stability: deg(0.1),
             gyro_bias_time: v(100.0),
             gyro_bias_max: deg(2.0),
-            gyro_range: v(f64::INFINITY),
+            gyro_range: deg(2000.0),
             gyro_delay: v(0.0029),
-            accel_range: v(f64::INFINITY),
+            accel_range: v(16.0 * STANDARD_GRAVITY),
             accel_time_constant: v(3.0),
             accel_tilt_noise: deg(0.3),
             accel_correlation_time: v(1.0),
@@ -422,6 +427,13 @@ pub struct Estimator<T> {
     bias: Vec3<T>,
     /// The previous gyroscope sample (clipped), for the mean rate over a step.
     last_gyro: Vec3<T>,
+    /// The rate (bias removed) the output is carried forward with ([`Params::gyro_delay`]);
+    /// zero until the first propagation (the initial attitude is that of its own sample).
+    lead_rate: Vec3<T>,
+    /// Whether the rates given are means over the step (increments) rather than samples.
+    rate_is_mean: bool,
+    /// Whether `last_gyro` was saturated (clipped).
+    last_saturated: bool,
     p: Covariance<T>,
     accel_lp: LowPass<T>,
     rest: RestDetector<T>,
@@ -454,6 +466,9 @@ pub struct Estimator<T> {
     hard_iron_applied: Vec3<T>,
     /// Time (s) since the hard-iron fit was last fed.
     hard_iron_clock: T,
+    /// Set by a saturated gyroscope sample: the rotation since the low-pass was fed is unknown,
+    /// so its gyroscope-frame average mixes frames; it restarts from the next usable sample.
+    lowpass_stale: bool,
     /// The light mode's accumulators ([`Mode::Light`]).
     light: light::LightState<T>,
 }
@@ -486,8 +501,14 @@ const HARD_IRON_FEED_STEP: f64 = 0.02;
 /// estimator after it).
 pub const MAX_STEP: f64 = 1000.0;
 
+/// The variance (rad²) of a heading known to be anywhere: uniform over ±π, `π²/3`.
+const UNKNOWN_HEADING_VARIANCE: f64 = core::f64::consts::PI * core::f64::consts::PI / 3.0;
+
 /// The earth's gravity used for the accelerometer gate, m/s².
 const GRAVITY: f64 = 9.81;
+
+/// The standard gravity `g₀` (m/s²) of the accelerometer's range in g.
+const STANDARD_GRAVITY: f64 = 9.806_65;
 
 impl<T: Real> Estimator<T> {
     /// An estimator with these parameters, waiting for its first sample.
@@ -567,6 +588,9 @@ impl<T: Real> Estimator<T> {
             q_corr: UnitQuat::IDENTITY,
             bias: Vec3::ZERO,
             last_gyro: Vec3::ZERO,
+            lead_rate: Vec3::ZERO,
+            rate_is_mean: false,
+            last_saturated: false,
             p: Covariance::diagonal(T::ZERO, b0 * b0),
             accel_lp: LowPass::default(),
             rest: RestDetector::default(),
@@ -586,6 +610,7 @@ impl<T: Real> Estimator<T> {
             hard_iron_offer: Vec3::ZERO,
             hard_iron_applied: Vec3::ZERO,
             hard_iron_clock: T::ZERO,
+            lowpass_stale: false,
             light: light::LightState::default(),
         })
     }
@@ -620,10 +645,14 @@ impl<T: Real> Estimator<T> {
     }
 
     /// One update from a gyroscope increment `dtheta` (rad, the integral of the body rate over
-    /// the sample interval `dt`) instead of a rate: the rate `dtheta/dt` is used.
+    /// the sample interval `dt`) instead of a rate: the rate `dtheta/dt` is the mean over the
+    /// step as it is (no trapezoid with the previous sample). Unlike a rate sample, an
+    /// increment needs its interval even on the first sample (to form the rate the rest
+    /// detector starts from).
     ///
     /// # Errors
-    /// See [`Estimator::update`].
+    /// [`Error::InvalidArgument`] for a `dt` that is not finite and positive; otherwise see
+    /// [`Estimator::update`].
     pub fn update_increment(
         &mut self,
         dtheta: Vec3<T>,
@@ -634,20 +663,30 @@ impl<T: Real> Estimator<T> {
         if !(dt.is_finite() && dt > T::ZERO) {
             return Err(Error::InvalidArgument);
         }
-        self.update(dtheta.scale(T::ONE / dt), accel, mag, dt)
+        self.rate_is_mean = true;
+        let r = self.update(dtheta.scale(T::ONE / dt), accel, mag, dt);
+        self.rate_is_mean = false;
+        r
     }
 
     /// One update: propagation by the gyroscope, then the corrections.
     ///
-    /// The first sample with a usable accelerometer initialises the attitude (from the
-    /// magnetometer too, when given: [`super::init`]); `dt` of that sample is not used.
+    /// **The first-sample rule.** The first sample with a usable accelerometer initialises the
+    /// attitude (from the magnetometer too, when given: [`super::init`]) and does not
+    /// propagate; neither do the samples before it (no attitude yet). Until the estimator is
+    /// initialised ([`Estimator::is_initialized`]) `dt` is therefore neither used nor
+    /// checked: the first sample of a log, which has no previous time stamp, may be given any
+    /// value (NaN included), and a log that starts while the sensor turns fast is accepted.
+    /// From the sample after the initialising one on, `dt` is the time since the previous
+    /// sample and is checked as below.
     ///
     /// # Errors
+    /// [`Error::NonFinite`] for a non-finite gyroscope component; once initialised,
     /// [`Error::InvalidArgument`] for a `dt` that is not finite and positive or longer than
-    /// [`MAX_STEP`]; [`Error::NonFinite`] for a non-finite gyroscope component;
-    /// [`Error::StepTooLong`] when the (clipped) rate turns by more than half a turn in `dt`.
-    /// The sample is then ignored and the state is unchanged. A bad accelerometer or magnetometer sample is not an error:
-    /// the propagation goes on and the [`Outcome`] says why the correction was skipped.
+    /// [`MAX_STEP`] and [`Error::StepTooLong`] when the (clipped) rate turns by more than half a
+    /// turn in `dt`. The sample is then ignored and the state is unchanged. A bad accelerometer
+    /// or magnetometer sample is not an error: the propagation goes on and the [`Outcome`]
+    /// says why the correction was skipped.
     pub fn update(
         &mut self,
         gyro: Vec3<T>,
@@ -655,7 +694,7 @@ impl<T: Real> Estimator<T> {
         mag: Option<Vec3<T>>,
         dt: T,
     ) -> Result<Outcome, Error> {
-        if !(dt.is_finite() && dt > T::ZERO && dt <= T::from_f64(MAX_STEP)) {
+        if self.initialized && !(dt.is_finite() && dt > T::ZERO && dt <= T::from_f64(MAX_STEP)) {
             return Err(Error::InvalidArgument);
         }
         let gyro = gyro.try_finite()?;
@@ -672,7 +711,7 @@ impl<T: Real> Estimator<T> {
         // (`propagation::MAX_STEP_ANGLE`); an overflowing square fails too.
         let turn = gyro.scale(dt);
         let within = turn.norm_squared() <= T::PI * T::PI;
-        if !within {
+        if self.initialized && !within {
             return Err(Error::StepTooLong);
         }
         let accel_use = self.check(accel, self.params.accel_range);
@@ -696,22 +735,41 @@ impl<T: Real> Estimator<T> {
             return Ok(out);
         }
 
+        // The mean rate over the step: the trapezoid of the two samples at its ends (an
+        // increment's rate is that mean already).
+        let mean_rate = if self.rate_is_mean {
+            gyro
+        } else {
+            // Halved before the sum: two finite samples near the type's limit stay finite. A
+            // trapezoid turning by more than half a turn (a huge previous sample over a tiny
+            // step, then an ordinary step) is no mean of this step: the sample alone is used.
+            // A saturated sample at either end is no rate to average with.
+            let m = gyro.scale(T::HALF) + self.last_gyro.scale(T::HALF);
+            if !out.gyro_saturated
+                && !self.last_saturated
+                && m.scale(dt).norm_squared() <= T::PI * T::PI
+            {
+                m
+            } else {
+                gyro
+            }
+        };
+        self.last_gyro = gyro;
+        self.last_saturated = out.gyro_saturated;
         if let Mode::Light { correction_period } = self.params.mode {
             return Ok(self.update_light(
+                mean_rate,
                 gyro,
                 accel,
                 mag,
-                accel_use,
-                mag_use,
+                (accel_use, mag_use),
                 out,
                 dt,
                 correction_period,
             ));
         }
-        // The mean rate over the step: the trapezoid of the two samples at its ends.
-        let mean_rate = (gyro + self.last_gyro).scale(T::HALF);
-        self.last_gyro = gyro;
         self.predict(mean_rate, dt, out.gyro_saturated);
+        self.lead_rate = gyro - self.bias;
         let mut x = [T::ZERO; 6];
 
         if accel_use == SensorUse::Used {
@@ -758,6 +816,7 @@ impl<T: Real> Estimator<T> {
         self.accel_lp = LowPass::at(q.rotate(accel));
         self.rest = RestDetector::new(gyro, accel);
         self.last_gyro = gyro;
+        self.lead_rate = Vec3::ZERO;
         // The first sample's direction errors: the inclination from one accelerometer sample
         // and (with a magnetometer) the heading from one field sample.
         let s_tilt = self.params.accel_tilt_noise;
@@ -785,16 +844,36 @@ impl<T: Real> Estimator<T> {
         let r = self.attitude_enu().to_rotation_matrix();
         let f = r.scale(-dt);
         let pr = &self.params;
-        let sw = pr.gyro_scale_noise * w.norm();
-        let q_theta = (pr.gyro_noise_density * pr.gyro_noise_density + sw * sw) * dt;
+        // The rate-proportional noise `(s·|ω|)²·Δt = θ²·s²/Δt` with `θ = |ω|·Δt` the step's
+        // rotation (at most π, checked by `update`): formed from `θ`, not from `|ω|`, which
+        // can overflow where `θ` is small, and bounded by `θ²` (an error as large as the
+        // rotation itself, a scale factor wrong by 100 %), which only binds for `Δt < s²`.
+        let theta2 = w.scale(dt).norm_squared();
+        let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
+        let q_scale = theta2 * (s2 / dt).min(T::ONE);
+        let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * dt + q_scale;
         let q_bias = pr.gyro_bias_stability * pr.gyro_bias_stability * dt / pr.gyro_bias_time;
         self.p.predict(f, q_theta, q_bias);
         if saturated {
             // The true rate is somewhere beyond the range: up to a range's worth of rotation
-            // per step is unknown.
-            let a = pr.gyro_range * dt;
+            // per step (at most a half turn) is unknown.
+            let a = (pr.gyro_range * dt).min(T::PI);
             self.p.inflate_attitude(a * a);
+            self.lowpass_stale = true;
+            // The attitudes kept for the magnetometer's delay are across an unknown rotation:
+            // the history refills before it is used (or feeds the delay estimate) again.
+            self.filled = 0;
         }
+        self.p.bound(T::PI * T::PI, self.bias_variance_max());
+    }
+
+    /// The largest bias variance: the bias is clipped to [`Params::gyro_bias_max`], so its
+    /// uncertainty is at most that squared (or the initial variance, when that is larger).
+    fn bias_variance_max(&self) -> T {
+        let pr = &self.params;
+        let m = pr.gyro_bias_max * pr.gyro_bias_max;
+        let b0 = pr.gyro_bias_initial * pr.gyro_bias_initial;
+        m.max(b0)
     }
 
     /// Pushes the strapdown attitudes at the grid times passed in this step (from `before`, at
@@ -891,6 +970,10 @@ impl<T: Real> Estimator<T> {
         );
         // Filter in the gyroscope frame, map to the earth frame by the corrections.
         let a_gyro = self.q_gyro.rotate(accel);
+        if self.lowpass_stale {
+            self.accel_lp = LowPass::at(a_gyro);
+            self.lowpass_stale = false;
+        }
         let v = if tau_a > T::ZERO {
             let k = LowPass::gain(tau_a, dt);
             self.accel_lp.update(a_gyro, k)
@@ -986,7 +1069,14 @@ impl<T: Real> Estimator<T> {
             self.field = FieldMonitor::new(norm, dip);
             self.field_started = true;
         }
+        let was_confirmed = self.field.confirmed();
         let disturbed = self.field.update(norm, dip, dt, rate, &pr.field);
+        if !was_confirmed && self.field.replaced() {
+            // The heading came from a reference the field never agreed with (a disturbed first
+            // sample): it may be wrong by any angle, whatever its variance says.
+            self.p
+                .inflate_heading(T::from_f64(UNKNOWN_HEADING_VARIANCE));
+        }
         if estimating {
             self.lag_clock += dt;
             if self.lag_clock >= T::from_f64(LAG_FEED_STEP) {
@@ -1020,8 +1110,7 @@ impl<T: Real> Estimator<T> {
                 heading_time_constant,
             } => {
                 let k = first_order_gain(dt, heading_time_constant) * (s * s / var);
-                self.p.update_attitude_axis_only(2, k, r);
-                k
+                self.p.update_attitude_axis_only(2, k, r)
             }
         };
         // The heading correction: a turn about the earth vertical only.
@@ -1158,7 +1247,7 @@ impl<T: Real> Estimator<T> {
         let q = self.attitude_enu();
         let d = self.params.gyro_delay;
         let q = if d > T::ZERO && self.initialized {
-            q.mul_exp_unchecked((self.last_gyro - self.bias).scale(d))
+            q.mul_exp_unchecked(self.lead_rate.scale(d))
                 .renormalize_fast()
         } else {
             q
@@ -1207,6 +1296,16 @@ impl<T: Real> Estimator<T> {
     /// zero when none was, [`Params::mag_hard_iron_time`]), and the online fit.
     pub fn hard_iron(&self) -> (Vec3<T>, HardIron<T>) {
         (self.hard_iron_applied, self.hard_iron)
+    }
+
+    /// Whether the heading rests on a confirmed magnetic reference
+    /// ([`FieldMonitor::confirmed`]): `false` in 6D, before a field was seen, and while the
+    /// reference is still the one learned from the first field sample without the field having
+    /// agreed with it since (a first sample taken in a disturbed field gives a wrong heading
+    /// and a wrong reference; that heading is not trustworthy until the reference is replaced
+    /// by the true field, seen while turning for [`FieldThresholds::new_field_time`]).
+    pub fn heading_trusted(&self) -> bool {
+        self.field_started && self.field.confirmed()
     }
 
     /// The magnetic reference (norm in input units, dip in rad), once a field was seen.

@@ -56,8 +56,15 @@ pub struct HardIron<T> {
 impl<T: Real> HardIron<T> {
     /// Starts on the first field sample `b` (input units): no offset, the prior covariance.
     pub fn new(b: Vec3<T>) -> Self {
+        let n = b.norm();
         let mut s = Self {
-            scale: b.norm(),
+            // A reference norm that is zero, subnormal or not finite is no scale: the fit
+            // waits for a usable sample.
+            scale: if n.is_finite() && n > T::EPSILON {
+                n
+            } else {
+                T::ZERO
+            },
             ..Self::default()
         };
         s.x = [T::ZERO, T::ZERO, T::ZERO, T::ONE];
@@ -88,6 +95,10 @@ impl<T: Real> HardIron<T> {
             return;
         }
         let u = b.scale(T::ONE / self.scale);
+        if !(u.norm_squared().is_finite()) {
+            // A field far beyond the reference (garbage): not a sample of the sphere.
+            return;
+        }
         // The random walk.
         let grow = dt / tau;
         let po = T::from_f64(DRIFT * DRIFT) * grow;
@@ -108,7 +119,7 @@ impl<T: Real> HardIron<T> {
         // samples, not averages.
         let r = T::from_f64(MEASUREMENT_STD * MEASUREMENT_STD);
         let s = hv[0] * ph[0] + hv[1] * ph[1] + hv[2] * ph[2] + hv[3] * ph[3] + r;
-        if !(s > T::ZERO && s.is_finite()) {
+        if !(s > T::ZERO && s.is_finite() && innov.is_finite()) {
             self.reset();
             return;
         }

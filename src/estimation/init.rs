@@ -56,7 +56,12 @@ pub fn attitude_from_gravity_and_field<T: Real>(
     if east.norm_squared() <= T::from_f64(1e-12) {
         return Err(Error::ZeroNorm);
     }
+    // `m × u` is perpendicular to `u` only up to its rounding, which is relative to `|m||u|`
+    // while `|m × u|` is the sine of the angle: near the vertical the normalised east axis
+    // leans towards `u` by about ε/sin. One Gram–Schmidt step against `u` removes that lean
+    // (to ε), so the rows stay orthonormal and gravity the exact third row.
     let e = east.try_normalize()?;
+    let e = (e - u.scale(e.dot(u))).try_normalize()?;
     let n = u.cross(e);
     let r = Mat3::from_rows(e.to_array(), n.to_array(), u.to_array());
     Ok(Dcm::from_matrix_unchecked(r).to_unit_quat())

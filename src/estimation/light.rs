@@ -35,8 +35,8 @@ use crate::{Real, Vec3};
 pub(super) struct LightState<T> {
     /// Time (s) since the last correction.
     elapsed: T,
-    /// `Σ|ω − b̂|²Δt` since the last correction, rad²/s (the rate-proportional noise).
-    rate_sq: T,
+    /// The rate-proportional attitude noise (rad²) accumulated since the last correction.
+    q_scale: T,
     /// Attitude variance (rad²) added by saturated gyroscope samples since the last correction.
     saturated: T,
     /// Whether an accelerometer sample fed the low-pass filter since the last correction.
@@ -75,33 +75,40 @@ impl<T: Real> Estimator<T> {
     )]
     pub(super) fn update_light(
         &mut self,
+        mean_rate: Vec3<T>,
         gyro: Vec3<T>,
         accel: Vec3<T>,
         mag: Option<Vec3<T>>,
-        accel_use: SensorUse,
-        mag_use: SensorUse,
+        (accel_use, mag_use): (SensorUse, SensorUse),
         mut out: Outcome,
         dt: T,
         period: T,
     ) -> Outcome {
-        let mean_rate = (gyro + self.last_gyro).scale(T::HALF);
-        self.last_gyro = gyro;
         let w = mean_rate - self.bias;
         self.q_gyro = self
             .q_gyro
             .mul_exp_unchecked(w.scale(dt))
             .renormalize_fast();
+        self.lead_rate = gyro - self.bias;
         let pr = self.params;
         let s = &mut self.light;
         s.elapsed += dt;
-        s.rate_sq += w.norm_squared() * dt;
+        // The full mode's rate-proportional noise per step, `θ²·min(s²/Δt, 1)`, summed.
+        let theta2 = w.scale(dt).norm_squared();
+        let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
+        s.q_scale += theta2 * (s2 / dt).min(T::ONE);
         if out.gyro_saturated {
-            let a = pr.gyro_range * dt;
+            let a = (pr.gyro_range * dt).min(T::PI);
             s.saturated += a * a;
+            self.lowpass_stale = true;
         }
         if accel_use == SensorUse::Used {
             s.at_rest = self.rest.update(gyro, accel, dt, &pr.rest);
             let a_gyro = self.q_gyro.rotate(accel);
+            if self.lowpass_stale {
+                self.accel_lp = LowPass::at(a_gyro);
+                self.lowpass_stale = false;
+            }
             if pr.accel_time_constant > T::ZERO {
                 let k = LowPass::gain(pr.accel_time_constant, dt);
                 self.accel_lp.update(a_gyro, k);
@@ -131,13 +138,13 @@ impl<T: Real> Estimator<T> {
         let tc = s.elapsed;
         // The covariance over the interval, R̂ at its end.
         let f = self.attitude_enu().to_rotation_matrix().scale(-tc);
-        let sg = pr.gyro_scale_noise;
-        let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * tc + sg * sg * s.rate_sq;
+        let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * tc + s.q_scale;
         let q_bias = pr.gyro_bias_stability * pr.gyro_bias_stability * tc / pr.gyro_bias_time;
         self.p.predict(f, q_theta, q_bias);
         if s.saturated > T::ZERO {
             self.p.inflate_attitude(s.saturated);
         }
+        self.p.bound(T::PI * T::PI, self.bias_variance_max());
 
         let mut x = [T::ZERO; 6];
         if s.accel_fed {
