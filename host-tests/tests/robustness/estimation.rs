@@ -266,19 +266,21 @@ fn recovery<T: Tolerance>(
 }
 
 /// Garbage as a bus error or a dead sensor gives it: a vector with a NaN or ±∞ component, or
-/// components beyond every sensor's range (1e3 … MAX), or all zero or subnormal. Garbage within
-/// a sensor's range cannot be told from motion; the extreme families cover it (every property
-/// but recovery, which no estimator can promise for a wrong rate it cannot detect).
-fn garbage<T: Tolerance>(g: &mut Gen<T>) -> Vec3<T> {
+/// components beyond every sensor's range (1e3 … MAX), or (`tiny`) all zero or subnormal.
+/// Garbage within a sensor's range cannot be told from motion, and a zero or subnormal rate is
+/// within the gyroscope's (a dead gyroscope reading 0 over a long step while the sensor turns:
+/// the error it leaves decays at the filter's steady-state rate, see the open findings); the
+/// extreme families cover such values (every property but recovery).
+fn garbage<T: Tolerance>(g: &mut Gen<T>, tiny: bool) -> Vec3<T> {
     let mut c = || -> f64 {
         match g.rng.below(6) {
             0 => *g.rng.pick(&[f64::NAN, f64::INFINITY, f64::NEG_INFINITY]),
-            1 => g.rng.sign() * g.magnitude_in(g.lim.min_subnormal, g.lim.min_positive),
+            1 if tiny => g.rng.sign() * g.magnitude_in(g.lim.min_subnormal, g.lim.min_positive),
             _ => g.rng.sign() * g.magnitude_in(1e3, g.lim.max),
         }
     };
     let a = [c(), c(), c()];
-    if g.rng.chance(0.1) {
+    if tiny && g.rng.chance(0.1) {
         return Vec3::ZERO;
     }
     v(a)
@@ -324,9 +326,9 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                         } else {
                             g.dt()
                         };
-                        let gyro = garbage(&mut g);
-                        let accel = garbage(&mut g);
-                        let mag = garbage(&mut g);
+                        let gyro = garbage(&mut g, false);
+                        let accel = garbage(&mut g, true);
+                        let mag = garbage(&mut g, true);
                         if f.update_9d(gyro, accel, mag, dt).is_ok() {
                             state_ok(&f)?;
                             tr.advance(dt.to_f64());
