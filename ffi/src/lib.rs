@@ -2484,8 +2484,10 @@ pub unsafe extern "C" fn gyro_estimator_f64_init(
 /// `dt` (s) since the previous sample. `*out` (may be NULL) says what each sample did; a bad
 /// accelerometer or magnetometer sample is reported there, not as an error.
 ///
-/// Errors (the sample is ignored, the state unchanged): `GYRO_INVALID_ARGUMENT` (`dt` not
-/// finite and positive, or above 1000 s), `GYRO_NON_FINITE` (gyro), `GYRO_STEP_TOO_LONG`.
+/// Errors (the sample is ignored, the state unchanged): `GYRO_NON_FINITE` (gyro); once the
+/// attitude is initialised, `GYRO_INVALID_ARGUMENT` (`dt` not finite and positive, or above
+/// 1000 s) and `GYRO_STEP_TOO_LONG`. Until then no sample propagates and `dt` is not checked
+/// (the first sample of a log has no step: pass any value).
 ///
 /// # Safety
 /// Every pointer is NULL or points to a valid object of its type.

@@ -501,6 +501,10 @@ const HARD_IRON_FEED_STEP: f64 = 0.02;
 /// estimator after it).
 pub const MAX_STEP: f64 = 1000.0;
 
+/// The attitude uncertainty (rad, per axis) of one step beyond which the step's rotation counts
+/// as unknown (the accelerometer low-pass and the attitude history restart).
+const STEP_UNCERTAINTY: f64 = 0.1;
+
 /// The variance (rad²) of a heading known to be anywhere: uniform over ±π, `π²/3`.
 const UNKNOWN_HEADING_VARIANCE: f64 = core::f64::consts::PI * core::f64::consts::PI / 3.0;
 
@@ -853,15 +857,25 @@ impl<T: Real> Estimator<T> {
         let q_scale = theta2 * (s2 / dt).min(T::ONE);
         let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * dt + q_scale;
         let q_bias = pr.gyro_bias_stability * pr.gyro_bias_stability * dt / pr.gyro_bias_time;
+        let trace =
+            |p: &Covariance<T>| p.attitude.m[0][0] + p.attitude.m[1][1] + p.attitude.m[2][2];
+        let before = trace(&self.p);
         self.p.predict(f, q_theta, q_bias);
         if saturated {
             // The true rate is somewhere beyond the range: up to a range's worth of rotation
             // per step (at most a half turn) is unknown.
             let a = (pr.gyro_range * dt).min(T::PI);
             self.p.inflate_attitude(a * a);
+        }
+        // A step whose own attitude uncertainty exceeds (0.1 rad)² per axis (a saturated
+        // sample, a long gap with an uncertain bias) turned the sensor by an unknown rotation:
+        // the gyroscope-frame low-pass of the specific force and the attitudes kept for the
+        // magnetometer's delay span it, so the low-pass restarts at the next usable sample and
+        // the history refills before it is used (or feeds the delay estimate) again.
+        let added = trace(&self.p) - before;
+        let limit = T::from_f64(3.0 * STEP_UNCERTAINTY * STEP_UNCERTAINTY);
+        if saturated || !added.is_finite() || added > limit {
             self.lowpass_stale = true;
-            // The attitudes kept for the magnetometer's delay are across an unknown rotation:
-            // the history refills before it is used (or feeds the delay estimate) again.
             self.filled = 0;
         }
         self.p.bound(T::PI * T::PI, self.bias_variance_max());

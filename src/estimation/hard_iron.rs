@@ -130,19 +130,17 @@ impl<T: Real> HardIron<T> {
             return;
         }
         let inv = T::ONE / s;
+        for (xi, &phi) in self.x.iter_mut().zip(ph.iter()) {
+            *xi += phi * inv * innov;
+        }
+        // P ← P − (Ph)(Ph)ᵀ/s, the upper triangle computed and mirrored (symmetric by
+        // construction).
         for i in 0..4 {
             let ki = ph[i] * inv;
-            self.x[i] += ki * innov;
-            for j in 0..4 {
-                self.p[i][j] -= ki * ph[j];
-            }
-        }
-        // Keep the covariance symmetric.
-        for i in 0..4 {
-            for j in 0..i {
-                let m = (self.p[i][j] + self.p[j][i]) * T::HALF;
-                self.p[i][j] = m;
-                self.p[j][i] = m;
+            for (j, &phj) in ph.iter().enumerate().skip(i) {
+                let v = self.p[i][j] - ki * phj;
+                self.p[i][j] = v;
+                self.p[j][i] = v;
             }
         }
     }

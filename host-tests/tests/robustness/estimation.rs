@@ -109,15 +109,63 @@ fn errors<T: Real>(est: UnitQuat<T>, truth: Q) -> (f64, f64) {
     (total, tilt)
 }
 
+thread_local! {
+    /// With `GYROSTAT_ESTIMATION_PROPERTIES=1`: the properties the current stream broke (bits:
+    /// 1 attitude, 2 bias, 4 covariance finite and PSD, 8 used again, 16 error bound, 32
+    /// covariance exactly symmetric, 64 TRIAD's gravity), each counted instead
+    /// of ending the stream, printed per stream (`properties FAMILY TYPE BITS` on stderr) to
+    /// count the streams that break each property (ROBUSTNESS.md's before/after table).
+    static BROKEN: std::cell::Cell<u8> = const { std::cell::Cell::new(0) };
+}
+
+/// Counting mode (see [`BROKEN`]).
+fn counting() -> bool {
+    std::env::var("GYROSTAT_ESTIMATION_PROPERTIES").as_deref() == Ok("1")
+}
+
+/// `check` as it is, or in counting mode recorded under `bit` and passed.
+fn property(bit: u8, check: Check) -> Check {
+    if counting() && check.is_err() {
+        BROKEN.with(|b| b.set(b.get() | bit));
+        return Ok(());
+    }
+    check
+}
+
+/// Runs one stream; in counting mode prints the properties it broke.
+fn stream<T: Tolerance>(name: &str, f: impl FnOnce() -> Check) -> Check {
+    BROKEN.with(|b| b.set(0));
+    let r = f();
+    if counting() {
+        eprintln!("properties {name} {} {}", T::NAME, BROKEN.with(|b| b.get()));
+    }
+    r
+}
+
 /// The state's contract after an `Ok`.
 fn state_ok<T: Tolerance>(f: &Estimator<T>) -> Check {
-    unit(f.attitude())?;
+    property(1, unit(f.attitude()))?;
     let m = f.params().gyro_bias_max.to_f64();
     let b = f.bias().to_array().map(|c| c.to_f64());
-    ensure(b.iter().all(|c| c.is_finite() && c.abs() <= m), || {
-        format!("bias {b:?} beyond ±{m}")
-    })?;
-    covariance_ok(f.covariance())
+    property(
+        2,
+        ensure(b.iter().all(|c| c.is_finite() && c.abs() <= m), || {
+            format!("bias {b:?} beyond ±{m}")
+        }),
+    )?;
+    if !counting() {
+        return covariance_ok(f.covariance());
+    }
+    // Counted apart: finite and positive semi-definite (4), exactly symmetric (32).
+    let p = f.covariance();
+    let m = covariance_dense(p);
+    let psd =
+        m.iter().flatten().all(|x| x.is_finite()) && psd_within(&m, 64.0 * T::EPSILON.to_f64());
+    property(4, ensure(psd, || format!("covariance {m:?}")))?;
+    let sym = (0..3).all(|i| {
+        (0..3).all(|j| p.attitude.m[i][j] == p.attitude.m[j][i] && p.bias.m[i][j] == p.bias.m[j][i])
+    });
+    property(32, ensure(sym, || format!("asymmetric covariance {m:?}")))
 }
 
 /// The parameters of a stream: the defaults, or (when `wild`) one of unbounded ranges, fixed
@@ -195,36 +243,44 @@ fn recovery<T: Tolerance>(
         }
     }
     let used = used_at.unwrap_or(f64::INFINITY);
-    ensure(used <= USED_AGAIN, || {
-        format!("{what}: good accelerometer data used again only after {used} s")
-    })?;
+    property(
+        8,
+        ensure(used <= USED_AGAIN, || {
+            format!("{what}: good accelerometer data used again only after {used} s")
+        }),
+    )?;
     if !error_bound {
         return Ok(());
     }
     let (total, tilt) = errors(f.attitude(), tr.q);
-    ensure(tilt <= TILT_BACK && total <= TOTAL_BACK, || {
-        format!(
-            "{what}: error {:.3}° (inclination {:.3}°) {GOOD_AFTER} s after",
-            total.to_degrees(),
-            tilt.to_degrees()
-        )
-    })
+    property(
+        16,
+        ensure(tilt <= TILT_BACK && total <= TOTAL_BACK, || {
+            format!(
+                "{what}: error {:.3}° (inclination {:.3}°) {GOOD_AFTER} s after",
+                total.to_degrees(),
+                tilt.to_degrees()
+            )
+        }),
+    )
 }
 
 /// Garbage as a bus error or a dead sensor gives it: a vector with a NaN or ±∞ component, or
-/// components beyond every sensor's range (1e3 … MAX), or all zero or subnormal. Garbage within
-/// a sensor's range cannot be told from motion; the extreme families cover it (every property
-/// but recovery, which no estimator can promise for a wrong rate it cannot detect).
-fn garbage<T: Tolerance>(g: &mut Gen<T>) -> Vec3<T> {
+/// components beyond every sensor's range (1e3 … MAX), or (`tiny`) all zero or subnormal.
+/// Garbage within a sensor's range cannot be told from motion, and a zero or subnormal rate is
+/// within the gyroscope's (a dead gyroscope reading 0 over a long step while the sensor turns:
+/// the error it leaves decays at the filter's steady-state rate, see the open findings); the
+/// extreme families cover such values (every property but recovery).
+fn garbage<T: Tolerance>(g: &mut Gen<T>, tiny: bool) -> Vec3<T> {
     let mut c = || -> f64 {
         match g.rng.below(6) {
             0 => *g.rng.pick(&[f64::NAN, f64::INFINITY, f64::NEG_INFINITY]),
-            1 => g.rng.sign() * g.magnitude_in(g.lim.min_subnormal, g.lim.min_positive),
+            1 if tiny => g.rng.sign() * g.magnitude_in(g.lim.min_subnormal, g.lim.min_positive),
             _ => g.rng.sign() * g.magnitude_in(1e3, g.lim.max),
         }
     };
     let a = [c(), c(), c()];
-    if g.rng.chance(0.1) {
+    if tiny && g.rng.chance(0.1) {
         return Vec3::ZERO;
     }
     v(a)
@@ -251,33 +307,35 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
             let burst = 1 + g.rng.below(100);
             let seed = g.rng.next_u64();
             probe(&(tr.q, tr.w, burst, seed), || {
-                // The online magnetometer-delay estimate off: fed right after a burst it can
-                // settle on a wrong delay (an open finding, ROBUSTNESS.md), which turns the
-                // heading by delay × rate; the bounds hold with it off.
-                let p = Params::<T> {
-                    mag_delay_estimation_time: T::ZERO,
-                    ..Params::default()
-                };
-                let mut f = Estimator::try_new(p)?;
-                let mut g = Gen::<T>::new(seed);
-                for _ in 0..40 {
-                    good(&mut f, &mut tr, 0.05)?;
-                }
-                for _ in 0..burst {
-                    let dt = if g.rng.chance(0.8) {
-                        g.ordinary_dt()
-                    } else {
-                        g.dt()
+                stream::<T>("garbage-bursts", || {
+                    // The online magnetometer-delay estimate off: fed right after a burst it can
+                    // settle on a wrong delay (an open finding, ROBUSTNESS.md), which turns the
+                    // heading by delay × rate; the bounds hold with it off.
+                    let p = Params::<T> {
+                        mag_delay_estimation_time: T::ZERO,
+                        ..Params::default()
                     };
-                    let gyro = garbage(&mut g);
-                    let accel = garbage(&mut g);
-                    let mag = garbage(&mut g);
-                    if f.update_9d(gyro, accel, mag, dt).is_ok() {
-                        state_ok(&f)?;
-                        tr.advance(dt.to_f64());
+                    let mut f = Estimator::try_new(p)?;
+                    let mut g = Gen::<T>::new(seed);
+                    for _ in 0..40 {
+                        good(&mut f, &mut tr, 0.05)?;
                     }
-                }
-                recovery(&mut f, &mut tr, "after the burst", true)
+                    for _ in 0..burst {
+                        let dt = if g.rng.chance(0.8) {
+                            g.ordinary_dt()
+                        } else {
+                            g.dt()
+                        };
+                        let gyro = garbage(&mut g, false);
+                        let accel = garbage(&mut g, true);
+                        let mag = garbage(&mut g, true);
+                        if f.update_9d(gyro, accel, mag, dt).is_ok() {
+                            state_ok(&f)?;
+                            tr.advance(dt.to_f64());
+                        }
+                    }
+                    recovery(&mut f, &mut tr, "after the burst", true)
+                })
             })
         }),
         family!("estimation: extreme rate × step", |g| {
@@ -285,30 +343,32 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
             let mut tr = Truth::new(g, 1.0);
             let seed = g.rng.next_u64();
             probe(&(tr.q, seed), || {
-                let mut f = Estimator::try_new(p)?;
-                let mut g = Gen::<T>::new(seed);
-                good(&mut f, &mut tr, 0.01)?;
-                for _ in 0..UPDATES {
-                    // |ω|·Δt up to just past π, Δt anywhere from subnormal to 1000 s.
-                    let pi = std::f64::consts::PI;
-                    let theta = *g.rng.pick(&[0.0, 1e-7, 0.01, 1.0, 3.0, pi, 3.2]);
-                    let theta = theta * g.rng.range(0.5, 1.0);
-                    let dt = g.magnitude_in(g.lim.min_subnormal, 1000.0);
-                    let d = g.finite_vec().to_array().map(|c| c.to_f64());
-                    let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                    let w = if n.is_finite() && n > 0.0 {
-                        d.map(|c| c / n * theta / dt)
-                    } else {
-                        [theta / dt, 0.0, 0.0]
-                    };
-                    let (a, m) = if g.rng.chance(0.7) {
-                        (v(tr.accel()), Some(v(tr.mag())))
-                    } else {
-                        (g.vec(), g.rng.chance(0.5).then(|| g.vec()))
-                    };
-                    any_update(&mut f, v(w), a, m, T::from_f64(dt))?;
-                }
-                Ok(())
+                stream::<T>("extreme-rate-x-step", || {
+                    let mut f = Estimator::try_new(p)?;
+                    let mut g = Gen::<T>::new(seed);
+                    good(&mut f, &mut tr, 0.01)?;
+                    for _ in 0..UPDATES {
+                        // |ω|·Δt up to just past π, Δt anywhere from subnormal to 1000 s.
+                        let pi = std::f64::consts::PI;
+                        let theta = *g.rng.pick(&[0.0, 1e-7, 0.01, 1.0, 3.0, pi, 3.2]);
+                        let theta = theta * g.rng.range(0.5, 1.0);
+                        let dt = g.magnitude_in(g.lim.min_subnormal, 1000.0);
+                        let d = g.finite_vec().to_array().map(|c| c.to_f64());
+                        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                        let w = if n.is_finite() && n > 0.0 {
+                            d.map(|c| c / n * theta / dt)
+                        } else {
+                            [theta / dt, 0.0, 0.0]
+                        };
+                        let (a, m) = if g.rng.chance(0.7) {
+                            (v(tr.accel()), Some(v(tr.mag())))
+                        } else {
+                            (g.vec(), g.rng.chance(0.5).then(|| g.vec()))
+                        };
+                        any_update(&mut f, v(w), a, m, T::from_f64(dt))?;
+                    }
+                    Ok(())
+                })
             })
         }),
         family!("estimation: subnormal and huge steps", |g| {
@@ -316,33 +376,35 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
             let mut tr = Truth::new(g, 1.0);
             let seed = g.rng.next_u64();
             probe(&(tr.q, seed), || {
-                let mut f = Estimator::try_new(p)?;
-                let mut g = Gen::<T>::new(seed);
-                good(&mut f, &mut tr, 0.01)?;
-                for _ in 0..UPDATES {
-                    let dt = match g.rng.below(10) {
-                        0..=3 => g.magnitude_in(g.lim.min_subnormal, 1e-20),
-                        4..=6 => g.magnitude_in(1.0, 1000.0),
-                        7 => g.magnitude_in(1000.0, g.lim.max),
-                        _ => g.dt().to_f64(),
-                    };
-                    let gyro = if g.rng.chance(0.8) {
-                        v(tr.w)
-                    } else {
-                        g.finite_vec()
-                    };
-                    any_update(
-                        &mut f,
-                        gyro,
-                        v(tr.accel()),
-                        Some(v(tr.mag())),
-                        T::from_f64(dt),
-                    )?;
-                    if dt.is_finite() && dt > 0.0 && dt <= 1000.0 {
-                        tr.advance(dt);
+                stream::<T>("subnormal-and-huge-steps", || {
+                    let mut f = Estimator::try_new(p)?;
+                    let mut g = Gen::<T>::new(seed);
+                    good(&mut f, &mut tr, 0.01)?;
+                    for _ in 0..UPDATES {
+                        let dt = match g.rng.below(10) {
+                            0..=3 => g.magnitude_in(g.lim.min_subnormal, 1e-20),
+                            4..=6 => g.magnitude_in(1.0, 1000.0),
+                            7 => g.magnitude_in(1000.0, g.lim.max),
+                            _ => g.dt().to_f64(),
+                        };
+                        let gyro = if g.rng.chance(0.8) {
+                            v(tr.w)
+                        } else {
+                            g.finite_vec()
+                        };
+                        any_update(
+                            &mut f,
+                            gyro,
+                            v(tr.accel()),
+                            Some(v(tr.mag())),
+                            T::from_f64(dt),
+                        )?;
+                        if dt.is_finite() && dt > 0.0 && dt <= 1000.0 {
+                            tr.advance(dt);
+                        }
                     }
-                }
-                Ok(())
+                    Ok(())
+                })
             })
         }),
         family!("estimation: fields near the vertical", |g| {
@@ -350,37 +412,42 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
             let tr = Truth::new(g, 0.0);
             let seed = g.rng.next_u64();
             probe(&(tr.q, seed), || {
-                let mut f = Estimator::try_new(p)?;
-                let mut g = Gen::<T>::new(seed);
-                let eps = T::EPSILON.to_f64();
-                for k in 0..UPDATES {
-                    // The field within 10⁻⁹ … 10⁻¹ rad of the vertical (up or down).
-                    let a = g.magnitude_in(1e-9, 0.1);
-                    let ph = g.rng.range(0.0, std::f64::consts::TAU);
-                    let s = g.rng.sign();
-                    let earth = [a.sin() * ph.cos(), a.sin() * ph.sin(), s * a.cos()]
-                        .map(|c| c * g.magnitude_in(1.0, 100.0));
-                    let acc = tr.accel();
-                    let o = f.update_9d(
-                        v(tr.w),
-                        v(acc),
-                        v(to_sensor(tr.q, earth)),
-                        T::from_f64(0.01),
-                    )?;
-                    state_ok(&f)?;
-                    if k == 0 && o.initialized {
-                        // TRIAD: gravity is the exact direction.
-                        let q = f.attitude().into_quat().to_array().map(|c| c.to_f64());
-                        let up = to_earth(normalize(q), acc.map(|c| c / 9.81));
-                        let tilt = up[0].hypot(up[1]).atan2(up[2]);
-                        ensure(tilt <= 16.0 * eps, || {
-                            format!(
-                                "TRIAD tilts gravity by {tilt:e} rad (field {a:e} rad from the vertical)"
-                            )
-                        })?;
+                stream::<T>("fields-near-the-vertical", || {
+                    let mut f = Estimator::try_new(p)?;
+                    let mut g = Gen::<T>::new(seed);
+                    let eps = T::EPSILON.to_f64();
+                    for k in 0..UPDATES {
+                        // The field within 10⁻⁹ … 10⁻¹ rad of the vertical (up or down).
+                        let a = g.magnitude_in(1e-9, 0.1);
+                        let ph = g.rng.range(0.0, std::f64::consts::TAU);
+                        let s = g.rng.sign();
+                        let earth = [a.sin() * ph.cos(), a.sin() * ph.sin(), s * a.cos()]
+                            .map(|c| c * g.magnitude_in(1.0, 100.0));
+                        let acc = tr.accel();
+                        let o = f.update_9d(
+                            v(tr.w),
+                            v(acc),
+                            v(to_sensor(tr.q, earth)),
+                            T::from_f64(0.01),
+                        )?;
+                        state_ok(&f)?;
+                        if k == 0 && o.initialized {
+                            // TRIAD: gravity is the exact direction.
+                            let q = f.attitude().into_quat().to_array().map(|c| c.to_f64());
+                            let up = to_earth(normalize(q), acc.map(|c| c / 9.81));
+                            let tilt = up[0].hypot(up[1]).atan2(up[2]);
+                            property(
+                                64,
+                                ensure(tilt <= 16.0 * eps, || {
+                                    format!(
+                                        "TRIAD tilts gravity by {tilt:e} rad (field {a:e} rad from the vertical)"
+                                    )
+                                }),
+                            )?;
+                        }
                     }
-                }
-                Ok(())
+                    Ok(())
+                })
             })
         }),
         family!("estimation: long disturbances", |g| {
@@ -390,41 +457,44 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
             let size = g.rng.range(0.5, 5.0);
             let dir = [0, 1, 2].map(|_| g.rng.range(-1.0, 1.0));
             probe(&(tr.q, tr.w, kind, length, size, dir), || {
-                let mut f = Estimator::try_new(Params::<T>::default())?;
-                for _ in 0..40 {
-                    good(&mut f, &mut tr, 0.05)?;
-                }
-                let dt = 0.05;
-                for _ in 0..(length / dt) as usize {
-                    tr.advance(dt);
-                    let (mut a, mut m) = (tr.accel(), tr.mag());
-                    match kind {
-                        // A magnet on the sensor: a constant sensor-frame field added.
-                        0 => m = [0, 1, 2].map(|i| m[i] + size * 40.0 * dir[i]),
-                        // Another homogeneous field (a place with a different field).
-                        1 => {
-                            let e = [FIELD[0] + size * 10.0 * dir[0], FIELD[1] * size, FIELD[2]];
-                            m = to_sensor(tr.q, e);
-                        }
-                        // A sustained push: an earth-frame specific force added.
-                        _ => {
-                            let push = to_sensor(tr.q, dir.map(|c| c * size));
-                            a = [0, 1, 2].map(|i| a[i] + push[i]);
-                        }
+                stream::<T>("long-disturbances", || {
+                    let mut f = Estimator::try_new(Params::<T>::default())?;
+                    for _ in 0..40 {
+                        good(&mut f, &mut tr, 0.05)?;
                     }
-                    f.update_9d(v(tr.w), v(a), v(m), T::from_f64(dt))?;
-                    state_ok(&f)?;
-                }
-                // The error after a long disturbance is not bounded here (an open finding,
-                // ROBUSTNESS.md: the covariance has shrunk during it, and a tilt or heading
-                // learned from the disturbance decays with the filter's slow steady-state
-                // gain); the accelerometer is used again within its bound.
-                recovery(
-                    &mut f,
-                    &mut tr,
-                    &format!("after the disturbance (kind {kind})"),
-                    false,
-                )
+                    let dt = 0.05;
+                    for _ in 0..(length / dt) as usize {
+                        tr.advance(dt);
+                        let (mut a, mut m) = (tr.accel(), tr.mag());
+                        match kind {
+                            // A magnet on the sensor: a constant sensor-frame field added.
+                            0 => m = [0, 1, 2].map(|i| m[i] + size * 40.0 * dir[i]),
+                            // Another homogeneous field (a place with a different field).
+                            1 => {
+                                let e =
+                                    [FIELD[0] + size * 10.0 * dir[0], FIELD[1] * size, FIELD[2]];
+                                m = to_sensor(tr.q, e);
+                            }
+                            // A sustained push: an earth-frame specific force added.
+                            _ => {
+                                let push = to_sensor(tr.q, dir.map(|c| c * size));
+                                a = [0, 1, 2].map(|i| a[i] + push[i]);
+                            }
+                        }
+                        f.update_9d(v(tr.w), v(a), v(m), T::from_f64(dt))?;
+                        state_ok(&f)?;
+                    }
+                    // The error after a long disturbance is not bounded here (an open finding,
+                    // ROBUSTNESS.md: the covariance has shrunk during it, and a tilt or heading
+                    // learned from the disturbance decays with the filter's slow steady-state
+                    // gain); the accelerometer is used again within its bound.
+                    recovery(
+                        &mut f,
+                        &mut tr,
+                        &format!("after the disturbance (kind {kind})"),
+                        false,
+                    )
+                })
             })
         }),
     ]

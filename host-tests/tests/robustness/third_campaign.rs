@@ -520,3 +520,32 @@ fn t7_broad_runner_log_starting_while_turning() {
         }
     }
 }
+
+/// Found by the estimator campaign (fields near the vertical, the TRIAD fallback): the
+/// gravity-only attitude of a sensor nearly upside down formed `1 + u_z`, which cancels; the
+/// tilt was wrong by up to 1.7e-5 rad in f32 (140 ε). Gravity is the exact direction again.
+fn gravity_upside_down<T: Real>(tol: f64) {
+    let mut worst = 0.0f64;
+    for a in [1e-1f64, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-8] {
+        for ph in [0.3f64, 1.9, 4.0] {
+            let acc = [a.sin() * ph.cos(), a.sin() * ph.sin(), -a.cos()].map(|c| c * 9.81);
+            let acc_t = acc.map(T::from_f64);
+            let q = gyrostat::estimation::attitude_from_gravity(Vec3::new(
+                acc_t[0], acc_t[1], acc_t[2],
+            ))
+            .unwrap();
+            worst = worst.max(tilt_of_gravity(q, acc_t.map(|c| c.to_f64())));
+        }
+    }
+    assert!(worst <= tol, "tilt {worst}");
+}
+
+#[test]
+fn t8_gravity_upside_down_f32() {
+    gravity_upside_down::<f32>(8.0 * f32::EPSILON as f64);
+}
+
+#[test]
+fn t8_gravity_upside_down_f64() {
+    gravity_upside_down::<f64>(8.0 * f64::EPSILON);
+}
