@@ -23,7 +23,7 @@ case "$mode" in "" | --check | --update) ;; *) echo "usage: $0 [--check|--update
 
 targets=(thumbv6m-none-eabi thumbv7em-none-eabihf)
 labels=(M0 M4F)
-caps=(baseline gyro2 gyro2_q30 euler gyro2_euler strang exact all estimate)
+caps=(baseline gyro2 gyro2_q30 euler gyro2_euler strang exact all estimate estimate_light)
 snapshot=benches/footprint.snapshot
 target_dir="${CARGO_TARGET_DIR:-target}"
 dir="$target_dir/footprint"
@@ -71,6 +71,7 @@ describe() {
     gyro2_euler) echo "\`gyro2\` and \`euler\` together" ;;
     all) echo "the four f32 capabilities together" ;;
     estimate) echo "attitude estimator, default parameters: \`Estimator::try_new\` + two \`update_9d\`" ;;
+    estimate_light) echo "attitude estimator, light mode (\`Mode::Light\`, fixed at build time): \`Estimator::try_new\` + two \`update_9d\`" ;;
   esac
 }
 value() { echo "$rows" | awk -v t="$1" -v c="$2" -v k="$3" '$1==t && $2==c {print $k}'; }

@@ -24,6 +24,8 @@
 //! - `estimate`: the attitude estimator (`gyrostat::estimation::Estimator`, default
 //!   parameters): `try_new`, the initialising and one full 9D update, `update_9d`, and the
 //!   attitude; its state (about 0.5 KiB in f32) lives on the stack, so the stack column holds it;
+//! - `estimate_light`: the same in the light mode (`Mode::Light`, known at build time, as a
+//!   firmware that fixes its mode has it): the initialising update and one corrected update;
 //! - `all` (the default): the four f32 capabilities together (not `gyro2_q30`, not `estimate`). Shared code
 //!   (the f32 `sin`/`cos` kernel, the quaternion product, soft-float routines) is linked once,
 //!   so a combination costs less than the sum of its parts.
@@ -63,9 +65,10 @@ mod firmware {
     const EXACT: u8 = 8;
     const GYRO2_Q30: u8 = 16;
     const ESTIMATE: u8 = 32;
+    const ESTIMATE_LIGHT: u8 = 64;
 
     /// The capabilities `GYROSTAT_FOOTPRINT` can name, with the parts each links.
-    const CAPABILITIES: [(&str, u8); 9] = [
+    const CAPABILITIES: [(&str, u8); 10] = [
         ("baseline", 0),
         ("gyro2", GYRO2),
         ("gyro2_q30", GYRO2_Q30),
@@ -75,6 +78,7 @@ mod firmware {
         ("exact", EXACT),
         ("all", GYRO2 | EULER | STRANG | EXACT),
         ("estimate", ESTIMATE),
+        ("estimate_light", ESTIMATE_LIGHT),
     ];
 
     /// The entry of `CAPABILITIES` named `name`; an unknown name stops the build.
@@ -87,7 +91,7 @@ mod firmware {
             i += 1;
         }
         panic!(
-            "GYROSTAT_FOOTPRINT must be one of: baseline gyro2 gyro2_q30 euler gyro2_euler strang exact all estimate"
+            "GYROSTAT_FOOTPRINT must be one of: baseline gyro2 gyro2_q30 euler gyro2_euler strang exact all estimate estimate_light"
         )
     }
 
@@ -243,6 +247,27 @@ mod firmware {
             let mag = inv.rotate(black_box(Vec3::new(0.0f32, 15.8, -40.7)));
             let gyro = black_box(Vec3::new(1.0f32, -2.0, 0.5)).scale(inputs.angle);
             if let Ok(mut f) = Estimator::try_new(black_box(Params::<f32>::default())) {
+                let _ = black_box(f.update_9d(gyro, acc, mag, inputs.dt));
+                let _ = black_box(f.update_9d(gyro, acc, mag, inputs.dt));
+                black_box(f.attitude());
+            }
+        }
+        if links(ESTIMATE_LIGHT) {
+            use gyrostat::estimation::{Estimator, Mode, Params};
+            let inv = attitude.inverse();
+            let acc = inv.rotate(black_box(Vec3::new(0.0f32, 0.0, 9.81)));
+            let mag = inv.rotate(black_box(Vec3::new(0.0f32, 15.8, -40.7)));
+            let gyro = black_box(Vec3::new(1.0f32, -2.0, 0.5)).scale(inputs.angle);
+            // The mode known at build time (the other numbers opaque): what the light mode
+            // links when a firmware fixes it; a correction period of one step, so the second
+            // update corrects.
+            let params = Params {
+                mode: Mode::Light {
+                    correction_period: inputs.dt,
+                },
+                ..black_box(Params::<f32>::default())
+            };
+            if let Ok(mut f) = Estimator::try_new(params) {
                 let _ = black_box(f.update_9d(gyro, acc, mag, inputs.dt));
                 let _ = black_box(f.update_9d(gyro, acc, mag, inputs.dt));
                 black_box(f.attitude());

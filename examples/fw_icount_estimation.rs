@@ -31,7 +31,7 @@ mod firmware {
     use core::hint::black_box;
     use cortex_m_rt::entry;
     use cortex_m_semihosting::debug;
-    use gyrostat::estimation::{Estimator, Params};
+    use gyrostat::estimation::{Covariance, Estimator, LowPass, Mode, Params, RestDetector};
     use gyrostat::{Real, UnitQuat, Vec3};
 
     /// Sample period (s): 285.7 Hz, BROAD's rate.
@@ -159,7 +159,12 @@ mod firmware {
     /// gyrostat's estimator, default parameters, one update per sample: 9D (`mag = true`) or
     /// 6D. An update that fails leaves the filter as it was (and shows as a cheap update).
     fn gyrostat_ticks<T: Real>(mag: bool) -> u32 {
-        let Ok(mut f) = Estimator::<T>::try_new(Params::default()) else {
+        gyrostat_ticks_with::<T>(mag, Params::default())
+    }
+
+    /// [`gyrostat_ticks`] with the parameters `params`.
+    fn gyrostat_ticks_with<T: Real>(mag: bool, params: Params<T>) -> u32 {
+        let Ok(mut f) = Estimator::<T>::try_new(params) else {
             exit(debug::EXIT_FAILURE)
         };
         let dt = T::from_f64(f64::from(DT));
@@ -180,7 +185,7 @@ mod firmware {
             exit(debug::EXIT_FAILURE);
         }
         let cal = Calibration::measure();
-        let mut table = Table::<16>::empty();
+        let mut table = Table::<32>::empty();
         let n = N as u32;
 
         // The sequence measure on a known cost: 1000 loop instructions plus about 3 of set-up
@@ -191,6 +196,60 @@ mod firmware {
         table.push("est_gyrostat_9d_f32", gyrostat_ticks::<f32>(true), n);
         table.push("est_gyrostat_6d_f32", gyrostat_ticks::<f32>(false), n);
         table.push("est_gyrostat_9d_f64", gyrostat_ticks::<f64>(true), n);
+
+        // The light mode (Mode::Light, default correction period 25 ms, and 50 ms).
+        let light = |period: f32| Params::<f32> {
+            mode: Mode::Light {
+                correction_period: period,
+            },
+            ..Params::default()
+        };
+        let t = gyrostat_ticks_with::<f32>(true, light(0.025));
+        table.push("est_gyrostat_light_9d_f32", t, n);
+        let t = gyrostat_ticks_with::<f32>(false, light(0.025));
+        table.push("est_gyrostat_light_6d_f32", t, n);
+        let t = gyrostat_ticks_with::<f32>(true, light(0.05));
+        table.push("est_gyrostat_light50ms_9d_f32", t, n);
+
+        // Where the full update's instructions go: ablations (the difference of two rows is a
+        // part) and the parts alone, fed the same samples.
+        let no_lag = Params::<f32> {
+            mag_delay_estimation_time: 0.0,
+            ..Params::default()
+        };
+        let t = gyrostat_ticks_with::<f32>(true, no_lag);
+        table.push("part_full_9d_without_delay_statistics_f32", t, n);
+        // The light mode without corrections: prediction, rest detector, low-pass, checks.
+        let t = gyrostat_ticks_with::<f32>(true, light(f32::MAX));
+        table.push("part_per_sample_only_f32", t, n);
+        {
+            let mut q = Motion::new().attitude();
+            let t = sequence_ticks(|s| {
+                let w = vec::<f32>(s, 0);
+                q = black_box(q.mul_exp_unchecked(w.scale(DT)).renormalize_fast());
+            });
+            table.push("part_prediction_f32", t, n);
+            let mut p = Covariance::<f32>::diagonal(1e-4, 1e-5);
+            let t = sequence_ticks(|s| {
+                let r = q.to_rotation_matrix().scale(-s[0] * 1e-3);
+                p.predict(black_box(r), 1e-9, 1e-12);
+                black_box(&p);
+            });
+            table.push("part_covariance_propagation_f32", t, n);
+            let mut lp = LowPass::at(Vec3::new(0.0f32, 0.0, 9.81));
+            let t = sequence_ticks(|s| {
+                let a = q.rotate(vec::<f32>(s, 3));
+                let k = LowPass::gain(3.0f32, DT);
+                black_box(lp.update(a, k));
+            });
+            table.push("part_lowpass_inertial_f32", t, n);
+            let mut rest = RestDetector::new(Vec3::ZERO, Vec3::new(0.0f32, 0.0, 9.81));
+            let th = Params::<f32>::default().rest;
+            let t = sequence_ticks(|s| {
+                black_box(rest.update(vec::<f32>(s, 0), vec::<f32>(s, 3), DT, &th));
+            });
+            table.push("part_rest_detector_f32", t, n);
+        }
 
         {
             // The peers: uf-ahrs 0.2.2 (f32, nalgebra types), updated through its `Ahrs` trait

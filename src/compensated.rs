@@ -94,9 +94,27 @@ pub(crate) fn two_product<T: Real>(a: T, b: T) -> (T, T) {
 
 /// `h/6` as a compensated pair `(h₆, h₆_lo)`: `h₆ = fl(h/6)` and the rest, from the exact
 /// remainder `h − 6h₆` (a constant step's `h/6` would otherwise scale every RK4 increment by the
-/// same rounding, `u` relative: a time-scale error).
+/// same rounding, `u` relative: a time-scale error). `6·fl(h/6)` can round past the type's
+/// largest value for `|h|` near it, so above `MAX/8` (taken as 2¹²⁴ in f32, 2¹⁰²⁰ in f64) the
+/// pair is formed for `h/8` and scaled back by 8 (both exact: powers of two).
 #[inline(always)]
 pub(crate) fn sixth_pair<T: Real>(h: T) -> (T, T) {
+    let big = if is_single::<T>() {
+        T::from_f64(2.126_764_793_255_865e37) // 2¹²⁴
+    } else {
+        T::from_f64(f64::MAX / 8.0)
+    };
+    if h.abs() > big {
+        let (h6, lo) = sixth_pair_direct(h * T::from_f64(0.125));
+        let eight = T::from_f64(8.0);
+        (h6 * eight, lo * eight)
+    } else {
+        sixth_pair_direct(h)
+    }
+}
+
+#[inline(always)]
+fn sixth_pair_direct<T: Real>(h: T) -> (T, T) {
     let six = T::from_f64(6.0);
     let h6 = h / six;
     let (p, e) = two_product(h6, six);

@@ -108,12 +108,12 @@ def load_score_module(data):
 class Trial:
     """One BROAD trial: the arrays the estimators read, and score.py's own parse for scoring."""
 
-    def __init__(self, path, score):
+    def __init__(self, path, score, every=1):
         self.path = path
         self.stem = path.name[: -len(".csv.gz")]
         st = path.stat()
         key = f"{st.st_size}-{int(st.st_mtime)}"
-        cache = CACHE / "data" / f"{self.stem}.pkl"
+        cache = ROOT / "target" / "broad-peers" / "data" / f"{self.stem}.pkl"
         obj = None
         if cache.exists():
             with open(cache, "rb") as f:
@@ -141,8 +141,10 @@ class Trial:
             cache.parent.mkdir(parents=True, exist_ok=True)
             with open(cache, "wb") as f:
                 pickle.dump(obj, f)
-        self.t, self.gyr, self.acc, self.mag = obj["t"], obj["gyr"], obj["acc"], obj["mag"]
-        self.rows = obj["score_rows"]  # score.load_trial(): (t_s, q_opt or None, movement)
+        # Every Nth row (N = every): the same rows broad_estimate --every N reads.
+        pick = lambda a: np.ascontiguousarray(a[::every])
+        self.t, self.gyr, self.acc, self.mag = (pick(obj[k]) for k in ("t", "gyr", "acc", "mag"))
+        self.rows = obj["score_rows"][::every]  # score.load_trial(): (t_s, q_opt or None, movement)
         for a in (self.gyr, self.acc, self.mag):
             assert a.flags["C_CONTIGUOUS"] and np.all(np.isfinite(a)), self.stem
         dt = np.diff(self.t)
@@ -502,9 +504,17 @@ def main():
     ap.add_argument("--rust", action="store_true",
                     help="first run `cargo bench --bench broad_peers` (uf-ahrs and vqf crates)")
     ap.add_argument("--export", metavar="DIR", help="also write every peer estimate as CSV under DIR")
+    ap.add_argument("--every", type=int, default=1, metavar="N",
+                    help="keep every Nth row of each trial (rows 0, N, 2N, ...; nothing else changed): "
+                         "the trial at 1/N of its rate; cached apart; {every} in a command template")
     ap.add_argument("--json", metavar="FILE", help="also write every score (per trial and rest phase) as JSON")
     args = ap.parse_args()
 
+    global CACHE
+    if args.every < 1:
+        sys.exit("error: --every needs a whole number >= 1")
+    if args.every > 1:
+        CACHE = CACHE / f"every{args.every}"
     data = Path(args.data)
     score = load_score_module(data)
     paths = sorted(data.glob("*.csv.gz"))
@@ -513,7 +523,7 @@ def main():
         paths = [p for p in paths if p.name.split("_")[0] in want]
     if not paths:
         sys.exit(f"error: no trials in {data}")
-    trials = [Trial(p, score) for p in paths]
+    trials = [Trial(p, score, args.every) for p in paths]
     stems = [t.stem for t in trials]
 
     columns = []  # (label, nine, description, {stem: result})
@@ -562,7 +572,7 @@ def main():
             out = out_dir / f"{tr.stem}.csv"
             if out.exists():
                 out.unlink()
-            c = cmd.format(trial=tr.path, out=out, stem=tr.stem)
+            c = cmd.format(trial=tr.path, out=out, stem=tr.stem, every=args.every)
             p = subprocess.run(c, shell=True, cwd=ROOT)
             if p.returncode != 0:
                 sys.exit(f"error: `{c}` exited with {p.returncode}")

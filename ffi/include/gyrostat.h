@@ -111,6 +111,17 @@
 #define GYRO_FRAME_NED 1
 
 /**
+ * Estimator mode: every part of the filter on every sample (the default).
+ */
+#define GYRO_MODE_FULL 0
+
+/**
+ * Estimator mode: the prediction every sample, the covariance and the corrections once per
+ * `correction_period` (the library's `Mode::Light`).
+ */
+#define GYRO_MODE_LIGHT 1
+
+/**
  * A sensor sample corrected the estimate.
  */
 #define GYRO_SENSOR_USED 0
@@ -188,12 +199,12 @@
 /**
  * Words of `gyro_estimator_f32`'s storage.
  */
-#define GYRO_ESTIMATOR_F32_WORDS 112
+#define GYRO_ESTIMATOR_F32_WORDS 120
 
 /**
  * Words of `gyro_estimator_f64`'s storage.
  */
-#define GYRO_ESTIMATOR_F64_WORDS 208
+#define GYRO_ESTIMATOR_F64_WORDS 236
 
 /**
  * The result of every function.
@@ -655,6 +666,15 @@ typedef struct {
    */
   float heading_time_constant;
   /**
+   * `GYRO_MODE_FULL` (the default) or `GYRO_MODE_LIGHT`.
+   */
+  uint32_t mode;
+  /**
+   * The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored otherwise;
+   * the defaults hold 0.025).
+   */
+  float correction_period;
+  /**
    * Gyroscope white noise, rad/s/√Hz (angle random walk).
    */
   float gyro_noise_density;
@@ -711,6 +731,10 @@ typedef struct {
    */
   float mag_correlation_time;
   /**
+   * Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
+   */
+  float gyro_delay;
+  /**
    * Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
    */
   float mag_delay;
@@ -719,6 +743,10 @@ typedef struct {
    * magnetometer's delay; 0 keeps `mag_delay` fixed.
    */
   float mag_delay_estimation_time;
+  /**
+   * Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
+   */
+  float mag_hard_iron_time;
   /**
    * Weight of a disturbed field's heading error (0: rejected outright).
    */
@@ -793,6 +821,15 @@ typedef struct {
    */
   double heading_time_constant;
   /**
+   * `GYRO_MODE_FULL` (the default) or `GYRO_MODE_LIGHT`.
+   */
+  uint32_t mode;
+  /**
+   * The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored otherwise;
+   * the defaults hold 0.025).
+   */
+  double correction_period;
+  /**
    * Gyroscope white noise, rad/s/√Hz (angle random walk).
    */
   double gyro_noise_density;
@@ -849,6 +886,10 @@ typedef struct {
    */
   double mag_correlation_time;
   /**
+   * Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
+   */
+  double gyro_delay;
+  /**
    * Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
    */
   double mag_delay;
@@ -857,6 +898,10 @@ typedef struct {
    * magnetometer's delay; 0 keeps `mag_delay` fixed.
    */
   double mag_delay_estimation_time;
+  /**
+   * Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
+   */
+  double mag_hard_iron_time;
   /**
    * Weight of a disturbed field's heading error (0: rejected outright).
    */
@@ -1470,8 +1515,10 @@ gyro_status gyro_estimator_f64_init(gyro_estimator_f64 *s, uint32_t frame);
  * `dt` (s) since the previous sample. `*out` (may be NULL) says what each sample did; a bad
  * accelerometer or magnetometer sample is reported there, not as an error.
  *
- * Errors (the sample is ignored, the state unchanged): `GYRO_INVALID_ARGUMENT` (`dt` not
- * finite and positive, or above 1000 s), `GYRO_NON_FINITE` (gyro), `GYRO_STEP_TOO_LONG`.
+ * Errors (the sample is ignored, the state unchanged): `GYRO_NON_FINITE` (gyro); once the
+ * attitude is initialised, `GYRO_INVALID_ARGUMENT` (`dt` not finite and positive, or above
+ * 1000 s) and `GYRO_STEP_TOO_LONG`. Until then no sample propagates and `dt` is not checked
+ * (the first sample of a log has no step: pass any value).
  *
  * # Safety
  * Every pointer is NULL or points to a valid object of its type.
@@ -1539,7 +1586,7 @@ gyro_status gyro_estimator_f64_default_params(gyro_estimator_params_f64 *out);
  *
  * Errors: `GYRO_NON_FINITE` for a NaN parameter (infinite ranges are allowed);
  * `GYRO_INVALID_ARGUMENT` for a negative one, a zero time constant that divides, or an
- * unknown `frame` or `fixed_gains`.
+ * unknown `frame`, `fixed_gains` or `mode`.
  *
  * # Safety
  * Every pointer is NULL or points to a valid object of its type.

@@ -39,7 +39,7 @@ use core::mem::{align_of, size_of};
 
 use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
 use gyrostat::estimation::{
-    EarthFrame, Estimator, FieldThresholds, Gains, Outcome, Params, RestThresholds, SensorUse,
+    EarthFrame, Estimator, FieldThresholds, Gains, Mode, Outcome, Params, RestThresholds, SensorUse,
 };
 use gyrostat::fixed::{CarriedAttitude, Fixed, IncrementQuantizer, IncrementScale, Q30};
 use gyrostat::propagation::{
@@ -166,6 +166,12 @@ pub const GYRO_GIMBAL_CLOSEST_TO: u32 = 2;
 pub const GYRO_FRAME_ENU: u32 = 0;
 /// Estimator earth frame: x magnetic north, y east, z down.
 pub const GYRO_FRAME_NED: u32 = 1;
+
+/// Estimator mode: every part of the filter on every sample (the default).
+pub const GYRO_MODE_FULL: u32 = 0;
+/// Estimator mode: the prediction every sample, the covariance and the corrections once per
+/// `correction_period` (the library's `Mode::Light`).
+pub const GYRO_MODE_LIGHT: u32 = 1;
 
 /// A sensor sample corrected the estimate.
 pub const GYRO_SENSOR_USED: u32 = 0;
@@ -2064,9 +2070,9 @@ pub unsafe extern "C" fn gyro_gyrostat_f64_step(
 // --- Estimator ---------------------------------------------------------------------------------
 
 /// Words of `gyro_estimator_f32`'s storage.
-pub const GYRO_ESTIMATOR_F32_WORDS: usize = 112;
+pub const GYRO_ESTIMATOR_F32_WORDS: usize = 120;
 /// Words of `gyro_estimator_f64`'s storage.
-pub const GYRO_ESTIMATOR_F64_WORDS: usize = 208;
+pub const GYRO_ESTIMATOR_F64_WORDS: usize = 236;
 
 /// The attitude and gyro-bias estimator, f32 (`Estimator`, the library's default parameters).
 /// Contents private.
@@ -2101,6 +2107,11 @@ pub struct gyro_estimator_params_f32 {
     pub fixed_gains: u32,
     /// `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
     pub heading_time_constant: f32,
+    /// `GYRO_MODE_FULL` (the default) or `GYRO_MODE_LIGHT`.
+    pub mode: u32,
+    /// The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored otherwise;
+    /// the defaults hold 0.025).
+    pub correction_period: f32,
     /// Gyroscope white noise, rad/s/√Hz (angle random walk).
     pub gyro_noise_density: f32,
     /// Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
@@ -2129,11 +2140,15 @@ pub struct gyro_estimator_params_f32 {
     pub mag_heading_noise: f32,
     /// Correlation time (s) of that error.
     pub mag_correlation_time: f32,
+    /// Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
+    pub gyro_delay: f32,
     /// Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
     pub mag_delay: f32,
     /// Averaging time (s of rotation in an undisturbed field) of the online estimate of the
     /// magnetometer's delay; 0 keeps `mag_delay` fixed.
     pub mag_delay_estimation_time: f32,
+    /// Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
+    pub mag_hard_iron_time: f32,
     /// Weight of a disturbed field's heading error (0: rejected outright).
     pub mag_disturbance_weight: f32,
     /// Disturbance monitor: the largest relative change of the field's norm.
@@ -2175,6 +2190,11 @@ pub struct gyro_estimator_params_f64 {
     pub fixed_gains: u32,
     /// `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
     pub heading_time_constant: f64,
+    /// `GYRO_MODE_FULL` (the default) or `GYRO_MODE_LIGHT`.
+    pub mode: u32,
+    /// The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored otherwise;
+    /// the defaults hold 0.025).
+    pub correction_period: f64,
     /// Gyroscope white noise, rad/s/√Hz (angle random walk).
     pub gyro_noise_density: f64,
     /// Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
@@ -2203,11 +2223,15 @@ pub struct gyro_estimator_params_f64 {
     pub mag_heading_noise: f64,
     /// Correlation time (s) of that error.
     pub mag_correlation_time: f64,
+    /// Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
+    pub gyro_delay: f64,
     /// Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
     pub mag_delay: f64,
     /// Averaging time (s of rotation in an undisturbed field) of the online estimate of the
     /// magnetometer's delay; 0 keeps `mag_delay` fixed.
     pub mag_delay_estimation_time: f64,
+    /// Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
+    pub mag_hard_iron_time: f64,
     /// Weight of a disturbed field's heading error (0: rejected outright).
     pub mag_disturbance_weight: f64,
     /// Disturbance monitor: the largest relative change of the field's norm.
@@ -2253,9 +2277,17 @@ macro_rules! params_io {
                     },
                     _ => return Err(GYRO_INVALID_ARGUMENT),
                 };
+                let mode = match self.mode {
+                    GYRO_MODE_FULL => Mode::Full,
+                    GYRO_MODE_LIGHT => Mode::Light {
+                        correction_period: self.correction_period,
+                    },
+                    _ => return Err(GYRO_INVALID_ARGUMENT),
+                };
                 Ok(Params {
                     frame,
                     gains,
+                    mode,
                     gyro_noise_density: self.gyro_noise_density,
                     gyro_scale_noise: self.gyro_scale_noise,
                     gyro_bias_initial: self.gyro_bias_initial,
@@ -2270,8 +2302,10 @@ macro_rules! params_io {
                     accel_reject: self.accel_reject,
                     mag_heading_noise: self.mag_heading_noise,
                     mag_correlation_time: self.mag_correlation_time,
+                    gyro_delay: self.gyro_delay,
                     mag_delay: self.mag_delay,
                     mag_delay_estimation_time: self.mag_delay_estimation_time,
+                    mag_hard_iron_time: self.mag_hard_iron_time,
                     mag_disturbance_weight: self.mag_disturbance_weight,
                     rest_bias_noise: self.rest_bias_noise,
                     field: FieldThresholds {
@@ -2298,7 +2332,13 @@ macro_rules! params_io {
                         heading_time_constant,
                     } => (1, heading_time_constant),
                 };
+                let (mode, correction_period) = match p.mode {
+                    Mode::Full => (GYRO_MODE_FULL, <$t>::from_f64(Mode::<$t>::LIGHT_PERIOD)),
+                    Mode::Light { correction_period } => (GYRO_MODE_LIGHT, correction_period),
+                };
                 $c {
+                    mode,
+                    correction_period,
                     frame: match p.frame {
                         EarthFrame::Enu => GYRO_FRAME_ENU,
                         EarthFrame::Ned => GYRO_FRAME_NED,
@@ -2319,8 +2359,10 @@ macro_rules! params_io {
                     accel_reject: p.accel_reject,
                     mag_heading_noise: p.mag_heading_noise,
                     mag_correlation_time: p.mag_correlation_time,
+                    gyro_delay: p.gyro_delay,
                     mag_delay: p.mag_delay,
                     mag_delay_estimation_time: p.mag_delay_estimation_time,
+                    mag_hard_iron_time: p.mag_hard_iron_time,
                     mag_disturbance_weight: p.mag_disturbance_weight,
                     rest_bias_noise: p.rest_bias_noise,
                     field_norm: p.field.norm,
@@ -2442,8 +2484,10 @@ pub unsafe extern "C" fn gyro_estimator_f64_init(
 /// `dt` (s) since the previous sample. `*out` (may be NULL) says what each sample did; a bad
 /// accelerometer or magnetometer sample is reported there, not as an error.
 ///
-/// Errors (the sample is ignored, the state unchanged): `GYRO_INVALID_ARGUMENT` (`dt` not
-/// finite and positive, or above 1000 s), `GYRO_NON_FINITE` (gyro), `GYRO_STEP_TOO_LONG`.
+/// Errors (the sample is ignored, the state unchanged): `GYRO_NON_FINITE` (gyro); once the
+/// attitude is initialised, `GYRO_INVALID_ARGUMENT` (`dt` not finite and positive, or above
+/// 1000 s) and `GYRO_STEP_TOO_LONG`. Until then no sample propagates and `dt` is not checked
+/// (the first sample of a log has no step: pass any value).
 ///
 /// # Safety
 /// Every pointer is NULL or points to a valid object of its type.
@@ -2543,7 +2587,7 @@ pub unsafe extern "C" fn gyro_estimator_f64_default_params(
 ///
 /// Errors: `GYRO_NON_FINITE` for a NaN parameter (infinite ranges are allowed);
 /// `GYRO_INVALID_ARGUMENT` for a negative one, a zero time constant that divides, or an
-/// unknown `frame` or `fixed_gains`.
+/// unknown `frame`, `fixed_gains` or `mode`.
 ///
 /// # Safety
 /// Every pointer is NULL or points to a valid object of its type.

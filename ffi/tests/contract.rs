@@ -421,7 +421,7 @@ fn estimator_parameters_from_c() {
     unsafe {
         assert_eq!(gyro_estimator_f64_default_params(&mut p), GYRO_OK);
         assert_eq!(p.frame, GYRO_FRAME_ENU);
-        assert!(p.gyro_range.is_infinite() && p.gyro_noise_density > 0.0);
+        assert!((p.gyro_range - 2000f64.to_radians()).abs() < 1e-12 && p.gyro_noise_density > 0.0);
         // The defaults through the struct: the same estimator as gyro_estimator_f64_init.
         assert_eq!(gyro_estimator_f64_init_params(&mut a, &p), GYRO_OK);
         assert_eq!(gyro_estimator_f64_init(&mut b, GYRO_FRAME_ENU), GYRO_OK);
@@ -457,6 +457,58 @@ fn estimator_parameters_from_c() {
             GYRO_OK
         );
         assert_eq!(oa.gyro_saturated, 1);
+        // The light mode through the struct: the library's estimator in `Mode::Light`, bit for
+        // bit, on a record with a magnetometer; it differs from the full mode.
+        p.gyro_range = f64::INFINITY;
+        assert_eq!(p.mode, GYRO_MODE_FULL);
+        assert_eq!(p.correction_period, 0.025);
+        let mut full: gyro_estimator_f64 = zeroed();
+        assert_eq!(gyro_estimator_f64_init_params(&mut full, &p), GYRO_OK);
+        p.mode = GYRO_MODE_LIGHT;
+        assert_eq!(gyro_estimator_f64_init_params(&mut a, &p), GYRO_OK);
+        let mut lib =
+            gyrostat::estimation::Estimator::<f64>::try_new(gyrostat::estimation::Params::light())
+                .unwrap();
+        let mag = gyro_vec3_f64 {
+            x: 3.0,
+            y: 15.8,
+            z: -40.7,
+        };
+        let mut qf = SENTINEL;
+        for k in 0..200 {
+            let dt = 0.004 + 1e-5 * f64::from(k);
+            let gk = gyro_vec3_f64 {
+                x: g.x * (0.01 * f64::from(k)).cos(),
+                ..g
+            };
+            assert_eq!(
+                gyro_estimator_f64_update(&mut a, &gk, &acc, &mag, dt, &mut oa),
+                GYRO_OK
+            );
+            assert_eq!(
+                gyro_estimator_f64_update(&mut full, &gk, &acc, &mag, dt, &mut ob),
+                GYRO_OK
+            );
+            let v = |v: gyro_vec3_f64| gyrostat::Vec3::new(v.x, v.y, v.z);
+            lib.update_9d(v(gk), v(acc), v(mag), dt).unwrap();
+        }
+        assert_eq!(
+            gyro_estimator_f64_attitude(&a, &mut qa, null_mut()),
+            GYRO_OK
+        );
+        assert_eq!(
+            gyro_estimator_f64_attitude(&full, &mut qf, null_mut()),
+            GYRO_OK
+        );
+        let ql = lib.attitude();
+        assert_eq!((qa.w, qa.x, qa.y, qa.z), (ql.w(), ql.x(), ql.y(), ql.z()));
+        assert_ne!(qa, qf);
+        let mut bad = p;
+        bad.mode = 2;
+        assert_eq!(
+            gyro_estimator_f64_init_params(&mut a, &bad),
+            GYRO_INVALID_ARGUMENT
+        );
         // Bad parameters are refused and leave the struct as it was.
         let mut c: gyro_estimator_f32 = zeroed();
         let mut p32 = gyro_estimator_params_f32::default();

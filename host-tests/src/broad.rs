@@ -247,6 +247,12 @@ pub struct EstimateRow {
     pub q: [f64; 4],
     /// The gyroscope bias estimate, rad/s.
     pub bias: [f64; 3],
+    /// The magnetometer delay in use after the row, s ([`Estimator::mag_delay`]).
+    pub mag_delay: f64,
+    /// The hard-iron offset subtracted after the row (input units), the fit's estimate, and
+    /// the standard deviations of its x and y components and its consistency (mean
+    /// normalised innovation squared) ([`Estimator::hard_iron`]).
+    pub hard_iron: [[f64; 3]; 3],
     /// What the update did; `None` when the filter rejected the row (see `error`).
     pub outcome: Option<Outcome>,
     /// The filter's error for a rejected row (the previous attitude is repeated).
@@ -263,8 +269,9 @@ pub struct Mode {
 }
 
 /// Runs the estimator over `log` and returns one row per input row. The step `dt` of each row
-/// is the difference of its time stamp and the previous row's (the first row initialises the
-/// attitude, its `dt` is not used: the median step of the log is passed).
+/// is the difference of its time stamp and the previous row's; the first row has none and is
+/// given NaN (the library's first-sample rule, [`gyrostat::estimation::Estimator::update`]:
+/// until the attitude is initialised `dt` is neither used nor checked).
 pub fn estimate(
     log: &Log,
     params: &Params<f64>,
@@ -277,20 +284,6 @@ pub fn estimate(
     }
 }
 
-fn median_step(log: &Log) -> f64 {
-    let mut d: Vec<f64> = log
-        .rows
-        .windows(2)
-        .map(|w| w[1].t - w[0].t)
-        .filter(|d| d.is_finite() && *d > 0.0)
-        .collect();
-    if d.is_empty() {
-        return 0.01;
-    }
-    d.sort_by(f64::total_cmp);
-    d[d.len() / 2]
-}
-
 fn run<T: Real>(
     log: &Log,
     params: &Params<T>,
@@ -298,11 +291,10 @@ fn run<T: Real>(
 ) -> Result<Vec<EstimateRow>, gyrostat::Error> {
     let mut f = Estimator::try_new(*params)?;
     let v = |a: [f64; 3]| Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]));
-    let first_dt = median_step(log);
     let mut out = Vec::with_capacity(log.rows.len());
     let mut prev_t: Option<f64> = None;
     for row in &log.rows {
-        let dt = prev_t.map_or(first_dt, |p| row.t - p);
+        let dt = prev_t.map_or(f64::NAN, |p| row.t - p);
         prev_t = Some(row.t);
         let mag = if mode.six_d { None } else { row.mag.map(v) };
         let r = f.update(v(row.gyro), v(row.accel), mag, T::from_f64(dt));
@@ -317,6 +309,13 @@ fn run<T: Real>(
             t: row.t,
             q,
             bias: b,
+            mag_delay: f.mag_delay().to_f64(),
+            hard_iron: {
+                let (applied, fit) = f.hard_iron();
+                let (h, sd) = fit.estimate();
+                let sd = Vec3::new(sd.x, sd.y, fit.consistency());
+                [applied, h, sd].map(|v| v.to_array().map(Real::to_f64))
+            },
             outcome,
             error,
         });

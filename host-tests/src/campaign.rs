@@ -888,6 +888,67 @@ impl<T: Tolerance> Gen<T> {
 }
 
 // ---------------------------------------------------------------------------------------------
+// The estimator's covariance
+
+/// `P = [[A, B], [Bᵀ, C]]` of the estimator as a dense 6×6 matrix in f64.
+pub fn covariance_dense<T: Real>(p: &gyrostat::estimation::Covariance<T>) -> [[f64; 6]; 6] {
+    let mut m = [[0.0; 6]; 6];
+    for i in 0..3 {
+        for j in 0..3 {
+            m[i][j] = p.attitude.m[i][j].to_f64();
+            m[i][j + 3] = p.cross.m[i][j].to_f64();
+            m[j + 3][i] = p.cross.m[i][j].to_f64();
+            m[i + 3][j + 3] = p.bias.m[i][j].to_f64();
+        }
+    }
+    m
+}
+
+/// Whether `m + δI` has a Cholesky factor (in f64), `δ = tol·max|mᵢᵢ|`: `m` is positive
+/// semi-definite up to a perturbation of relative size `tol`.
+pub fn psd_within(m: &[[f64; 6]; 6], tol: f64) -> bool {
+    let scale = (0..6).map(|i| m[i][i].abs()).fold(0.0, f64::max);
+    let delta = tol * scale + f64::MIN_POSITIVE;
+    let mut l = [[0.0f64; 6]; 6];
+    for j in 0..6 {
+        let mut d = m[j][j] + delta;
+        for x in l[j].iter().take(j) {
+            d -= x * x;
+        }
+        if d.is_nan() || d <= 0.0 {
+            return false;
+        }
+        l[j][j] = d.sqrt();
+        for i in j + 1..6 {
+            let s = m[i][j] - (0..j).map(|k| l[i][k] * l[j][k]).sum::<f64>();
+            l[i][j] = s / l[j][j];
+        }
+    }
+    true
+}
+
+/// The estimator covariance's contract: finite; its attitude and bias blocks exactly equal to
+/// their transposes (the cross block is stored once); positive semi-definite to 64 ε of the
+/// type relative to its largest variance.
+pub fn covariance_ok<T: Real>(p: &gyrostat::estimation::Covariance<T>) -> Check {
+    let m = covariance_dense(p);
+    if m.iter().flatten().any(|x| !x.is_finite()) {
+        return bad(format!("non-finite covariance {m:?}"));
+    }
+    for i in 0..3 {
+        for j in 0..3 {
+            if p.attitude.m[i][j] != p.attitude.m[j][i] || p.bias.m[i][j] != p.bias.m[j][i] {
+                return bad(format!("asymmetric covariance {m:?}"));
+            }
+        }
+    }
+    if !psd_within(&m, 64.0 * T::EPSILON.to_f64()) {
+        return bad(format!("covariance not positive semi-definite {m:?}"));
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------
 // Families and the runner
 
 /// One API family: a name and one trial (draw an input, call, check).
@@ -1048,10 +1109,44 @@ pub fn table(tallies: &[Tally]) -> String {
 /// `GYROSTAT_CAMPAIGN_WRITE=1`, and fails listing every panic and broken invariant.
 pub fn run_campaign(section: &str, f32s: Vec<Family<f32>>, f64s: Vec<Family<f64>>) {
     let n = inputs_per_family();
+    run_campaign_n(section, n, n, f32s, f64s);
+}
+
+/// [`run_campaign`] for families whose input is a stream of about `updates` calls (the
+/// estimator's): `n/updates` streams per family and type, `n` = [`inputs_per_family`], so
+/// that the setting counts calls as the other campaigns do (the long setting, 10⁶, is 10⁶
+/// calls per family and type).
+pub fn run_stream_campaign(
+    section: &str,
+    updates: u64,
+    f32s: Vec<Family<f32>>,
+    f64s: Vec<Family<f64>>,
+) {
+    let n = inputs_per_family();
+    run_campaign_n(section, n, (n / updates).max(1), f32s, f64s);
+}
+
+/// Runs `trials` inputs of every family; `n` is the setting (`GYROSTAT_CAMPAIGN_N`) the table
+/// is written for.
+fn run_campaign_n(
+    section: &str,
+    n: u64,
+    trials: u64,
+    f32s: Vec<Family<f32>>,
+    f64s: Vec<Family<f64>>,
+) {
     let start = Instant::now();
     let (a, b) = std::thread::scope(|s| {
-        let h32 = s.spawn(|| f32s.iter().map(|f| run_family(f, n)).collect::<Vec<_>>());
-        let h64 = s.spawn(|| f64s.iter().map(|f| run_family(f, n)).collect::<Vec<_>>());
+        let h32 = s.spawn(|| {
+            f32s.iter()
+                .map(|f| run_family(f, trials))
+                .collect::<Vec<_>>()
+        });
+        let h64 = s.spawn(|| {
+            f64s.iter()
+                .map(|f| run_family(f, trials))
+                .collect::<Vec<_>>()
+        });
         (
             h32.join().expect("f32 campaign thread"),
             h64.join().expect("f64 campaign thread"),
@@ -1068,7 +1163,7 @@ pub fn run_campaign(section: &str, f32s: Vec<Family<f32>>, f64s: Vec<Family<f64>
     let calls: u64 = rows.iter().map(|r| r.inputs).sum();
     let cpu: f64 = rows.iter().map(|r| r.seconds).sum();
     println!(
-        "campaign `{section}`: {n} inputs per family and type, {calls} in all, {wall:.1} s wall, \
+        "campaign `{section}`: {trials} inputs per family and type, {calls} in all, {wall:.1} s wall, \
          {cpu:.1} s in the families"
     );
     for r in &rows {
@@ -1085,7 +1180,7 @@ pub fn run_campaign(section: &str, f32s: Vec<Family<f32>>, f64s: Vec<Family<f64>
     }
     println!("{t}");
     if std::env::var("GYROSTAT_CAMPAIGN_WRITE").as_deref() == Ok("1") {
-        write_section(section, n, calls, cpu, &t);
+        write_section(section, n, trials, calls, cpu, &t);
     }
     let failures: Vec<String> = rows
         .iter()
@@ -1116,7 +1211,7 @@ fn setting(n: u64) -> &'static str {
 
 /// Rewrites the table of `section` for the setting of `n` in `ROBUSTNESS.md` (between
 /// `<!-- campaign:SECTION:SETTING -->` and `<!-- /campaign:SECTION:SETTING -->`).
-fn write_section(section: &str, n: u64, calls: u64, cpu: f64, table: &str) {
+fn write_section(section: &str, n: u64, trials: u64, calls: u64, cpu: f64, table: &str) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../ROBUSTNESS.md");
     let doc = std::fs::read_to_string(&path).expect("ROBUSTNESS.md");
     let tag = format!("campaign:{section}:{}", setting(n));
@@ -1138,7 +1233,7 @@ fn write_section(section: &str, n: u64, calls: u64, cpu: f64, table: &str) {
         "{open}\n`{seed}{count}cargo test --release -p host-tests --test robustness {section}:: \
          -- --nocapture`: {} inputs per family and type, {} calls in all, seed {:#x}, \
          {cpu:.1} s of one core in the families.\n\n{table}",
-        group(n),
+        group(trials),
         group(calls),
         base_seed()
     );

@@ -424,17 +424,26 @@ def estimate(
     *,
     frame: str = "enu",
     precision: str = "f64",
+    mode: str = "full",
     heading_time_constant: Optional[float] = None,
+    params_file: Optional[str] = None,
     skip_errors: bool = False,
     **params: float,
 ) -> Estimate:
     """Attitude and gyroscope bias from an IMU record: time stamps ``t`` (N,) in s, ``gyro``
     (N, 3) rad/s, ``accel`` (N, 3) m/s^2 and, for 9D, ``mag`` (N, 3) in any unit, all in the
-    sensor frame. Sample ``k`` is propagated over ``t[k] - t[k-1]`` (the first over the median
-    step; the first usable sample initialises the attitude). ``frame``: ``enu`` (x east,
-    y magnetic north, z up) or ``ned``. ``heading_time_constant`` switches to fixed
-    (complementary) gains. Any other keyword overrides a parameter of
-    :func:`estimator_defaults`. A bad gyroscope sample or time step raises naming the row, or
+    sensor frame. Sample ``k`` is propagated over ``t[k] - t[k-1]``; the first usable sample
+    initialises the attitude, and no sample propagates before that or at it, so their steps
+    are not used or checked (the first-sample rule of the library; a record may start while
+    the sensor turns fast). ``frame``: ``enu`` (x east,
+    y magnetic north, z up) or ``ned``. ``mode``: ``full`` (every part of the filter on every
+    sample) or ``light`` (the covariance and the corrections every 25 ms, a fixed magnetometer
+    delay: about a fifth of the cost; ``gyrostat::estimation::Mode``). ``heading_time_constant`` switches to fixed
+    (complementary) gains. ``params_file``: a parameter file (``name = value  # comment`` per
+    line, the library's names such as ``field.norm``, SI units; the format of
+    ``gyrostat::estimation::params_text``, read by the library's one parser; a bad line raises
+    naming it), applied to the defaults before the keywords. Any other keyword overrides a
+    parameter of :func:`estimator_defaults`. A bad gyroscope sample or time step raises naming the row, or
     with ``skip_errors`` is skipped (the state unchanged, its row repeats the attitude); a bad
     accelerometer or magnetometer sample is never an error (``accel_used``/``mag_used`` say
     so)."""
@@ -442,6 +451,10 @@ def estimate(
     g, _ = _rows(gyro, 3, "gyro")
     a, _ = _rows(accel, 3, "accel")
     m = None if mag is None else _rows(mag, 3, "mag")[0]
+    text = None
+    if params_file is not None:
+        with open(params_file, encoding="utf-8") as f:
+            text = f.read()
     d = _gyrostat.estimate(
         tt,
         g,
@@ -449,7 +462,9 @@ def estimate(
         m,
         frame,
         precision,
+        mode,
         heading_time_constant,
+        text,
         [(str(k), float(v)) for k, v in params.items()],
         bool(skip_errors),
     )

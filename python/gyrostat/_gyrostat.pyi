@@ -62,7 +62,9 @@ def estimate(
     mag: Optional[F64],
     frame: str,
     precision: str,
+    mode: str,
     heading_time_constant: Optional[float],
+    params_text: Optional[str],
     params: List[Tuple[str, float]],
     skip_errors: bool,
 ) -> Dict[str, Any]: ...

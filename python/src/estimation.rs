@@ -1,15 +1,17 @@
 //! The attitude-and-bias estimator (`gyrostat::estimation::Estimator`) over arrays of samples
 //! with their time stamps.
 //!
-//! Sample `k` is propagated over `t[k] − t[k−1]`; the first sample over the median step of the
-//! record (the first usable sample initialises the attitude and does not use its step), as the
-//! BROAD runner of host-tests feeds the estimator.
+//! Sample `k` is propagated over `t[k] − t[k−1]`. The first sample has no step and is given
+//! NaN: the library's first-sample rule (`Estimator::update`) is that until the attitude is
+//! initialised no sample propagates and `dt` is neither used nor checked, so a record that
+//! starts while the sensor turns fast is accepted. The estimate tool and the BROAD runner of
+//! host-tests follow the same rule.
 
 use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use gyrostat::estimation::{EarthFrame, Estimator, Gains, Params, SensorUse};
+use gyrostat::estimation::{EarthFrame, Estimator, Gains, Mode, Params, SensorUse};
 use gyrostat::{Real, Vec3};
 
 use crate::{RowError, array2, rows, values};
@@ -45,16 +47,24 @@ fn estimator_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     Ok(d)
 }
 
-/// The parameters in `T`: the defaults with `overrides`, `frame` and fixed gains applied.
+/// The parameters in `T`: the defaults with the parameter file's text
+/// (`gyrostat::estimation::params_text`), then `overrides`, `frame` and fixed gains applied.
 fn params<T: Real>(
     frame: EarthFrame,
+    mode: Mode<T>,
     heading_time_constant: Option<f64>,
+    params_text: Option<&str>,
     overrides: &[(String, f64)],
 ) -> Result<Params<T>, RowError> {
     let mut p = Params::<T> {
         frame,
+        mode,
         ..Params::default()
     };
+    if let Some(text) = params_text {
+        p.set_from_text(text)
+            .map_err(|e| RowError::call(format!("params_file: {e}")))?;
+    }
     if let Some(tau) = heading_time_constant {
         p.gains = Gains::Fixed {
             heading_time_constant: T::from_f64(tau),
@@ -80,20 +90,6 @@ struct Track {
     std: Vec<f64>,
 }
 
-/// The median of the positive finite steps of `t` (0.01 s for fewer than two samples).
-fn median_step(t: &[f64]) -> f64 {
-    let mut d: Vec<f64> = t
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .filter(|d| d.is_finite() && *d > 0.0)
-        .collect();
-    if d.is_empty() {
-        return 0.01;
-    }
-    d.sort_by(f64::total_cmp);
-    d[d.len() / 2]
-}
-
 fn run<T: Real>(
     params: Params<T>,
     t: &[f64],
@@ -115,7 +111,6 @@ fn run<T: Real>(
             T::from_f64(a[3 * k + 2]),
         )
     };
-    let first = median_step(t);
     let mut tr = Track {
         q: Vec::with_capacity(4 * n),
         bias: Vec::with_capacity(3 * n),
@@ -125,7 +120,7 @@ fn run<T: Real>(
         std: Vec::with_capacity(2 * n),
     };
     for k in 0..n {
-        let dt = if k == 0 { first } else { t[k] - t[k - 1] };
+        let dt = if k == 0 { f64::NAN } else { t[k] - t[k - 1] };
         let m = mag.map(|m| v(m, k));
         match f.update(v(gyro, k), v(accel, k), m, T::from_f64(dt)) {
             Ok(o) => {
@@ -161,9 +156,10 @@ fn run<T: Real>(
 /// The estimator run over a record: time stamps `t` (s), gyroscope (rad/s), accelerometer
 /// (m/s²) and optionally magnetometer (any unit) rows, sensor frame. Returns a dict of arrays:
 /// `q` (sensor → earth, `w, x, y, z`), `bias` (rad/s), `accel_used`, `mag_used`, `at_rest`,
-/// `attitude_std` (heading, inclination; rad).
+/// `attitude_std` (heading, inclination; rad). `mode`: `full` or `light`
+/// (`gyrostat::estimation::Mode`).
 #[pyfunction]
-#[pyo3(signature = (t, gyro, accel, mag, frame, precision, heading_time_constant, params, skip_errors))]
+#[pyo3(signature = (t, gyro, accel, mag, frame, precision, mode, heading_time_constant, params_text, params, skip_errors))]
 #[allow(clippy::too_many_arguments)]
 fn estimate<'py>(
     py: Python<'py>,
@@ -173,7 +169,9 @@ fn estimate<'py>(
     mag: Option<PyReadonlyArray2<'py, f64>>,
     frame: &str,
     precision: &str,
+    mode: &str,
     heading_time_constant: Option<f64>,
+    params_text: Option<String>,
     params: Vec<(String, f64)>,
     skip_errors: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -202,13 +200,32 @@ fn estimate<'py>(
             return Err(RowError::call(format!("frame: unknown {other:?} (enu, ned)")).into());
         }
     };
+    let light = match mode {
+        "full" => false,
+        "light" => true,
+        other => {
+            return Err(RowError::call(format!("mode: unknown {other:?} (full, light)")).into());
+        }
+    };
     let tr = match precision {
         "f64" => {
-            let p = self::params::<f64>(frame, heading_time_constant, &params)?;
+            let p = self::params::<f64>(
+                frame,
+                if light { Mode::light() } else { Mode::Full },
+                heading_time_constant,
+                params_text.as_deref(),
+                &params,
+            )?;
             py.detach(|| run(p, &t, &g, &a, m.as_deref(), skip_errors))?
         }
         "f32" => {
-            let p = self::params::<f32>(frame, heading_time_constant, &params)?;
+            let p = self::params::<f32>(
+                frame,
+                if light { Mode::light() } else { Mode::Full },
+                heading_time_constant,
+                params_text.as_deref(),
+                &params,
+            )?;
             py.detach(|| run(p, &t, &g, &a, m.as_deref(), skip_errors))?
         }
         other => {

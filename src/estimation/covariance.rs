@@ -56,17 +56,74 @@ impl<T: Real> Covariance<T> {
         }
     }
 
+    /// Entry `(j, k)` of `P` (indices as in [`Covariance::row`]).
+    fn at(&self, j: usize, k: usize) -> T {
+        self.row(j).get(k.min(5)).copied().unwrap_or(T::ZERO)
+    }
+
+    /// Sets entry `(j, k)` and its mirror `(k, j)` (one stored number for the cross block).
+    fn set_sym(&mut self, j: usize, k: usize, v: T) {
+        let (j, k) = (j.min(5), k.min(5));
+        match (j < 3, k < 3) {
+            (true, true) => {
+                self.attitude.m[j][k] = v;
+                self.attitude.m[k][j] = v;
+            }
+            (true, false) => self.cross.m[j][k - 3] = v,
+            (false, true) => self.cross.m[k][j - 3] = v,
+            (false, false) => {
+                self.bias.m[j - 3][k - 3] = v;
+                self.bias.m[k - 3][j - 3] = v;
+            }
+        }
+    }
+
     /// The Kalman update for a scalar measurement of state component `i` with variance `r`:
-    /// returns the gain `K = P eᵢ / (Pᵢᵢ + r)` and applies `P ← P − K Pᵢ,:` (the covariance
-    /// after the update, symmetric by construction: `Pⱼ,ᵢ Pᵢ,ₖ / s`).
+    /// returns the gain `K = p/s`, `p = P eᵢ`, `s = pᵢ + r`, and sets `P` to the covariance
+    /// after the update, `P − p pᵀ/s`, in a form that stays symmetric and positive
+    /// semi-definite in floating point:
+    ///
+    /// - row and column `i` in Joseph form, `(I − K eᵢᵀ) P (I − K eᵢᵀ)ᵀ + K r Kᵀ`, with the
+    ///   factor `1 − Kᵢ = r/s` formed as that quotient (not as a difference): `P'ᵢₖ = g² pₖ +
+    ///   r Kᵢ Kₖ`, `g = r/s`, so the measured variance `P'ᵢᵢ = g² pᵢ + r Kᵢ² = pᵢ r/s` is
+    ///   positive and at most `r` however much larger `pᵢ` is (the plain `pᵢ − pᵢ²/s` cancels
+    ///   to rounding noise there);
+    /// - every other entry as `Pⱼₖ − (pⱼ pₖ)/s`, the product formed before the division so
+    ///   that `(j, k)` and `(k, j)` are the same number; each is written once for both
+    ///   triangles. A variance that rounding takes below zero is set to zero.
+    ///
+    /// A measurement that carries no information (`s` not finite or not positive: an infinite
+    /// `r`, or `pᵢ = r = 0`) leaves `P` unchanged and returns a zero gain.
     pub fn update_component(&mut self, i: usize, r: T) -> [T; 6] {
+        let i = i.min(5);
         let p = self.row(i);
-        let s = p[i.min(5)] + r;
+        let pi = p.get(i).copied().unwrap_or(T::ZERO);
+        let s = pi + r;
+        if !(s.is_finite() && s > T::ZERO) {
+            return [T::ZERO; 6];
+        }
         let inv = T::ONE / s;
         let k = p.map(|v| v * inv);
-        for (row, &kr) in k.iter().enumerate() {
-            for (col, &pc) in p.iter().enumerate() {
-                self.sub_at(row, col, kr * pc);
+        let g = r * inv;
+        let ki = k.get(i).copied().unwrap_or(T::ZERO);
+        for j in 0..6 {
+            for c in j..6 {
+                let (pj, pc) = (p.get(j).copied(), p.get(c).copied());
+                let (kj, kc) = (k.get(j).copied(), k.get(c).copied());
+                let (Some(pj), Some(pc), Some(kj), Some(kc)) = (pj, pc, kj, kc) else {
+                    continue;
+                };
+                let v = if j == i && c == i {
+                    g * g * pi + r * ki * ki
+                } else if j == i {
+                    g * g * pc + r * ki * kc
+                } else if c == i {
+                    g * g * pj + r * kj * ki
+                } else {
+                    self.at(j, c) - pj * pc * inv
+                };
+                let v = if j == c { v.max(T::ZERO) } else { v };
+                self.set_sym(j, c, v);
             }
         }
         k
@@ -75,8 +132,12 @@ impl<T: Real> Covariance<T> {
     /// The update of the attitude component `i` alone (a gain `k` on `δθᵢ`, none on the others:
     /// the heading update, which must not move inclination or bias), in Joseph form
     /// `P ← (I − K H) P (I − K H)ᵀ + K r Kᵀ`, valid for any gain: row and column `i` scale by
-    /// `1 − k`, and `Pᵢᵢ ← (1 − k)² Pᵢᵢ + k² r`.
-    pub fn update_attitude_axis_only(&mut self, i: usize, k: T, r: T) {
+    /// `1 − k`, and `Pᵢᵢ ← (1 − k)² Pᵢᵢ + k² r`. Returns the gain applied: `k`, or 0 (and `P`
+    /// unchanged) when `r` is not finite (a measurement without information).
+    pub fn update_attitude_axis_only(&mut self, i: usize, k: T, r: T) -> T {
+        if !r.is_finite() {
+            return T::ZERO;
+        }
         let i = i.min(2);
         let s = T::ONE - k;
         let pii = self.attitude.m[i][i];
@@ -86,35 +147,40 @@ impl<T: Real> Covariance<T> {
             self.cross.m[i][j] *= s;
         }
         self.attitude.m[i][i] = s * s * pii + k * k * r;
+        k
     }
 
     /// The heading update with the tilt coupling: the measurement `ψ = δθ_z + c·δθ_y + noise`
     /// (`c = tan(dip)`: a tilt error about the earth's north axis turns the field's vertical
     /// part into the horizontal plane), with a gain on `δθ_z` only. The gain minimising the
-    /// heading variance is `k = uᵢ/s`, `u = P h`, `s = hᵀ P h + r`, `h = (0, c, 1, 0, 0, 0)`;
-    /// then `P ← P − k(e_z uᵀ + u e_zᵀ) + k² s e_z e_zᵀ` (Joseph form for that gain). Returns
-    /// `k`.
+    /// heading variance is `k = u_z/s`, `u = P h`, `s = hᵀ P h + r`, `h = (0, c, 1, 0, 0, 0)`;
+    /// `P` is updated in Joseph form, `P ← A P Aᵀ + k² r e_z e_zᵀ` with `A = I − k e_z hᵀ`:
+    /// only row and column `z` change, `P'_zj = (1 − k) P_zj − k c P_yj` and `P'_zz` the
+    /// quadratic form `(1 − k)² P_zz − 2(1 − k) k c P_yz + k² c² P_yy + k² r`, with `1 − k =
+    /// (c u_y + r)/s` formed as that quotient (no cancellation when `r ≪ s`). Returns `k`; 0,
+    /// with `P` unchanged, when `s` is not finite and positive (no information: an infinite
+    /// `r` or a field at the vertical).
     pub fn update_heading(&mut self, c: T, r: T) -> T {
         let py = self.row(1);
         let pz = self.row(2);
+        let u1 = c * py[1] + pz[1];
+        let u2 = c * py[2] + pz[2];
+        let s = c * u1 + u2 + r;
+        if !(s.is_finite() && s > T::ZERO) {
+            return T::ZERO;
+        }
+        let k = u2 / s;
+        let g = (c * u1 + r) / s;
+        let kc = k * c;
         // Zipped rather than indexed: no bounds check for the optimiser to remove (at
         // opt-level "s" it stays, a panicking branch in the C interface's size-optimised build).
-        let mut u = pz;
-        for (uj, &pyj) in u.iter_mut().zip(&py) {
-            *uj = c * pyj + *uj;
-        }
-        let s = c * u[1] + u[2] + r;
-        let k = u[2] / s;
-        for (j, &uj) in u.iter().enumerate() {
-            // Row z and column z, each once (the diagonal below).
+        for (j, (&pyj, &pzj)) in py.iter().zip(&pz).enumerate() {
             if j != 2 {
-                self.sub_at(2, j, k * uj);
-                if j < 3 {
-                    self.sub_at(j, 2, k * uj);
-                }
+                self.set_sym(2, j, g * pzj - kc * pyj);
             }
         }
-        self.attitude.m[2][2] = self.attitude.m[2][2] - (k * u[2]).twice() + k * k * s;
+        let zz = g * g * pz[2] - (g * kc * py[2]).twice() + kc * kc * py[1] + k * k * r;
+        self.attitude.m[2][2] = zz.max(k * k * r);
         k
     }
 
@@ -124,14 +190,36 @@ impl<T: Real> Covariance<T> {
         self.attitude = self.attitude + Mat3::from_diagonal(Vec3::new(v, v, v));
     }
 
-    fn sub_at(&mut self, row: usize, col: usize, d: T) {
-        match (row < 3, col < 3) {
-            (true, true) => self.attitude.m[row][col] -= d,
-            (true, false) => self.cross.m[row][(col - 3).min(2)] -= d,
-            (false, true) => {
-                // The lower-left block is Bᵀ: the upper-right update covers it.
+    /// Adds `v` to the heading variance (earth `z` axis) alone: `P ← P + v e_z e_zᵀ`.
+    pub fn inflate_heading(&mut self, v: T) {
+        self.attitude.m[2][2] += v;
+    }
+
+    /// Bounds the variances: every attitude variance at most `attitude_max` and every bias
+    /// variance at most `bias_max`, by the congruence `P ← D P D` with `D` diagonal, `Dⱼ =
+    /// √(max/Pⱼⱼ)` for a variance above its bound and 1 otherwise. A congruence keeps `P`
+    /// symmetric and positive semi-definite and its correlations unchanged; it only says that
+    /// an error cannot be larger than its physical bound (an attitude error is within ±π,
+    /// a bias within the filter's clip).
+    pub fn bound(&mut self, attitude_max: T, bias_max: T) {
+        let mut d = [T::ONE; 6];
+        for (j, dj) in d.iter_mut().enumerate() {
+            let max = if j < 3 { attitude_max } else { bias_max };
+            let v = self.at(j, j);
+            if v > max {
+                *dj = (max / v).sqrt();
             }
-            (false, false) => self.bias.m[(row - 3).min(2)][(col - 3).min(2)] -= d,
+        }
+        if d.iter().all(|&x| x == T::ONE) {
+            return;
+        }
+        for j in 0..6 {
+            for c in j..6 {
+                if let (Some(&dj), Some(&dc)) = (d.get(j), d.get(c)) {
+                    let v = self.at(j, c) * dj * dc;
+                    self.set_sym(j, c, v);
+                }
+            }
         }
     }
 }

@@ -3,10 +3,15 @@
 
 use super::covariance::Covariance;
 use super::field::{FieldMonitor, FieldThresholds};
+use super::hard_iron::HardIron;
 use super::init::{attitude_from_gravity, attitude_from_gravity_and_field};
-use super::lowpass::LowPass;
+use super::lowpass::{LowPass, first_order_gain};
 use super::rest::{RestDetector, RestThresholds};
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
+
+// The light mode (its own file; a child module for the estimator's private state).
+#[path = "light.rs"]
+mod light;
 
 /// The earth frame of the output attitude (sensor → earth).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -24,7 +29,7 @@ pub enum Gains<T> {
     /// Kalman gains from the error covariance (the measurement variances below).
     Kalman,
     /// Complementary: the low-passed inclination is applied in full at every sample and the
-    /// heading error with the first-order gain `Δt/(τ + Δt)`; the bias still from the Kalman
+    /// heading error with the first-order gain `1 − exp(−Δt/τ)`; the bias still from the Kalman
     /// update.
     Fixed {
         /// `τ` (s) of the heading correction.
@@ -32,15 +37,62 @@ pub enum Gains<T> {
     },
 }
 
-/// The estimator's parameters, in SI units (angles in rad). [`Params::default`] holds values
-/// that work on BROAD without tuning per recording (see the module docs for how they were
-/// chosen).
+/// How much work an update does (the corrections are the same; see the module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Mode<T> {
+    /// Every part of the filter on every sample.
+    #[default]
+    Full,
+    /// The prediction, the rest detector, the accelerometer's low-pass filter and the
+    /// hard-iron fit on every sample; the covariance over the whole interval
+    /// (`Φ = [[I, −R̂·T_c], [0, I]]`, `R̂` at its end) and the rest, inclination and heading
+    /// updates (variances for one measurement per `T_c`) once per `correction_period` `T_c`
+    /// (s, sample time). No magnetometer-delay estimate: the field sample is carried back by a
+    /// fixed delay `d` to first order, `m − d·(ω × m)`, `d` = [`Params::mag_delay`] when
+    /// [`Params::mag_delay_estimation_time`] is 0, else [`Mode::LIGHT_MAG_DELAY`]. Between
+    /// corrections the [`Outcome`] reports a valid magnetometer sample as the last correction
+    /// did. Cost and accuracy: BENCHMARKS.md (about a fifth of the full mode's cost on the M4F).
+    Light {
+        /// The time (s) between two corrections.
+        correction_period: T,
+    },
+}
+
+/// The estimator's parameters, in SI units (angles in rad), every time in seconds (none in
+/// samples: the same parameters describe the same filter at any rate).
+///
+/// [`Params::default`] describes a typical consumer MEMS IMU from its datasheet figures
+/// (InvenSense MPU-9250 with its AK8963 magnetometer, the common 9-axis part; a characterisation
+/// of the actual sensor, written as a parameter file, replaces them), and the filter's own
+/// design choices:
+///
+/// | parameter | default | from the datasheet |
+/// |---|---|---|
+/// | `gyro_noise_density` | 0.01 °/s/√Hz | rate noise spectral density (MPU-9250: 0.01 °/s/√Hz); an Allan deviation's slope −½ at 1 s |
+/// | `gyro_scale_noise` | 0.002 /√Hz | sensitivity tolerance and cross-axis sensitivity (±3 %, ±2 % raw) after a calibration to 0.2 %, as a density over 1 s |
+/// | `gyro_bias_initial` | 0.5 °/s | zero-rate output after a power-on calibration (raw tolerance ±5 °/s) |
+/// | `gyro_bias_stability`, `gyro_bias_time` | 0.1 °/s per 100 s | zero-rate output's temperature drift (±30 °/s over −40…85 °C, 0.24 °/s/K) over the 0.4 K a device warms in 100 s; an Allan deviation's bias-instability floor is the lower bound |
+/// | `gyro_bias_max` | 2 °/s | a bound on the calibrated bias |
+/// | `gyro_range`, `accel_range` | 2000 °/s, 16 g | full scale, the largest ranges of consumer parts (MPU-9250: ±2000 °/s, ±16 g) |
+/// | `gyro_delay` | 2.9 ms | the gyroscope's digital low-pass delay at its common setting (MPU-9250 table: 184 Hz bandwidth, 2.9 ms) |
+/// | `accel_tilt_noise` | 0.3° | the zero-g offset after calibration (5 mg ≈ 0.3°); the noise density (300 µg/√Hz) averages out in the low-pass |
+/// | `mag_heading_noise` | 2° | the magnetometer's resolution and noise (AK8963: 0.6 µT) over a horizontal field of about 17 µT |
+/// | `mag_delay` | 0 | the magnetometer's sample delay behind the gyroscope when known (else estimated online) |
+///
+/// The others are the filter's design choices, not the sensor's: the low-pass and correlation
+/// times (`accel_time_constant` 3 s, `accel_correlation_time` 1 s, `mag_correlation_time` 5 s),
+/// the gates (`accel_reject`, [`FieldThresholds`], [`RestThresholds`]), the online estimates'
+/// times (`mag_delay_estimation_time` 10 s, `mag_hard_iron_time` 10 s) and
+/// `mag_disturbance_weight` (see the module docs for how they were chosen). The parameter file
+/// ([`super::params_text`]) sets any of them by name.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params<T> {
     /// The earth frame of [`Estimator::attitude`].
     pub frame: EarthFrame,
     /// How corrections are weighted.
     pub gains: Gains<T>,
+    /// Full or light update ([`Mode`]).
+    pub mode: Mode<T>,
     /// Gyroscope white noise, rad/s/√Hz (angle random walk).
     pub gyro_noise_density: T,
     /// Rate-proportional gyroscope error, 1/√Hz: scale-factor and axis-misalignment errors
@@ -56,9 +108,20 @@ pub struct Params<T> {
     pub gyro_bias_time: T,
     /// The largest bias magnitude per axis, rad/s (estimates are clipped to it).
     pub gyro_bias_max: T,
-    /// The gyroscope's full scale, rad/s: a component at or beyond it is saturated.
+    /// The gyroscope's full scale, rad/s: a component at or beyond it is saturated (clipped,
+    /// its uncertainty added). Default 2000 °/s, the largest range of consumer MEMS
+    /// gyroscopes; `+∞` disables the check. Set it to the sensor's range.
     pub gyro_range: T,
-    /// The accelerometer's full scale, m/s²: a component at or beyond it is saturated.
+    /// Delay (s) of the gyroscope's samples behind the motion: the group delay of its digital
+    /// low-pass filter (datasheets give it per bandwidth setting) and of the sampling chain.
+    /// The filter integrates the samples as they come and [`Estimator::attitude`] carries its
+    /// result forward by this time at the current rate, `q̂ ⊗ exp((ω − b̂)·d_g)`; the
+    /// corrections are unaffected. 0 outputs the attitude of the samples' own time.
+    pub gyro_delay: T,
+    /// The accelerometer's full scale, m/s²: a component at or beyond it is saturated (the
+    /// sample is not used). Default 16 g (156.9 m/s²), the largest range of consumer MEMS
+    /// accelerometers, so that garbage values (1e30 m/s²) are not fed to the inclination
+    /// low-pass; `+∞` disables the check. Set it to the sensor's range.
     pub accel_range: T,
     /// Time constant (s) of the low-pass filter of the specific force in the gyroscope's
     /// (almost inertial) frame; 0 uses each sample as it is.
@@ -88,6 +151,15 @@ pub struct Params<T> {
     /// delay (0 to `MAG_HISTORY − 1` samples, fractional) whose earth-frame field heading
     /// deviates least from its recent mean (see the module docs; [`Estimator::mag_delay`]).
     pub mag_delay_estimation_time: T,
+    /// Random-walk time `τ_h` (s) of the online hard-iron estimate ([`super::hard_iron`]): the
+    /// offset may drift by 1 % of the field's norm over `τ_h` (a magnet attached or removed is
+    /// a jump, found again by the fit's reset); 0 switches the estimate off (the field is used
+    /// as it comes, calibrated or not). Once the fit has converged (each component known to
+    /// 1 % of the field's norm, the samples on one sphere) an offset larger than
+    /// [`FieldThresholds::norm`] of the field's norm is subtracted from a field sample when
+    /// the corrected field is closer to the disturbance monitor's reference
+    /// (relative norm plus dip) than the raw one; otherwise none is.
+    pub mag_hard_iron_time: T,
     /// Weight of a disturbed field's heading error: 0 rejects a disturbed field outright; a
     /// positive `g` uses it with the heading variance increased by `(g·ε·|B|/|B_h|)²`, where
     /// `ε = ||B| − |B|_ref|/|B|_ref + |δ − δ_ref|` bounds the relative size of the disturbance.
@@ -107,14 +179,16 @@ impl<T: Real> Default for Params<T> {
         Self {
             frame: EarthFrame::Enu,
             gains: Gains::Kalman,
+            mode: Mode::Full,
             gyro_noise_density: deg(0.01),
             gyro_scale_noise: v(0.002),
             gyro_bias_initial: deg(0.5),
             gyro_bias_stability: deg(0.1),
             gyro_bias_time: v(100.0),
             gyro_bias_max: deg(2.0),
-            gyro_range: v(f64::INFINITY),
-            accel_range: v(f64::INFINITY),
+            gyro_range: deg(2000.0),
+            gyro_delay: v(0.0029),
+            accel_range: v(16.0 * STANDARD_GRAVITY),
             accel_time_constant: v(3.0),
             accel_tilt_noise: deg(0.3),
             accel_correlation_time: v(1.0),
@@ -124,6 +198,7 @@ impl<T: Real> Default for Params<T> {
             mag_disturbance_weight: v(0.3),
             mag_delay: v(0.0),
             mag_delay_estimation_time: v(10.0),
+            mag_hard_iron_time: v(10.0),
             field: FieldThresholds {
                 norm: v(0.1),
                 dip: deg(10.0),
@@ -148,7 +223,7 @@ impl<T: Copy> Params<T> {
     /// The names of the numeric parameters, as [`Params::parameter_mut`] takes them: the field
     /// names, those of [`Params::field`] and [`Params::rest`] prefixed `field.` and `rest.`
     /// (the heading time constant of [`Gains::Fixed`] is a choice of gains, not among them).
-    pub const NAMES: [&'static str; 29] = [
+    pub const NAMES: [&'static str; 31] = [
         "gyro_noise_density",
         "gyro_scale_noise",
         "gyro_bias_initial",
@@ -156,6 +231,7 @@ impl<T: Copy> Params<T> {
         "gyro_bias_time",
         "gyro_bias_max",
         "gyro_range",
+        "gyro_delay",
         "accel_range",
         "accel_time_constant",
         "accel_tilt_noise",
@@ -165,6 +241,7 @@ impl<T: Copy> Params<T> {
         "mag_correlation_time",
         "mag_delay",
         "mag_delay_estimation_time",
+        "mag_hard_iron_time",
         "mag_disturbance_weight",
         "field.norm",
         "field.dip",
@@ -191,6 +268,7 @@ impl<T: Copy> Params<T> {
             "gyro_bias_time" => &mut self.gyro_bias_time,
             "gyro_bias_max" => &mut self.gyro_bias_max,
             "gyro_range" => &mut self.gyro_range,
+            "gyro_delay" => &mut self.gyro_delay,
             "accel_range" => &mut self.accel_range,
             "accel_time_constant" => &mut self.accel_time_constant,
             "accel_tilt_noise" => &mut self.accel_tilt_noise,
@@ -200,6 +278,7 @@ impl<T: Copy> Params<T> {
             "mag_correlation_time" => &mut self.mag_correlation_time,
             "mag_delay" => &mut self.mag_delay,
             "mag_delay_estimation_time" => &mut self.mag_delay_estimation_time,
+            "mag_hard_iron_time" => &mut self.mag_hard_iron_time,
             "mag_disturbance_weight" => &mut self.mag_disturbance_weight,
             "field.norm" => &mut self.field.norm,
             "field.dip" => &mut self.field.dip,
@@ -227,6 +306,12 @@ impl<T: Copy> Params<T> {
             };
             return true;
         }
+        if name == "light_period" {
+            self.mode = Mode::Light {
+                correction_period: value,
+            };
+            return true;
+        }
         match self.parameter_mut(name) {
             Some(slot) => {
                 *slot = value;
@@ -249,6 +334,12 @@ impl<T: Copy> Params<T> {
                     heading_time_constant: f(heading_time_constant),
                 },
             },
+            mode: match self.mode {
+                Mode::Full => Mode::Full,
+                Mode::Light { correction_period } => Mode::Light {
+                    correction_period: f(correction_period),
+                },
+            },
             gyro_noise_density: f(self.gyro_noise_density),
             gyro_scale_noise: f(self.gyro_scale_noise),
             gyro_bias_initial: f(self.gyro_bias_initial),
@@ -256,6 +347,7 @@ impl<T: Copy> Params<T> {
             gyro_bias_time: f(self.gyro_bias_time),
             gyro_bias_max: f(self.gyro_bias_max),
             gyro_range: f(self.gyro_range),
+            gyro_delay: f(self.gyro_delay),
             accel_range: f(self.accel_range),
             accel_time_constant: f(self.accel_time_constant),
             accel_tilt_noise: f(self.accel_tilt_noise),
@@ -265,6 +357,7 @@ impl<T: Copy> Params<T> {
             mag_correlation_time: f(self.mag_correlation_time),
             mag_delay: f(self.mag_delay),
             mag_delay_estimation_time: f(self.mag_delay_estimation_time),
+            mag_hard_iron_time: f(self.mag_hard_iron_time),
             mag_disturbance_weight: f(self.mag_disturbance_weight),
             field: FieldThresholds {
                 norm: f(self.field.norm),
@@ -332,40 +425,94 @@ pub struct Estimator<T> {
     /// Gyroscope frame → earth (ENU): the accumulated corrections.
     q_corr: UnitQuat<T>,
     bias: Vec3<T>,
+    /// The previous gyroscope sample (clipped), for the mean rate over a step.
+    last_gyro: Vec3<T>,
+    /// The rate (bias removed) the output is carried forward with ([`Params::gyro_delay`]);
+    /// zero until the first propagation (the initial attitude is that of its own sample).
+    lead_rate: Vec3<T>,
+    /// Whether the rates given are means over the step (increments) rather than samples.
+    rate_is_mean: bool,
+    /// Whether `last_gyro` was saturated (clipped).
+    last_saturated: bool,
     p: Covariance<T>,
     accel_lp: LowPass<T>,
     rest: RestDetector<T>,
     field: FieldMonitor<T>,
     field_started: bool,
     last: Outcome,
+    /// The strapdown attitude `q_g` (sensor → gyroscope frame) on a time grid of step
+    /// [`MAG_HISTORY_STEP`]: `history[head]` at the newest grid time `g₀ ≤ t`, the slot before
+    /// it at `g₀ − h`, and so on (a ring).
     history: [UnitQuat<T>; MAG_HISTORY],
     head: usize,
-    /// How many attitudes `history` (sensor → gyroscope frame) holds (up to [`MAG_HISTORY`]).
+    /// How many grid attitudes `history` holds (up to [`MAG_HISTORY`]).
     filled: usize,
-    /// The estimated magnetometer delay, samples (fractional).
+    /// `t − g₀`, s: how long ago the newest grid attitude was, in `[0, h)`.
+    grid_age: T,
+    /// The estimated magnetometer delay, s.
     lag: T,
-    /// Per candidate delay `k` samples: the mean earth-frame field and the mean squared sine
-    /// of its heading deviation from that mean.
+    /// Per candidate delay `k·h`: the mean field in the gyroscope frame and the mean squared
+    /// sine of its heading deviation from that mean.
     lag_mean: [Vec3<T>; MAG_HISTORY],
     lag_residual: [T; MAG_HISTORY],
     /// Time (s) the delay statistics have been fed.
     lag_time: T,
+    /// Time (s) since the delay statistics were last offered a sample.
+    lag_clock: T,
+    /// The online hard-iron fit and the offset subtracted from the field samples.
+    hard_iron: HardIron<T>,
+    /// The converged offset large enough to use (zero otherwise), updated as the fit is fed.
+    hard_iron_offer: Vec3<T>,
+    hard_iron_applied: Vec3<T>,
+    /// Time (s) since the hard-iron fit was last fed.
+    hard_iron_clock: T,
+    /// Set by a saturated gyroscope sample: the rotation since the low-pass was fed is unknown,
+    /// so its gyroscope-frame average mixes frames; it restarts from the next usable sample.
+    lowpass_stale: bool,
+    /// The light mode's accumulators ([`Mode::Light`]).
+    light: light::LightState<T>,
 }
 
-/// The number of past attitudes kept for [`Params::mag_delay`].
-pub const MAG_HISTORY: usize = 8;
+/// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
+/// magnetometer's delay, and the spacing of the candidate delays of its online estimate.
+pub const MAG_HISTORY_STEP: f64 = 0.01;
 
-/// Time constant (s) of the mean earth-frame field against which each candidate delay's
-/// heading deviation is measured: longer than a sample, shorter than the drift of the
-/// gyroscope frame.
+/// The number of grid attitudes kept: delays from 0 to `(MAG_HISTORY − 1)·h` =
+/// [`MAG_DELAY_MAX`] at any sample rate (an attitude between two samples is interpolated).
+pub const MAG_HISTORY: usize = 6;
+
+/// The longest magnetometer delay (s) the filter compensates: [`Params::mag_delay`] and the
+/// online estimate are clipped to it.
+pub const MAG_DELAY_MAX: f64 = MAG_HISTORY_STEP * (MAG_HISTORY - 1) as f64;
+
+/// Time constant (s) of the mean field against which each candidate delay's heading deviation
+/// is measured: longer than a sample, shorter than the drift of the gyroscope frame.
 const LAG_MEAN_TIME: f64 = 1.0;
+
+/// The delay statistics take a sample at most once per this time (s): averages over seconds
+/// need no more, and their cost per update then falls as the rate rises (at 285.7 Hz a sixth
+/// of the updates feed them).
+const LAG_FEED_STEP: f64 = 0.02;
+
+/// The hard-iron fit takes a sample at most once per this time (s) while turning.
+const HARD_IRON_FEED_STEP: f64 = 0.02;
 
 /// The longest step [`Estimator::update`] takes, s: a longer gap is an error (restart the
 /// estimator after it).
 pub const MAX_STEP: f64 = 1000.0;
 
+/// The attitude uncertainty (rad, per axis) of one step beyond which the step's rotation counts
+/// as unknown (the accelerometer low-pass and the attitude history restart).
+const STEP_UNCERTAINTY: f64 = 0.1;
+
+/// The variance (rad²) of a heading known to be anywhere: uniform over ±π, `π²/3`.
+const UNKNOWN_HEADING_VARIANCE: f64 = core::f64::consts::PI * core::f64::consts::PI / 3.0;
+
 /// The earth's gravity used for the accelerometer gate, m/s².
 const GRAVITY: f64 = 9.81;
+
+/// The standard gravity `g₀` (m/s²) of the accelerometer's range in g.
+const STANDARD_GRAVITY: f64 = 9.806_65;
 
 impl<T: Real> Estimator<T> {
     /// An estimator with these parameters, waiting for its first sample.
@@ -382,6 +529,7 @@ impl<T: Real> Estimator<T> {
             p.gyro_bias_stability,
             p.gyro_bias_time,
             p.gyro_bias_max,
+            p.gyro_delay,
             p.accel_time_constant,
             p.accel_tilt_noise,
             p.accel_correlation_time,
@@ -391,6 +539,7 @@ impl<T: Real> Estimator<T> {
             p.mag_disturbance_weight,
             p.mag_delay,
             p.mag_delay_estimation_time,
+            p.mag_hard_iron_time,
             p.field.norm,
             p.field.dip,
             p.field.reference_time_constant,
@@ -430,6 +579,11 @@ impl<T: Real> Estimator<T> {
         {
             return Err(Error::InvalidArgument);
         }
+        if let Mode::Light { correction_period } = p.mode
+            && !(correction_period.is_finite() && correction_period >= T::ZERO)
+        {
+            return Err(Error::InvalidArgument);
+        }
         let b0 = p.gyro_bias_initial;
         Ok(Self {
             params,
@@ -437,6 +591,10 @@ impl<T: Real> Estimator<T> {
             q_gyro: UnitQuat::IDENTITY,
             q_corr: UnitQuat::IDENTITY,
             bias: Vec3::ZERO,
+            last_gyro: Vec3::ZERO,
+            lead_rate: Vec3::ZERO,
+            rate_is_mean: false,
+            last_saturated: false,
             p: Covariance::diagonal(T::ZERO, b0 * b0),
             accel_lp: LowPass::default(),
             rest: RestDetector::default(),
@@ -446,10 +604,18 @@ impl<T: Real> Estimator<T> {
             history: [UnitQuat::IDENTITY; MAG_HISTORY],
             head: 0,
             filled: 0,
+            grid_age: T::ZERO,
             lag: T::ZERO,
             lag_mean: [Vec3::ZERO; MAG_HISTORY],
             lag_residual: [T::ZERO; MAG_HISTORY],
             lag_time: T::ZERO,
+            lag_clock: T::ZERO,
+            hard_iron: HardIron::default(),
+            hard_iron_offer: Vec3::ZERO,
+            hard_iron_applied: Vec3::ZERO,
+            hard_iron_clock: T::ZERO,
+            lowpass_stale: false,
+            light: light::LightState::default(),
         })
     }
 
@@ -483,10 +649,14 @@ impl<T: Real> Estimator<T> {
     }
 
     /// One update from a gyroscope increment `dtheta` (rad, the integral of the body rate over
-    /// the sample interval `dt`) instead of a rate: the rate `dtheta/dt` is used.
+    /// the sample interval `dt`) instead of a rate: the rate `dtheta/dt` is the mean over the
+    /// step as it is (no trapezoid with the previous sample). Unlike a rate sample, an
+    /// increment needs its interval even on the first sample (to form the rate the rest
+    /// detector starts from).
     ///
     /// # Errors
-    /// See [`Estimator::update`].
+    /// [`Error::InvalidArgument`] for a `dt` that is not finite and positive; otherwise see
+    /// [`Estimator::update`].
     pub fn update_increment(
         &mut self,
         dtheta: Vec3<T>,
@@ -497,20 +667,30 @@ impl<T: Real> Estimator<T> {
         if !(dt.is_finite() && dt > T::ZERO) {
             return Err(Error::InvalidArgument);
         }
-        self.update(dtheta.scale(T::ONE / dt), accel, mag, dt)
+        self.rate_is_mean = true;
+        let r = self.update(dtheta.scale(T::ONE / dt), accel, mag, dt);
+        self.rate_is_mean = false;
+        r
     }
 
     /// One update: propagation by the gyroscope, then the corrections.
     ///
-    /// The first sample with a usable accelerometer initialises the attitude (from the
-    /// magnetometer too, when given: [`super::init`]); `dt` of that sample is not used.
+    /// **The first-sample rule.** The first sample with a usable accelerometer initialises the
+    /// attitude (from the magnetometer too, when given: [`super::init`]) and does not
+    /// propagate; neither do the samples before it (no attitude yet). Until the estimator is
+    /// initialised ([`Estimator::is_initialized`]) `dt` is therefore neither used nor
+    /// checked: the first sample of a log, which has no previous time stamp, may be given any
+    /// value (NaN included), and a log that starts while the sensor turns fast is accepted.
+    /// From the sample after the initialising one on, `dt` is the time since the previous
+    /// sample and is checked as below.
     ///
     /// # Errors
+    /// [`Error::NonFinite`] for a non-finite gyroscope component; once initialised,
     /// [`Error::InvalidArgument`] for a `dt` that is not finite and positive or longer than
-    /// [`MAX_STEP`]; [`Error::NonFinite`] for a non-finite gyroscope component;
-    /// [`Error::StepTooLong`] when the (clipped) rate turns by more than half a turn in `dt`.
-    /// The sample is then ignored and the state is unchanged. A bad accelerometer or magnetometer sample is not an error:
-    /// the propagation goes on and the [`Outcome`] says why the correction was skipped.
+    /// [`MAX_STEP`] and [`Error::StepTooLong`] when the (clipped) rate turns by more than half a
+    /// turn in `dt`. The sample is then ignored and the state is unchanged. A bad accelerometer
+    /// or magnetometer sample is not an error: the propagation goes on and the [`Outcome`]
+    /// says why the correction was skipped.
     pub fn update(
         &mut self,
         gyro: Vec3<T>,
@@ -518,7 +698,7 @@ impl<T: Real> Estimator<T> {
         mag: Option<Vec3<T>>,
         dt: T,
     ) -> Result<Outcome, Error> {
-        if !(dt.is_finite() && dt > T::ZERO && dt <= T::from_f64(MAX_STEP)) {
+        if self.initialized && !(dt.is_finite() && dt > T::ZERO && dt <= T::from_f64(MAX_STEP)) {
             return Err(Error::InvalidArgument);
         }
         let gyro = gyro.try_finite()?;
@@ -535,7 +715,7 @@ impl<T: Real> Estimator<T> {
         // (`propagation::MAX_STEP_ANGLE`); an overflowing square fails too.
         let turn = gyro.scale(dt);
         let within = turn.norm_squared() <= T::PI * T::PI;
-        if !within {
+        if self.initialized && !within {
             return Err(Error::StepTooLong);
         }
         let accel_use = self.check(accel, self.params.accel_range);
@@ -559,7 +739,41 @@ impl<T: Real> Estimator<T> {
             return Ok(out);
         }
 
-        self.predict(gyro, dt, out.gyro_saturated);
+        // The mean rate over the step: the trapezoid of the two samples at its ends (an
+        // increment's rate is that mean already).
+        let mean_rate = if self.rate_is_mean {
+            gyro
+        } else {
+            // Halved before the sum: two finite samples near the type's limit stay finite. A
+            // trapezoid turning by more than half a turn (a huge previous sample over a tiny
+            // step, then an ordinary step) is no mean of this step: the sample alone is used.
+            // A saturated sample at either end is no rate to average with.
+            let m = gyro.scale(T::HALF) + self.last_gyro.scale(T::HALF);
+            if !out.gyro_saturated
+                && !self.last_saturated
+                && m.scale(dt).norm_squared() <= T::PI * T::PI
+            {
+                m
+            } else {
+                gyro
+            }
+        };
+        self.last_gyro = gyro;
+        self.last_saturated = out.gyro_saturated;
+        if let Mode::Light { correction_period } = self.params.mode {
+            return Ok(self.update_light(
+                mean_rate,
+                gyro,
+                accel,
+                mag,
+                (accel_use, mag_use),
+                out,
+                dt,
+                correction_period,
+            ));
+        }
+        self.predict(mean_rate, dt, out.gyro_saturated);
+        self.lead_rate = gyro - self.bias;
         let mut x = [T::ZERO; 6];
 
         if accel_use == SensorUse::Used {
@@ -605,6 +819,8 @@ impl<T: Real> Estimator<T> {
         self.q_corr = UnitQuat::IDENTITY;
         self.accel_lp = LowPass::at(q.rotate(accel));
         self.rest = RestDetector::new(gyro, accel);
+        self.last_gyro = gyro;
+        self.lead_rate = Vec3::ZERO;
         // The first sample's direction errors: the inclination from one accelerometer sample
         // and (with a magnetometer) the heading from one field sample.
         let s_tilt = self.params.accel_tilt_noise;
@@ -623,22 +839,130 @@ impl<T: Real> Estimator<T> {
 
     fn predict(&mut self, gyro: Vec3<T>, dt: T, saturated: bool) {
         let w = gyro - self.bias;
+        let before = self.q_gyro;
         self.q_gyro = self
             .q_gyro
             .mul_exp_unchecked(w.scale(dt))
             .renormalize_fast();
+        self.advance_grid(before, dt);
         let r = self.attitude_enu().to_rotation_matrix();
         let f = r.scale(-dt);
         let pr = &self.params;
-        let sw = pr.gyro_scale_noise * w.norm();
-        let q_theta = (pr.gyro_noise_density * pr.gyro_noise_density + sw * sw) * dt;
+        // The rate-proportional noise `(s·|ω|)²·Δt = θ²·s²/Δt` with `θ = |ω|·Δt` the step's
+        // rotation (at most π, checked by `update`): formed from `θ`, not from `|ω|`, which
+        // can overflow where `θ` is small, and bounded by `θ²` (an error as large as the
+        // rotation itself, a scale factor wrong by 100 %), which only binds for `Δt < s²`.
+        let theta2 = w.scale(dt).norm_squared();
+        let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
+        let q_scale = theta2 * (s2 / dt).min(T::ONE);
+        let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * dt + q_scale;
         let q_bias = pr.gyro_bias_stability * pr.gyro_bias_stability * dt / pr.gyro_bias_time;
+        let trace =
+            |p: &Covariance<T>| p.attitude.m[0][0] + p.attitude.m[1][1] + p.attitude.m[2][2];
+        let before = trace(&self.p);
         self.p.predict(f, q_theta, q_bias);
         if saturated {
             // The true rate is somewhere beyond the range: up to a range's worth of rotation
-            // per step is unknown.
-            let a = pr.gyro_range * dt;
+            // per step (at most a half turn) is unknown.
+            let a = (pr.gyro_range * dt).min(T::PI);
             self.p.inflate_attitude(a * a);
+        }
+        // A step whose own attitude uncertainty exceeds (0.1 rad)² per axis (a saturated
+        // sample, a long gap with an uncertain bias) turned the sensor by an unknown rotation:
+        // the gyroscope-frame low-pass of the specific force and the attitudes kept for the
+        // magnetometer's delay span it, so the low-pass restarts at the next usable sample and
+        // the history refills before it is used (or feeds the delay estimate) again.
+        let added = trace(&self.p) - before;
+        let limit = T::from_f64(3.0 * STEP_UNCERTAINTY * STEP_UNCERTAINTY);
+        if saturated || !added.is_finite() || added > limit {
+            self.lowpass_stale = true;
+            self.filled = 0;
+        }
+        self.p.bound(T::PI * T::PI, self.bias_variance_max());
+    }
+
+    /// The largest bias variance: the bias is clipped to [`Params::gyro_bias_max`], so its
+    /// uncertainty is at most that squared (or the initial variance, when that is larger).
+    fn bias_variance_max(&self) -> T {
+        let pr = &self.params;
+        let m = pr.gyro_bias_max * pr.gyro_bias_max;
+        let b0 = pr.gyro_bias_initial * pr.gyro_bias_initial;
+        m.max(b0)
+    }
+
+    /// Pushes the strapdown attitudes at the grid times passed in this step (from `before`, at
+    /// `t − dt`, to `q_g` now): linear between the two, renormalised, as the exponential map
+    /// of a constant rate over the step would place them to first order.
+    fn advance_grid(&mut self, before: UnitQuat<T>, dt: T) {
+        let h = T::from_f64(MAG_HISTORY_STEP);
+        let mut age = self.grid_age + dt;
+        // A step longer than the history: only its last MAG_HISTORY grid times matter.
+        let span = h * T::from_f64(MAG_HISTORY as f64);
+        if age >= span + h {
+            age -= ((age - span) / h).floor() * h;
+        }
+        let (a, b) = (before.into_quat(), self.q_gyro.into_quat());
+        for _ in 0..=MAG_HISTORY {
+            if age < h {
+                break;
+            }
+            age -= h;
+            // The grid time t − age lies at the fraction (dt − age)/dt of the step.
+            let f = ((dt - age) / dt).max(T::ZERO).min(T::ONE);
+            let q = UnitQuat::new_unchecked(a + (b - a).scale(f)).renormalize_fast();
+            self.head = (self.head + 1) % MAG_HISTORY;
+            if let Some(slot) = self.history.get_mut(self.head) {
+                *slot = q;
+            }
+            self.filled = (self.filled + 1).min(MAG_HISTORY);
+        }
+        self.grid_age = age.max(T::ZERO).min(h);
+    }
+
+    /// The grid attitude `j` steps back (0: the newest), the current attitude when the grid
+    /// does not reach that far yet.
+    fn grid(&self, j: usize) -> UnitQuat<T> {
+        if j >= self.filled {
+            return self.q_gyro;
+        }
+        let idx = (self.head + MAG_HISTORY - j.min(MAG_HISTORY - 1)) % MAG_HISTORY;
+        self.history.get(idx).copied().unwrap_or(self.q_gyro)
+    }
+
+    /// The field sample mapped to the gyroscope frame by the attitude `delay` seconds ago
+    /// (linear between the two neighbouring attitudes of the grid, or between the newest grid
+    /// attitude and now; the oldest kept when the grid is shorter).
+    fn field_at(&self, mag: Vec3<T>, delay: T) -> Vec3<T> {
+        if let Mode::Light { .. } = self.params.mode {
+            return self.light_field(mag);
+        }
+        if delay <= T::ZERO || self.filled == 0 {
+            return self.q_gyro.rotate(mag);
+        }
+        let age = self.grid_age;
+        if delay <= age {
+            let now = self.q_gyro.rotate(mag);
+            let u0 = self.grid(0).rotate(mag);
+            return now + (u0 - now).scale(delay / age);
+        }
+        let h = T::from_f64(MAG_HISTORY_STEP);
+        let x = (delay - age) / h;
+        let j = x.floor();
+        let frac = x - j;
+        let last = self.filled - 1;
+        // back = j as an index (counted in T: no integer-float conversion on the hot path).
+        let mut back = 0usize;
+        let mut mid = T::HALF;
+        while back < last && mid < j {
+            back += 1;
+            mid += T::ONE;
+        }
+        let a = self.grid(back).rotate(mag);
+        if back < last && frac > T::ZERO {
+            let b = self.grid(back + 1).rotate(mag);
+            a + (b - a).scale(frac)
+        } else {
+            a
         }
     }
 
@@ -653,11 +977,19 @@ impl<T: Real> Estimator<T> {
     }
 
     fn accel_update(&mut self, accel: Vec3<T>, dt: T, x: &mut [T; 6]) -> SensorUse {
-        let pr = self.params;
+        let (tau_a, reject, gains) = (
+            self.params.accel_time_constant,
+            self.params.accel_reject,
+            self.params.gains,
+        );
         // Filter in the gyroscope frame, map to the earth frame by the corrections.
         let a_gyro = self.q_gyro.rotate(accel);
-        let v = if pr.accel_time_constant > T::ZERO {
-            let k = LowPass::gain(pr.accel_time_constant, dt);
+        if self.lowpass_stale {
+            self.accel_lp = LowPass::at(a_gyro);
+            self.lowpass_stale = false;
+        }
+        let v = if tau_a > T::ZERO {
+            let k = LowPass::gain(tau_a, dt);
             self.accel_lp.update(a_gyro, k)
         } else {
             a_gyro
@@ -665,7 +997,7 @@ impl<T: Real> Estimator<T> {
         // What the low-pass filter left of non-gravitational acceleration shows in its norm.
         let g = T::from_f64(GRAVITY);
         let residual = (v.norm() - g).abs() / g;
-        if residual > pr.accel_reject {
+        if residual > reject {
             return SensorUse::Disturbed;
         }
         let v = self.q_corr.rotate(v);
@@ -677,7 +1009,7 @@ impl<T: Real> Estimator<T> {
         } else {
             (T::ZERO, T::ZERO)
         };
-        match pr.gains {
+        match gains {
             Gains::Kalman => {
                 let r = self.tilt_variance(dt);
                 self.scalar_update(x, 0, ex, r);
@@ -703,52 +1035,70 @@ impl<T: Real> Estimator<T> {
     }
 
     fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
-        let pr = self.params;
-        let now = self.q_gyro;
-        self.head = (self.head + 1) % MAG_HISTORY;
-        if let Some(slot) = self.history.get_mut(self.head) {
-            *slot = now;
+        let pr = MagParams::of(&self.params);
+        let rate = (gyro - self.bias).norm();
+        // (The light mode feeds the fit on every sample itself: `light.rs`.)
+        if pr.mag_hard_iron_time > T::ZERO && self.params.mode == Mode::Full {
+            self.hard_iron_clock += dt;
+            let turning = rate >= pr.field.new_field_min_rate;
+            if self.hard_iron_clock >= T::from_f64(HARD_IRON_FEED_STEP) {
+                if turning {
+                    self.hard_iron
+                        .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
+                    // A converged offset larger than the disturbance monitor's norm threshold
+                    // (a smaller one leaves a field the monitor accepts, and is of the size of
+                    // the model's own errors: soft iron, calibration, a field that varies over
+                    // the room) is offered to the heading update.
+                    self.hard_iron_offer = match self.hard_iron.offset() {
+                        Some(h) if h.norm() > pr.field.norm * self.field.reference().0 => h,
+                        _ => Vec3::ZERO,
+                    };
+                }
+                self.hard_iron_clock = T::ZERO;
+            }
         }
-        self.filled = (self.filled + 1).min(MAG_HISTORY);
         let estimating = pr.mag_delay_estimation_time > T::ZERO;
         let lag = if estimating && self.lag_time >= pr.mag_delay_estimation_time {
             self.lag
         } else {
-            pr.mag_delay / dt
+            pr.mag_delay
         };
-        // The field at the fractional delay: linear between the two neighbouring samples'
-        // attitudes (the newest when the history is shorter).
-        let lag = lag.max(T::ZERO).min(T::from_f64((MAG_HISTORY - 1) as f64));
-        let whole = lag.floor();
-        let frac = lag - whole;
-        let mut back = 0usize;
-        while back + 1 < self.filled && T::from_f64(back as f64 + 0.5) < whole {
-            back += 1;
+        let lag = lag.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX));
+        let mut m = self.q_corr.rotate(self.field_at(mag, lag));
+        let (mut norm, mut dip) = norm_dip(m);
+        // The offered hard-iron offset is subtracted when the corrected field is closer to
+        // the reference (relative norm plus dip) than the raw one.
+        self.hard_iron_applied = Vec3::ZERO;
+        let h = self.hard_iron_offer;
+        if self.field_started && h != Vec3::ZERO {
+            let mc = self.q_corr.rotate(self.field_at(mag - h, lag));
+            let (nc, dc) = norm_dip(mc);
+            if self.field.deviation(nc, dc) < self.field.deviation(norm, dip) {
+                (m, norm, dip) = (mc, nc, dc);
+                self.hard_iron_applied = h;
+            }
         }
-        let at = |b: usize| {
-            let idx = (self.head + MAG_HISTORY - b.min(MAG_HISTORY - 1)) % MAG_HISTORY;
-            self.history.get(idx).copied().unwrap_or(now).rotate(mag)
-        };
-        let m_gyro = if frac > T::ZERO && back + 1 < self.filled {
-            let (a, b) = (at(back), at(back + 1));
-            a + (b - a).scale(frac)
-        } else {
-            at(back)
-        };
-        let m = self.q_corr.rotate(m_gyro);
-        let (norm, dip) = norm_dip(m);
+        let mag = mag - self.hard_iron_applied;
         if !self.field_started {
             self.field = FieldMonitor::new(norm, dip);
             self.field_started = true;
         }
-        let rate = (gyro - self.bias).norm();
+        let was_confirmed = self.field.confirmed();
         let disturbed = self.field.update(norm, dip, dt, rate, &pr.field);
-        if estimating
-            && !disturbed
-            && self.filled == MAG_HISTORY
-            && rate >= pr.field.new_field_min_rate
-        {
-            self.estimate_lag(mag, dt);
+        if !was_confirmed && self.field.replaced() {
+            // The heading came from a reference the field never agreed with (a disturbed first
+            // sample): it may be wrong by any angle, whatever its variance says.
+            self.p
+                .inflate_heading(T::from_f64(UNKNOWN_HEADING_VARIANCE));
+        }
+        if estimating {
+            self.lag_clock += dt;
+            if self.lag_clock >= T::from_f64(LAG_FEED_STEP) {
+                if !disturbed && self.filled == MAG_HISTORY && rate >= pr.field.new_field_min_rate {
+                    self.estimate_lag(mag, self.lag_clock);
+                }
+                self.lag_clock = T::ZERO;
+            }
         }
         let g = pr.mag_disturbance_weight;
         if disturbed && g <= T::ZERO {
@@ -773,9 +1123,8 @@ impl<T: Real> Estimator<T> {
             Gains::Fixed {
                 heading_time_constant,
             } => {
-                let k = dt / (heading_time_constant + dt) * (s * s / var);
-                self.p.update_attitude_axis_only(2, k, r);
-                k
+                let k = first_order_gain(dt, heading_time_constant) * (s * s / var);
+                self.p.update_attitude_axis_only(2, k, r)
             }
         };
         // The heading correction: a turn about the earth vertical only.
@@ -789,32 +1138,47 @@ impl<T: Real> Estimator<T> {
         }
     }
 
-    /// Feeds the delay statistics with one field sample (rotating, undisturbed) and, after
-    /// `τ_d` of them, moves the delay to their minimum (refined by a parabola).
+    /// Feeds the delay statistics with one field sample (rotating, undisturbed) standing for
+    /// the time `dt` since the last offer ([`LAG_FEED_STEP`]) and, after `τ_d` of them, moves the
+    /// delay to their minimum (refined by a parabola).
+    ///
+    /// Candidate `k` is the delay `k·h`: the field mapped by the attitude at `t − k·h`, linear
+    /// between the grid attitudes `k − 1` and `k` at the same fraction `1 − age/h` for every
+    /// `k ≥ 1` (the grid is uniform), so each grid attitude rotates the sample once. The heading
+    /// deviation is measured about the earth's vertical seen in the gyroscope frame.
     fn estimate_lag(&mut self, mag: Vec3<T>, dt: T) {
         let tau = self.params.mag_delay_estimation_time;
-        let k_mean = dt / (T::from_f64(LAG_MEAN_TIME) + dt);
-        let k_res = dt / (tau + dt);
+        let k_mean = first_order_gain(dt, T::from_f64(LAG_MEAN_TIME));
+        let k_res = first_order_gain(dt, tau);
         let first = self.lag_time <= T::ZERO;
-        for (b, (mean, res)) in self
-            .lag_mean
-            .iter_mut()
-            .zip(self.lag_residual.iter_mut())
-            .enumerate()
-        {
-            let idx = (self.head + MAG_HISTORY - b) % MAG_HISTORY;
-            let Some(q) = self.history.get(idx) else {
+        let h = T::from_f64(MAG_HISTORY_STEP);
+        let frac = T::ONE - self.grid_age / h;
+        let up = self.q_corr.inverse_rotate(Vec3::Z);
+        let now = self.q_gyro.rotate(mag);
+        let mut newer = self.grid(0).rotate(mag);
+        for k in 0..MAG_HISTORY {
+            let m = if k == 0 {
+                now
+            } else {
+                let older = self.grid(k).rotate(mag);
+                let m = newer + (older - newer).scale(frac);
+                newer = older;
+                m
+            };
+            let (Some(mean), Some(res)) = (self.lag_mean.get_mut(k), self.lag_residual.get_mut(k))
+            else {
                 continue;
             };
-            let m = self.q_corr.rotate(q.rotate(mag));
             if first {
                 *mean = m;
             }
             let d = m - *mean;
-            let hm = m.x * m.x + m.y * m.y;
-            let hn = mean.x * mean.x + mean.y * mean.y;
-            let c = m.x * mean.y - m.y * mean.x;
-            let e = if hm * hn > T::ZERO {
+            let vm = m.dot(up);
+            let vn = mean.dot(up);
+            let hm = m.norm_squared() - vm * vm;
+            let hn = mean.norm_squared() - vn * vn;
+            let c = m.cross(*mean).dot(up);
+            let e = if hm > T::ZERO && hn > T::ZERO {
                 c * c / (hm * hn)
             } else {
                 T::ZERO
@@ -846,21 +1210,21 @@ impl<T: Real> Estimator<T> {
                 lag += off.max(-T::HALF).min(T::HALF);
             }
         }
-        self.lag = lag;
+        self.lag = lag * h;
     }
 
     /// The magnetometer's delay behind the gyroscope in use, s: [`Params::mag_delay`], or, once
-    /// estimated ([`Params::mag_delay_estimation_time`]), the estimate in samples times `dt`,
-    /// the step between magnetometer samples (the delay is counted in the updates that carry
-    /// one, as the attitude history is).
-    pub fn mag_delay(&self, dt: T) -> T {
-        if self.params.mag_delay_estimation_time > T::ZERO
+    /// estimated ([`Params::mag_delay_estimation_time`]), the estimate; both clipped to
+    /// [`MAG_DELAY_MAX`].
+    pub fn mag_delay(&self) -> T {
+        let d = if self.params.mag_delay_estimation_time > T::ZERO
             && self.lag_time >= self.params.mag_delay_estimation_time
         {
-            self.lag * dt
+            self.lag
         } else {
             self.params.mag_delay
-        }
+        };
+        d.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX))
     }
 
     /// A sequential scalar Kalman update of error-state component `i` with measurement `z`:
@@ -890,10 +1254,18 @@ impl<T: Real> Estimator<T> {
         self.q_corr * self.q_gyro
     }
 
-    /// The attitude, sensor → earth, in the frame of [`Params::frame`]. The identity before the
-    /// first usable sample.
+    /// The attitude, sensor → earth, in the frame of [`Params::frame`], at the time of the
+    /// motion the last samples describe: the filter's attitude carried forward by
+    /// [`Params::gyro_delay`] at the last rate. The identity before the first usable sample.
     pub fn attitude(&self) -> UnitQuat<T> {
         let q = self.attitude_enu();
+        let d = self.params.gyro_delay;
+        let q = if d > T::ZERO && self.initialized {
+            q.mul_exp_unchecked(self.lead_rate.scale(d))
+                .renormalize_fast()
+        } else {
+            q
+        };
         match self.params.frame {
             EarthFrame::Enu => q,
             EarthFrame::Ned => {
@@ -934,9 +1306,54 @@ impl<T: Real> Estimator<T> {
         self.last
     }
 
+    /// The hard-iron offset subtracted from the last field sample (input units, sensor frame;
+    /// zero when none was, [`Params::mag_hard_iron_time`]), and the online fit.
+    pub fn hard_iron(&self) -> (Vec3<T>, HardIron<T>) {
+        (self.hard_iron_applied, self.hard_iron)
+    }
+
+    /// Whether the heading rests on a confirmed magnetic reference
+    /// ([`FieldMonitor::confirmed`]): `false` in 6D, before a field was seen, and while the
+    /// reference is still the one learned from the first field sample without the field having
+    /// agreed with it since (a first sample taken in a disturbed field gives a wrong heading
+    /// and a wrong reference; that heading is not trustworthy until the reference is replaced
+    /// by the true field, seen while turning for [`FieldThresholds::new_field_time`]).
+    pub fn heading_trusted(&self) -> bool {
+        self.field_started && self.field.confirmed()
+    }
+
     /// The magnetic reference (norm in input units, dip in rad), once a field was seen.
     pub fn field_reference(&self) -> Option<(T, T)> {
         self.field_started.then(|| self.field.reference())
+    }
+}
+
+/// The parameters the heading update reads, copied out of [`Params`] (the whole of it is
+/// larger than the update needs to copy).
+#[derive(Clone, Copy)]
+struct MagParams<T> {
+    gains: Gains<T>,
+    mag_heading_noise: T,
+    mag_correlation_time: T,
+    mag_delay: T,
+    mag_delay_estimation_time: T,
+    mag_hard_iron_time: T,
+    mag_disturbance_weight: T,
+    field: FieldThresholds<T>,
+}
+
+impl<T: Copy> MagParams<T> {
+    fn of(p: &Params<T>) -> Self {
+        Self {
+            gains: p.gains,
+            mag_heading_noise: p.mag_heading_noise,
+            mag_correlation_time: p.mag_correlation_time,
+            mag_delay: p.mag_delay,
+            mag_delay_estimation_time: p.mag_delay_estimation_time,
+            mag_hard_iron_time: p.mag_hard_iron_time,
+            mag_disturbance_weight: p.mag_disturbance_weight,
+            field: p.field,
+        }
     }
 }
 

@@ -114,13 +114,27 @@ pub fn one_plus_previous_terms<T: Ring>(previous: Vec3<T>, current: Vec3<T>) -> 
 }
 
 /// The coefficient of the 2-sample rule for unequal sub-intervals `h₁`, `h₂` (see
-/// [`two_sample_unequal_terms`]): `c = (h₁ + h₂)² / (6 h₁ h₂)`, `⅔` for `h₁ = h₂`, formed as
-/// `(r + 2 + 1/r)/6` with `r = h₁/h₂`. Domain: `h₁, h₂ > 0` (unchecked: a zero interval gives
-/// an infinite or NaN coefficient).
+/// [`two_sample_unequal_terms`]): `c = (h₁ + h₂)² / (6 h₁ h₂)`, `⅔` for `h₁ = h₂`. Formed as
+/// `(r + 2 + 1/r)/6` with `r = h₁/h₂` for ratios within `[10⁻⁶, 10⁶]`; beyond them that sum
+/// overflows (or `r` is subnormal) before the division by 6 although `c` is representable, so
+/// there `c = u·((H/6)/h + 1/6)` with `H ≥ h` the two intervals and `u = (h₁ + h₂)/H ∈ [1, 2]`
+/// (`H/6` stays normal for `H ≥ 10⁻³⁰`; below, both intervals are tiny and `u·(H/h + 1)/6`
+/// cannot overflow). Finite wherever `c` is, to a few ulps. Domain: `h₁, h₂ > 0` (unchecked: a
+/// zero interval gives an infinite or NaN coefficient).
 #[inline]
 pub fn two_sample_unequal_coefficient<T: Real>(h1: T, h2: T) -> T {
     let r = h1 / h2;
-    (r + T::TWO + T::ONE / r) / T::from_f64(6.0)
+    let six = T::from_f64(6.0);
+    if r >= T::from_f64(1e-6) && r <= T::from_f64(1e6) {
+        return (r + T::TWO + T::ONE / r) / six;
+    }
+    let (small, big) = if h1 <= h2 { (h1, h2) } else { (h2, h1) };
+    let u = (h1 + h2) / big;
+    if big >= T::from_f64(1e-30) {
+        u * ((big / six) / small + T::ONE / six)
+    } else {
+        u * (big / small + T::ONE) / six
+    }
 }
 
 /// The 2-sample rule for two increments over unequal sub-intervals `h₁` then `h₂`:

@@ -355,13 +355,32 @@ pub struct Sample<'a> {
     pub scored: bool,
 }
 
+/// A row that cannot be used: the reason, and whether it is a glitch (a non-finite time stamp
+/// or gyroscope value) that a reader may turn into a gap (`estimate --skip-bad-rows`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BadRow {
+    /// Why the row cannot be used, as the tools print it after `line N: `.
+    pub reason: String,
+    /// Whether the row is a glitch: a non-finite time stamp or gyroscope value.
+    pub glitch: bool,
+}
+
+impl From<String> for BadRow {
+    fn from(reason: String) -> Self {
+        BadRow {
+            reason,
+            glitch: false,
+        }
+    }
+}
+
 /// Parses one row by `layout` (the reference only when `truth`).
 pub fn parse_row<'a>(
     text: &'a str,
     layout: &Layout,
     s: &Scales,
     truth: bool,
-) -> Result<Sample<'a>, String> {
+) -> Result<Sample<'a>, BadRow> {
     let fields: Vec<&str> = text.split(',').map(str::trim).collect();
     if fields.len() != layout.names.len() {
         return Err(format!(
@@ -373,7 +392,8 @@ pub fn parse_row<'a>(
                 "as the first row"
             },
             fields.len()
-        ));
+        )
+        .into());
     }
     let field = |i: usize| fields.get(i).copied().unwrap_or("");
     let number = |i: usize| -> Result<f64, String> {
@@ -404,10 +424,17 @@ pub fn parse_row<'a>(
             ))
         }
     };
-    let t = finite(layout.time, "time stamp")?;
+    let glitch = |i: usize, what: &str| -> Result<f64, BadRow> {
+        let x = number(i)?;
+        finite(i, what).map_err(|reason| BadRow {
+            reason,
+            glitch: !x.is_finite(),
+        })
+    };
+    let t = glitch(layout.time, "time stamp")?;
     let mut gyro = [0.0; 3];
     for (g, &i) in gyro.iter_mut().zip(&layout.gyro) {
-        *g = finite(i, "gyroscope value")? * s.gyro;
+        *g = glitch(i, "gyroscope value")? * s.gyro;
     }
     let mut accel = [0.0; 3];
     for (a, &i) in accel.iter_mut().zip(&layout.accel) {

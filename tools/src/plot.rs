@@ -13,7 +13,28 @@ pub const COLORS: [RGBColor; 6] = [
     RGBColor(140, 86, 75),
 ];
 
-/// A drawing call's error as the tools report it.
-pub fn err<E: std::fmt::Debug>(e: E) -> String {
-    format!("drawing the plot: {e:?}")
+/// A drawing call's error as the tools report it: one line (the error's message, its lines
+/// joined).
+pub fn err<E: std::fmt::Display>(e: E) -> String {
+    let text = e.to_string();
+    let one_line: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    format!("drawing the plot: {}", one_line.join(" "))
+}
+
+/// Checks, before a run, that the plot `path` can be created: its folder exists and is a
+/// folder. The message names the folder.
+pub fn check_folder(path: &std::path::Path) -> Result<(), String> {
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    };
+    if folder.is_dir() {
+        Ok(())
+    } else {
+        Err(format!("the folder {} does not exist", folder.display()))
+    }
 }

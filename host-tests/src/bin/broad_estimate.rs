@@ -7,13 +7,18 @@
 //!   --f32            run the filter in f32 (default f64)
 //!   --both           run f64 and f32 and print the largest difference of the scores
 //!   --6d             no magnetometer (inclination is the meaningful score)
+//!   --params FILE    parameters from a parameter file (gyrostat::estimation::params_text),
+//!                    applied where it stands among the --set options
 //!   --set NAME=VALUE a parameter (SI units; a value ending in `deg` is converted to rad,
 //!                    `deg/s` too); repeatable. Names: host_tests::broad::set_param
 //!   --out DIR        write each estimate as DIR/NN.csv (t,qw,qx,qy,qz,bx,by,bz)
+//!   --every N        keep every Nth row (rows 0, N, 2N, …; nothing else changed): the trial
+//!                    at 1/N of its rate, the rows `run_peers.py --every N` gives the peers
 //!   --quiet          print only the group means
 //! ```
 //! Prints per trial the total, heading and inclination RMSE (degrees) and the means over the
-//! undisturbed, disturbed and all trials.
+//! undisturbed, disturbed and all trials, and over the two halves of the split the design is
+//! checked on (A: 01 05 09 14 21 26 30 34, B: 03 07 11 16 24 28 32 36).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -22,6 +27,10 @@ use gyrostat::estimation::Params;
 use host_tests::broad::{
     self, EstimateRow, Log, Mode, Score, TRIALS, Units, estimate, open_log, score_rows,
 };
+
+/// The half-split the design is checked on: the two halves of the 16 shared trials.
+const HALF_A: [&str; 8] = ["01", "05", "09", "14", "21", "26", "30", "34"];
+const HALF_B: [&str; 8] = ["03", "07", "11", "16", "24", "28", "32", "36"];
 
 struct Job {
     name: String,
@@ -45,6 +54,8 @@ fn main() -> ExitCode {
     let mut both = false;
     let mut quiet = false;
     let mut out: Option<PathBuf> = None;
+    let mut every = 1usize;
+    let mut lead = 0.0f64;
     let mut jobs = Vec::new();
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -54,6 +65,37 @@ fn main() -> ExitCode {
             "--both" => both = true,
             "--quiet" => quiet = true,
             "--out" => out = args.next().map(PathBuf::from),
+            "--lead" => match args.next().and_then(|v| v.parse::<f64>().ok()) {
+                Some(x) if x.is_finite() => lead = x,
+                _ => {
+                    eprintln!("error: --lead needs seconds");
+                    return ExitCode::from(2);
+                }
+            },
+            "--every" => match args.next().and_then(|v| v.parse::<usize>().ok()) {
+                Some(n) if n >= 1 => every = n,
+                _ => {
+                    eprintln!("error: --every needs a whole number ≥ 1");
+                    return ExitCode::from(2);
+                }
+            },
+            "--params" => {
+                let Some(path) = args.next() else {
+                    eprintln!("error: --params needs FILE");
+                    return ExitCode::from(2);
+                };
+                let text = match std::fs::read_to_string(&path) {
+                    Ok(t) => t,
+                    Err(e) => {
+                        eprintln!("error: --params: {path}: {e}");
+                        return ExitCode::from(2);
+                    }
+                };
+                if let Err(e) = params.set_from_text(&text) {
+                    eprintln!("error: --params: {path}: {e}");
+                    return ExitCode::from(2);
+                }
+            }
             "--set" => {
                 let Some(kv) = args.next() else {
                     eprintln!("error: --set needs NAME=VALUE");
@@ -106,9 +148,25 @@ fn main() -> ExitCode {
         return ExitCode::from(1);
     }
 
-    let run_one = |job: &Job| -> Result<(Score, Option<Score>, broad::UseCounts), String> {
-        let log: Log = open_log(&job.path, Units::SI).map_err(|e| e.to_string())?;
-        let rows: Vec<EstimateRow> = estimate(&log, &params, mode).map_err(|e| e.to_string())?;
+    type Run = (Score, Option<Score>, broad::UseCounts, f64, [[f64; 3]; 3]);
+    let run_one = |job: &Job| -> Result<Run, String> {
+        let mut log: Log = open_log(&job.path, Units::SI).map_err(|e| e.to_string())?;
+        if every > 1 {
+            log.rows = log.rows.into_iter().step_by(every).collect();
+        }
+        let mut rows: Vec<EstimateRow> =
+            estimate(&log, &params, mode).map_err(|e| e.to_string())?;
+        if lead != 0.0 {
+            // Research: the output carried forward by `lead` seconds at the last rate.
+            for (r, row) in rows.iter_mut().zip(&log.rows) {
+                let w = host_tests::reference::add(
+                    row.gyro,
+                    host_tests::reference::scale(r.bias, -1.0),
+                );
+                let e = host_tests::reference::quat_exp(host_tests::reference::scale(w, lead));
+                r.q = host_tests::reference::qmul(r.q, e);
+            }
+        }
         if let Some(dir) = &out {
             let f = std::fs::File::create(dir.join(format!("{}.csv", job.name)))
                 .map_err(|e| e.to_string())?;
@@ -124,7 +182,14 @@ fn main() -> ExitCode {
         } else {
             None
         };
-        Ok((score_rows(&log, &rows), other, broad::use_counts(&rows)))
+        let delay = rows.last().map_or(0.0, |r| r.mag_delay);
+        Ok((
+            score_rows(&log, &rows),
+            other,
+            broad::use_counts(&rows),
+            delay,
+            rows.last().map_or([[0.0; 3]; 3], |r| r.hard_iron),
+        ))
     };
 
     // Two worker threads over the trials.
@@ -145,22 +210,30 @@ fn main() -> ExitCode {
     });
 
     let mut status = ExitCode::SUCCESS;
-    let mut groups: [(f64, f64, f64, usize); 3] = [(0.0, 0.0, 0.0, 0); 3];
+    // undisturbed, disturbed, all, then the half-split's two halves.
+    let mut groups: [(f64, f64, f64, usize); 5] = [(0.0, 0.0, 0.0, 0); 5];
     let mut worst_diff = 0.0f64;
     if !quiet {
         println!(
-            "| trial | total ° | heading ° | inclination ° | n | rest | acc rej | mag rej |{}",
+            "| trial | total ° | heading ° | inclination ° | n | rest | acc rej | mag rej | delay ms | hard iron (fit ± sd) |{}",
             if both { " f32−f64 total °|" } else { "" }
         );
         println!(
-            "|---|---|---|---|---|---|---|---|{}",
+            "|---|---|---|---|---|---|---|---|---|---|{}",
             if both { "---|" } else { "" }
         );
     }
     for (job, r) in &results {
         match r {
-            Ok((s, other, c)) => {
-                for g in [usize::from(job.disturbed), 2] {
+            Ok((s, other, c, delay, hi)) => {
+                let half = if HALF_A.contains(&job.name.as_str()) {
+                    Some(3)
+                } else if HALF_B.contains(&job.name.as_str()) {
+                    Some(4)
+                } else {
+                    None
+                };
+                for g in [usize::from(job.disturbed), 2].into_iter().chain(half) {
                     groups[g].0 += s.total;
                     groups[g].1 += s.heading;
                     groups[g].2 += s.inclination;
@@ -176,7 +249,7 @@ fn main() -> ExitCode {
                 });
                 if !quiet {
                     println!(
-                        "| {} | {:.3} | {:.3} | {:.3} | {} | {} | {} | {} |{}",
+                        "| {} | {:.3} | {:.3} | {:.3} | {} | {} | {} | {} | {:.2} | {:.1} ({:.1} {:.1} {:.1} ± {:.1}) |{}",
                         job.name,
                         s.total,
                         s.heading,
@@ -185,6 +258,12 @@ fn main() -> ExitCode {
                         c.rest,
                         c.accel_disturbed,
                         c.mag_disturbed,
+                        delay * 1e3,
+                        hi[0].iter().map(|v| v * v).sum::<f64>().sqrt(),
+                        hi[1][0],
+                        hi[1][1],
+                        hi[1][2],
+                        hi[2].iter().copied().fold(0.0, f64::max),
                         diff.unwrap_or_default()
                     );
                 }
@@ -201,7 +280,8 @@ fn main() -> ExitCode {
             }
         }
     }
-    for (label, g) in ["undisturbed", "disturbed", "all"].iter().zip(groups) {
+    let labels = ["undisturbed", "disturbed", "all", "half A", "half B"];
+    for (label, g) in labels.iter().zip(groups) {
         if g.3 > 0 {
             let n = g.3 as f64;
             println!(

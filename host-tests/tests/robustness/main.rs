@@ -9,6 +9,7 @@
 //! - [`soak`]: long f32 runs of the hot paths, watching the invariants.
 
 mod dynamics;
+mod estimation;
 mod fixed;
 mod oracles;
 mod propagation;
@@ -17,3 +18,4 @@ mod rotation;
 mod second_campaign;
 mod sensor;
 mod soak;
+mod third_campaign;

@@ -263,7 +263,8 @@ fn read(args: &Args) -> Result<Log, Failure> {
             // The shared reader's note on the estimator does not apply here.
             Failure::Row(
                 n,
-                e.replace(" (the estimator cannot propagate across it)", ""),
+                e.reason
+                    .replace(" (the estimator cannot propagate across it)", ""),
             )
         })?;
         row += 1;

@@ -1,7 +1,7 @@
 //! `estimate`: attitude and gyroscope bias from an IMU log (`gyrostat::estimation::Estimator`).
 //!
 //! ```text
-//! estimate [--6d | --9d] [--f32] [--frame enu|ned] [--gyro-unit U] [--accel-unit U]
+//! estimate [--6d | --9d] [--f32] [--mode full|light] [--frame enu|ned] [--gyro-unit U] [--accel-unit U]
 //!     [--mag-unit U] [--time-unit U] [--truth] [--plot FILE.svg] [--set NAME=VALUE]... [FILE]
 //! ```
 //! Run with `--help` for the full description of the input and output formats.
@@ -13,7 +13,9 @@ use std::io::{self, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use gyrostat::estimation::{EarthFrame, Estimator, Gains, MAX_STEP, Outcome, Params, SensorUse};
+use gyrostat::estimation::{
+    EarthFrame, Estimator, Gains, MAX_STEP, Mode, Outcome, Params, SensorUse,
+};
 use gyrostat::{Error, Real, Vec3};
 use gyrostat_tools::calibration::{self, CalibrationFile};
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
@@ -28,14 +30,17 @@ const CLI: Cli = Cli {
         Flag::switch("--6d"),
         Flag::switch("--9d"),
         Flag::switch("--f32"),
+        Flag::value("--mode"),
         Flag::value("--frame"),
         Flag::value("--gyro-unit"),
         Flag::value("--accel-unit"),
         Flag::value("--mag-unit"),
         Flag::value("--time-unit"),
         Flag::switch("--truth"),
+        Flag::switch("--skip-bad-rows"),
         Flag::value("--plot"),
         Flag::value("--calibration"),
+        Flag::value("--params"),
         Flag::repeated("--set"),
     ],
 };
@@ -44,9 +49,12 @@ const HELP: &str = "\
 estimate: attitude and gyroscope bias from an IMU log (gyrostat's attitude estimator)
 
 USAGE:
-    estimate [--6d | --9d] [--f32] [--frame enu|ned] [--gyro-unit rad/s|deg/s]
+    estimate [--6d | --9d] [--f32] [--mode full|light] [--frame enu|ned]
+             [--gyro-unit rad/s|deg/s]
              [--accel-unit m/s^2|g] [--mag-unit uT|nT|G|any] [--time-unit s|ms|us]
-             [--calibration FILE] [--truth] [--plot FILE.svg] [--set NAME=VALUE]... [FILE]
+             [--calibration FILE] [--params FILE] [--truth] [--skip-bad-rows]
+             [--plot FILE.svg]
+             [--set NAME=VALUE]... [FILE]
 
     Reads FILE (standard input without FILE, or with FILE `-`); gzip-compressed input (BROAD's
     .csv.gz files) is recognised by its first bytes and decompressed. Flags take their value as
@@ -76,6 +84,10 @@ OPTIONS:
     --f32          run the estimator in f32 (inputs, after the unit conversion, rounded to
                    f32; the steps are differences of the time stamps taken in f64); the output
                    prints the f32 values
+    --mode M       full (default: every part of the filter on every sample) or light (the
+                   prediction every sample, the covariance and the corrections every 25 ms,
+                   a fixed magnetometer delay; about a fifth of the cost; --set
+                   light_period=S selects light with another correction period)
     --frame F      the earth frame of the output attitude: enu (default: x east, y magnetic
                    north, z up; BROAD's frame: its reference rotates the resting accelerometer
                    onto +z and the magnetometer's horizontal part onto +y) or ned (x magnetic
@@ -102,19 +114,32 @@ OPTIONS:
                    gyro_* and accel_* give corrected = M diag(s) (raw - b), mag_* give
                    corrected = S (raw - h)), applied to every sample after the unit conversion,
                    in f64, before the estimator; keys a file leaves out are identities.
-    --plot FILE    also write an SVG plot: the estimate's heading (2 atan2(qz, qw)) and
+    --skip-bad-rows
+                   a row whose time stamp or gyroscope value is not finite (nan, inf, or
+                   beyond the f32 range with --f32; a logger's glitch) becomes a gap instead
+                   of ending the run: its output row repeats the state with the flags
+                   `skipped`, and the next good row propagates over the whole interval since
+                   the last good one (that step is checked as any other). At the end one line
+                   on stderr counts the skipped rows and names the first.
+    --plot FILE    also write an SVG plot (the folder must exist: checked before the run): the estimate's heading (2 atan2(qz, qw)) and
                    inclination (2 acos sqrt(qw^2 + qz^2), the tilt of the sensor's z axis),
                    with the reference's when --truth; the error against the reference (total,
                    heading, inclination; --truth); the bias estimate; the rest and
                    disturbance flags. About 2000 points per curve (each flag: whether it was
                    set anywhere in the rows a point stands for).
+    --params FILE  the estimator's parameters from a parameter file (the format of
+                   gyrostat::estimation::params_text: `name = value  # comment` per line,
+                   names as for --set, SI units; the characterisation tool writes it);
+                   names it does not give keep their defaults; --set applies after it
     --set NAME=VALUE  an estimator parameter (gyrostat::estimation::Params; SI units, angles
                    in rad; a value ending in deg or deg/s is converted): gains=kalman,
-                   heading_time_constant (complementary gains), gyro_noise_density,
+                   heading_time_constant (complementary gains), light_period (light mode, s),
+                   gyro_noise_density,
                    gyro_scale_noise, gyro_bias_initial, gyro_bias_stability, gyro_bias_time,
-                   gyro_bias_max, gyro_range, accel_range, accel_time_constant,
+                   gyro_bias_max, gyro_range, gyro_delay, accel_range, accel_time_constant,
                    accel_tilt_noise, accel_correlation_time, accel_reject, mag_heading_noise,
                    mag_correlation_time, mag_delay, mag_delay_estimation_time,
+                   mag_hard_iron_time,
                    mag_disturbance_weight, field.norm, field.dip,
                    field.reference_time_constant, field.min_undisturbed,
                    field.new_field_time, field.new_field_min_rate, rest.time_constant,
@@ -122,7 +147,7 @@ OPTIONS:
                    Repeatable.
     --help         print this text
 
-OUTPUT (stdout): the header `t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag`, then one row per
+OUTPUT (stdout): the header `t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag,heading`, then one row per
     input row: `t` as written in the input, the attitude (scalar first, sensor -> earth:
     v_earth = q v q*) and the gyroscope bias estimate (rad/s, sensor frame; subtract it from
     the rate) after that row's update, then what the update did: rest 1 when the sensor was at
@@ -130,11 +155,18 @@ OUTPUT (stdout): the header `t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag`, then o
     gyro_range: clipped); accel and mag `used`, `disturbed` (rejected or, for the field,
     down-weighted: the low-passed specific force far from gravity, a field whose norm or dip
     differs from the reference), `nonfinite` or `saturated` or `zero` (ignored), mag `absent`
-    (6D or an empty field). Numbers in the shortest form that round-trips to the same f64 (f32
+    (6D or an empty field); heading `ok` when the heading rests on a confirmed magnetic
+    reference (the field has agreed with the reference learned from it), `unsure` while it
+    does not yet (9D: the first field samples, or a first field sample taken in a disturbed
+    field, whose wrong heading lasts until the true field replaces the reference, seen while
+    the sensor turns for field.new_field_time), `none` in 6D (no magnetometer: the heading
+    is the gyroscope's, from zero). Numbers in the shortest form that round-trips to the same f64 (f32
     with --f32). The first row with a usable accelerometer sample initialises the attitude
     (TRIAD from gravity and the field; from gravity alone in 6D, heading zero); rows before it
     print nan for the attitude and the bias. The step of each update is the difference of its
-    time stamp and the previous row's.
+    time stamp and the previous row's. The first row has no step: no row propagates before
+    the attitude is initialised, so the rate of the rows up to that one is not checked
+    against the half-turn limit (a log may start while the sensor turns fast).
 
 ERRORS (stderr; the rows before them are kept):
     error: line N: reason    exit status 1, the run stops there: a row with the wrong number
@@ -144,7 +176,8 @@ ERRORS (stderr; the rows before them are kept):
         gyroscope or accelerometer columns. No metric and no plot after an error.
     error: reason            a bad command line (also --9d without magnetometer columns,
         --truth without reference columns, a unit flag contradicting a column name): exit
-        status 2, no output; an unreadable FILE: exit status 1.
+        status 2, no output; an unreadable FILE or a --plot FILE whose folder does not
+        exist: exit status 1, no output.
     When stdout is closed early (a pipe into `head`), the run stops quietly with status 0.
 ";
 
@@ -161,6 +194,7 @@ struct Args {
     sensors: Sensors,
     f32: bool,
     truth: bool,
+    skip_bad_rows: bool,
     plot: Option<PathBuf>,
     calibration: Option<CalibrationFile>,
     gyro: Option<GyroUnit>,
@@ -183,10 +217,22 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         Some("ned") => EarthFrame::Ned,
         Some(other) => return Err(format!("--frame must be enu or ned, got '{other}'")),
     };
+    let mode = match f.value("--mode").map(str::trim) {
+        None | Some("full") => Mode::Full,
+        Some("light") => Mode::light(),
+        Some(other) => return Err(format!("--mode must be full or light, got '{other}'")),
+    };
     let mut params = Params::<f64> {
         frame,
+        mode,
         ..Params::default()
     };
+    if let Some(path) = f.value("--params") {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("--params: {path}: {e}"))?;
+        params
+            .set_from_text(&text)
+            .map_err(|e| format!("--params: {path}: {e}"))?;
+    }
     for kv in f.values("--set") {
         let (name, value) = kv
             .split_once('=')
@@ -194,7 +240,8 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         set_param(&mut params, name.trim(), value.trim()).map_err(|e| format!("--set: {e}"))?;
     }
     // The parameters are checked here, so that a bad one is a usage error before any input.
-    Estimator::try_new(params).map_err(|e| format!("--set: the parameters are invalid: {e}"))?;
+    Estimator::try_new(params)
+        .map_err(|e| format!("--set/--params: the parameters are invalid: {e}"))?;
     let file = match operands.as_slice() {
         [] => None,
         [one] if one == "-" => None,
@@ -206,6 +253,7 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         sensors,
         f32: f.switch("--f32"),
         truth: f.switch("--truth"),
+        skip_bad_rows: f.switch("--skip-bad-rows"),
         plot: f.value("--plot").map(PathBuf::from),
         calibration: f
             .value("--calibration")
@@ -430,7 +478,9 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
         .map_err(|e| Failure::Usage(format!("--set: the parameters are invalid: {e}")))?;
     let mut metric = args.truth.then(Metric::default);
     let mut rows = Vec::new();
-    writeln!(out, "t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag")?;
+    writeln!(out, "t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag,heading")?;
+    // Rows skipped by --skip-bad-rows: how many, and the first one's line.
+    let mut skipped = (0u64, 0u64);
     let v = |a: [f64; 3]| Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]));
     let mut prev_t: Option<f64> = None;
     let mut pending = (!layout.header).then_some(first);
@@ -453,11 +503,19 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
                 }
             }
         };
-        let s = parse_row(&text, &layout, &scales, args.truth).map_err(|e| Failure::Row(n, e))?;
-        // The first row's step is never used (it initialises the attitude or, without a usable
-        // accelerometer sample, waits); any valid step stands in.
+        let s = match parse_row(&text, &layout, &scales, args.truth) {
+            Ok(s) => s,
+            Err(bad) if bad.glitch && args.skip_bad_rows => {
+                let t_text = text.split(',').nth(layout.time).unwrap_or("").trim();
+                skip_row(out, &filter, t_text, six_d, &mut skipped, n)?;
+                continue;
+            }
+            Err(bad) => return Err(Failure::Row(n, bad.reason)),
+        };
+        // The first row has no step: NaN, which the library neither uses nor checks until the
+        // attitude is initialised (its first-sample rule, `Estimator::update`).
         let dt = match prev_t {
-            None => 1.0,
+            None => f64::NAN,
             Some(p) => {
                 let dt = (s.t - p) * scales.time;
                 // NaN cannot arise (both stamps are finite), an overflow to ∞ is caught below.
@@ -481,14 +539,20 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
                 dt
             }
         };
-        prev_t = Some(s.t);
         let (gyro, accel, mag) = calibrated(args.calibration.as_ref(), &s);
         let mag = if six_d { None } else { mag.map(v) };
-        let outcome: Outcome = filter
-            .update(v(gyro), v(accel), mag, T::from_f64(dt))
-            .map_err(|e| Failure::Row(n, library_error(e, dt)))?;
+        let outcome: Outcome = match filter.update(v(gyro), v(accel), mag, T::from_f64(dt)) {
+            Ok(o) => o,
+            // A gyroscope value finite in f64 but not in f32 (--f32).
+            Err(Error::NonFinite) if args.skip_bad_rows => {
+                skip_row(out, &filter, s.t_text, six_d, &mut skipped, n)?;
+                continue;
+            }
+            Err(e) => return Err(Failure::Row(n, library_error(e, dt))),
+        };
+        prev_t = Some(s.t);
         let flags = format!(
-            "{},{},{},{}",
+            "{},{},{},{},{}",
             u8::from(outcome.at_rest),
             if outcome.gyro_saturated {
                 "saturated"
@@ -496,7 +560,8 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
                 "used"
             },
             use_name(outcome.accel),
-            use_name(outcome.mag)
+            use_name(outcome.mag),
+            heading_flag(&filter, six_d)
         );
         let (q, b) = if filter.is_initialized() {
             let q = filter.attitude().to_array();
@@ -543,11 +608,61 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
             });
         }
     }
+    if skipped.0 > 0 {
+        gyrostat_tools::say!(
+            "estimate: skipped {} row(s) with a non-finite time stamp or gyroscope value (--skip-bad-rows), the first at line {}",
+            skipped.0,
+            skipped.1
+        );
+    }
     Ok(Done {
         metric,
         rows,
         six_d,
     })
+}
+
+/// The `heading` column: `ok`, `unsure` or `none` (see the help).
+fn heading_flag<T: Scalar>(filter: &Estimator<T>, six_d: bool) -> &'static str {
+    if six_d {
+        "none"
+    } else if filter.heading_trusted() {
+        "ok"
+    } else {
+        "unsure"
+    }
+}
+
+/// The output row of a row skipped by `--skip-bad-rows`: the state unchanged, the flags
+/// `skipped`; counts it in `skipped` (count, first line).
+fn skip_row<T: Scalar>(
+    out: &mut Csv,
+    filter: &Estimator<T>,
+    t_text: &str,
+    six_d: bool,
+    skipped: &mut (u64, u64),
+    line: u64,
+) -> Result<(), Failure> {
+    if skipped.0 == 0 {
+        skipped.1 = line;
+    }
+    skipped.0 += 1;
+    let heading = heading_flag(filter, six_d);
+    if filter.is_initialized() {
+        let [w, x, y, z] = filter.attitude().to_array();
+        let [bx, by, bz] = filter.bias().to_array();
+        writeln!(
+            out,
+            "{t_text},{w:?},{x:?},{y:?},{z:?},{bx:?},{by:?},{bz:?},0,skipped,skipped,skipped,{heading}"
+        )?;
+    } else {
+        writeln!(
+            out,
+            "{t_text},nan,nan,nan,nan,nan,nan,nan,0,skipped,skipped,skipped,{heading}"
+        )?;
+    }
+    out.row_done()?;
+    Ok(())
 }
 
 /// The metric line: `truth: total X deg, heading Y deg, inclination Z deg, n = N`.
@@ -695,6 +810,12 @@ fn main() -> ExitCode {
         Ok(a) => a,
         Err(status) => return status,
     };
+    if let Some(path) = &args.plot
+        && let Err(e) = gyrostat_tools::plot::check_folder(path)
+    {
+        flags::error(&format!("--plot {}: {e}", path.display()));
+        return ExitCode::FAILURE;
+    }
     let mut out = Csv::stdout();
     let result = if args.f32 {
         run::<f32>(&args, args.params.map(|x| x as f32), &mut out)

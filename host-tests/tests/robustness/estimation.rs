@@ -1,0 +1,506 @@
+//! The adversarial campaign over the attitude estimator (issue 29): streams of updates, each
+//! stream one input, in five families — garbage bursts, extreme rate × step products, subnormal
+//! and huge steps, fields near the vertical, long disturbances — with the properties checked
+//! after every `Ok`:
+//!
+//! - a finite unit attitude (32 ε, [`unit`]) and a finite bias within its clip
+//!   ([`Params::gyro_bias_max`]);
+//! - the covariance symmetric and positive semi-definite ([`covariance_ok`]);
+//!
+//! and, where the stream ends with good data (bursts and disturbances):
+//!
+//! - good accelerometer data used again within [`USED_AGAIN`] s after the garbage or the
+//!   disturbance ends (the inertial low-pass, τ = 3 s, forgets a residual of up to
+//!   16 g·√3 + g to 0.2 g in 3 s·ln(144) = 14.9 s);
+//! - after a garbage burst (default parameters but the online magnetometer-delay estimate,
+//!   see the family), the attitude error back below [`TILT_BACK`] in inclination and
+//!   [`TOTAL_BACK`] in all [`GOOD_AFTER`] s after the garbage ends. After a long disturbance
+//!   the error is not bounded (open, ROBUSTNESS.md).
+//!
+//! An input is one stream of about [`UPDATES`] updates or more; the campaign runs
+//! `GYROSTAT_CAMPAIGN_N / UPDATES` streams per family and type, so that its setting counts
+//! calls as the other campaigns do. `cargo test --release -p host-tests --test robustness
+//! estimation:: -- --nocapture` prints the table.
+
+use gyrostat::estimation::{Estimator, Gains, Params, SensorUse};
+use gyrostat::{Real, UnitQuat, Vec3};
+use host_tests::campaign::*;
+use host_tests::family;
+use host_tests::tolerance::Tolerance;
+
+/// The nominal number of updates per stream (the campaign's divisor).
+const UPDATES: u64 = 100;
+/// Good accelerometer data is used again within this time (s) after garbage or a disturbance.
+const USED_AGAIN: f64 = 16.0;
+/// Good data after the garbage or the disturbance (s).
+const GOOD_AFTER: f64 = 40.0;
+/// The inclination error bound (rad) at the end of the good data.
+const TILT_BACK: f64 = 2.0 * std::f64::consts::PI / 180.0;
+/// The total attitude error bound (rad) at the end of the good data.
+const TOTAL_BACK: f64 = 10.0 * std::f64::consts::PI / 180.0;
+
+const UP: [f64; 3] = [0.0, 0.0, 9.81];
+const FIELD: [f64; 3] = [0.0, 15.8, -40.7];
+
+type Q = [f64; 4];
+
+fn qmul(a: Q, b: Q) -> Q {
+    [
+        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
+    ]
+}
+
+/// `q* v q`: an earth-frame vector in the sensor frame.
+fn to_sensor(q: Q, v: [f64; 3]) -> [f64; 3] {
+    let r = qmul(
+        qmul([q[0], -q[1], -q[2], -q[3]], [0.0, v[0], v[1], v[2]]),
+        q,
+    );
+    [r[1], r[2], r[3]]
+}
+
+/// `q v q*`: a sensor-frame vector in the earth frame.
+fn to_earth(q: Q, v: [f64; 3]) -> [f64; 3] {
+    let r = qmul(
+        qmul(q, [0.0, v[0], v[1], v[2]]),
+        [q[0], -q[1], -q[2], -q[3]],
+    );
+    [r[1], r[2], r[3]]
+}
+
+fn exp(p: [f64; 3]) -> Q {
+    let t = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+    if t == 0.0 {
+        return [1.0, 0.0, 0.0, 0.0];
+    }
+    let s = (t / 2.0).sin() / t;
+    [(t / 2.0).cos(), s * p[0], s * p[1], s * p[2]]
+}
+
+fn normalize(q: Q) -> Q {
+    let n = q.iter().map(|c| c * c).sum::<f64>().sqrt();
+    q.map(|c| c / n)
+}
+
+fn v<T: Real>(a: [f64; 3]) -> Vec3<T> {
+    Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]))
+}
+
+/// The total angle (rad) and the inclination error (rad: the angle between the estimated and
+/// the true earth vertical in the sensor frame) of an estimate.
+fn errors<T: Real>(est: UnitQuat<T>, truth: Q) -> (f64, f64) {
+    let e = est.into_quat().to_array().map(|c| c.to_f64());
+    let d = qmul([e[0], -e[1], -e[2], -e[3]], truth);
+    let s = (d[1] * d[1] + d[2] * d[2] + d[3] * d[3]).sqrt();
+    let total = 2.0 * s.atan2(d[0].abs());
+    let a = to_sensor(normalize(e), [0.0, 0.0, 1.0]);
+    let b = to_sensor(truth, [0.0, 0.0, 1.0]);
+    let c = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    let tilt = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2])
+        .sqrt()
+        .atan2(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+    (total, tilt)
+}
+
+thread_local! {
+    /// With `GYROSTAT_ESTIMATION_PROPERTIES=1`: the properties the current stream broke (bits:
+    /// 1 attitude, 2 bias, 4 covariance finite and PSD, 8 used again, 16 error bound, 32
+    /// covariance exactly symmetric, 64 TRIAD's gravity), each counted instead
+    /// of ending the stream, printed per stream (`properties FAMILY TYPE BITS` on stderr) to
+    /// count the streams that break each property (ROBUSTNESS.md's before/after table).
+    static BROKEN: std::cell::Cell<u8> = const { std::cell::Cell::new(0) };
+}
+
+/// Counting mode (see [`BROKEN`]).
+fn counting() -> bool {
+    std::env::var("GYROSTAT_ESTIMATION_PROPERTIES").as_deref() == Ok("1")
+}
+
+/// `check` as it is, or in counting mode recorded under `bit` and passed.
+fn property(bit: u8, check: Check) -> Check {
+    if counting() && check.is_err() {
+        BROKEN.with(|b| b.set(b.get() | bit));
+        return Ok(());
+    }
+    check
+}
+
+/// Runs one stream; in counting mode prints the properties it broke.
+fn stream<T: Tolerance>(name: &str, f: impl FnOnce() -> Check) -> Check {
+    BROKEN.with(|b| b.set(0));
+    let r = f();
+    if counting() {
+        eprintln!("properties {name} {} {}", T::NAME, BROKEN.with(|b| b.get()));
+    }
+    r
+}
+
+/// The state's contract after an `Ok`.
+fn state_ok<T: Tolerance>(f: &Estimator<T>) -> Check {
+    property(1, unit(f.attitude()))?;
+    let m = f.params().gyro_bias_max.to_f64();
+    let b = f.bias().to_array().map(|c| c.to_f64());
+    property(
+        2,
+        ensure(b.iter().all(|c| c.is_finite() && c.abs() <= m), || {
+            format!("bias {b:?} beyond ±{m}")
+        }),
+    )?;
+    if !counting() {
+        return covariance_ok(f.covariance());
+    }
+    // Counted apart: finite and positive semi-definite (4), exactly symmetric (32).
+    let p = f.covariance();
+    let m = covariance_dense(p);
+    let psd =
+        m.iter().flatten().all(|x| x.is_finite()) && psd_within(&m, 64.0 * T::EPSILON.to_f64());
+    property(4, ensure(psd, || format!("covariance {m:?}")))?;
+    let sym = (0..3).all(|i| {
+        (0..3).all(|j| p.attitude.m[i][j] == p.attitude.m[j][i] && p.bias.m[i][j] == p.bias.m[j][i])
+    });
+    property(32, ensure(sym, || format!("asymmetric covariance {m:?}")))
+}
+
+/// The parameters of a stream: the defaults, or (when `wild`) one of unbounded ranges, fixed
+/// gains, no delay estimation, a zero bias clip.
+fn params<T: Tolerance>(g: &mut Gen<T>, wild: bool) -> Params<T> {
+    let mut p = Params::<T>::default();
+    if wild {
+        match g.rng.below(5) {
+            0 => {
+                p.gyro_range = T::from_f64(f64::INFINITY);
+                p.accel_range = T::from_f64(f64::INFINITY);
+            }
+            1 => {
+                p.gains = Gains::Fixed {
+                    heading_time_constant: T::from_f64(9.0),
+                }
+            }
+            2 => p.mag_delay_estimation_time = T::ZERO,
+            3 => p.gyro_bias_max = T::ZERO,
+            _ => {}
+        }
+    }
+    p
+}
+
+/// A true motion: a random start attitude, at rest or turning at a constant body rate.
+struct Truth {
+    q: Q,
+    w: [f64; 3],
+}
+
+impl Truth {
+    fn new<T: Tolerance>(g: &mut Gen<T>, max_rate: f64) -> Self {
+        let q = g.unit_quat_f64();
+        let w = if g.rng.chance(0.5) {
+            [0.0; 3]
+        } else {
+            [0, 1, 2].map(|_| g.rng.range(-max_rate, max_rate))
+        };
+        Truth { q, w }
+    }
+    fn advance(&mut self, dt: f64) {
+        self.q = normalize(qmul(self.q, exp(self.w.map(|c| c * dt))));
+    }
+    fn accel(&self) -> [f64; 3] {
+        to_sensor(self.q, UP)
+    }
+    fn mag(&self) -> [f64; 3] {
+        to_sensor(self.q, FIELD)
+    }
+}
+
+/// One good sample over `dt`: the truth advances, the estimator is fed the exact sensors.
+fn good<T: Tolerance>(f: &mut Estimator<T>, tr: &mut Truth, dt: f64) -> Result<SensorUse, Fail> {
+    tr.advance(dt);
+    let o = f.update_9d(v(tr.w), v(tr.accel()), v(tr.mag()), T::from_f64(dt))?;
+    state_ok(f)?;
+    Ok(o.accel)
+}
+
+/// Good data for [`GOOD_AFTER`] s at 20 Hz after garbage or a disturbance: the accelerometer is
+/// used again within [`USED_AGAIN`] s and the error is back within its bounds at the end.
+fn recovery<T: Tolerance>(
+    f: &mut Estimator<T>,
+    tr: &mut Truth,
+    what: &str,
+    error_bound: bool,
+) -> Check {
+    let dt = 0.05;
+    let mut used_at = None;
+    let steps = (GOOD_AFTER / dt) as usize;
+    for k in 1..=steps {
+        if good(f, tr, dt)? == SensorUse::Used && used_at.is_none() {
+            used_at = Some(k as f64 * dt);
+        }
+    }
+    let used = used_at.unwrap_or(f64::INFINITY);
+    property(
+        8,
+        ensure(used <= USED_AGAIN, || {
+            format!("{what}: good accelerometer data used again only after {used} s")
+        }),
+    )?;
+    if !error_bound {
+        return Ok(());
+    }
+    let (total, tilt) = errors(f.attitude(), tr.q);
+    property(
+        16,
+        ensure(tilt <= TILT_BACK && total <= TOTAL_BACK, || {
+            format!(
+                "{what}: error {:.3}° (inclination {:.3}°) {GOOD_AFTER} s after",
+                total.to_degrees(),
+                tilt.to_degrees()
+            )
+        }),
+    )
+}
+
+/// Garbage as a bus error or a dead sensor gives it: a vector with a NaN or ±∞ component, or
+/// components beyond every sensor's range (1e3 … MAX), or (`tiny`) all zero or subnormal.
+/// Garbage within a sensor's range cannot be told from motion, and a zero or subnormal rate is
+/// within the gyroscope's (a dead gyroscope reading 0 over a long step while the sensor turns:
+/// the error it leaves decays at the filter's steady-state rate, see the open findings); the
+/// extreme families cover such values (every property but recovery).
+fn garbage<T: Tolerance>(g: &mut Gen<T>, tiny: bool) -> Vec3<T> {
+    let mut c = || -> f64 {
+        match g.rng.below(6) {
+            0 => *g.rng.pick(&[f64::NAN, f64::INFINITY, f64::NEG_INFINITY]),
+            1 if tiny => g.rng.sign() * g.magnitude_in(g.lim.min_subnormal, g.lim.min_positive),
+            _ => g.rng.sign() * g.magnitude_in(1e3, g.lim.max),
+        }
+    };
+    let a = [c(), c(), c()];
+    if tiny && g.rng.chance(0.1) {
+        return Vec3::ZERO;
+    }
+    v(a)
+}
+
+/// Any update's result: an `Ok` must leave a valid state; an error is typed (fine).
+fn any_update<T: Tolerance>(
+    f: &mut Estimator<T>,
+    gyro: Vec3<T>,
+    accel: Vec3<T>,
+    mag: Option<Vec3<T>>,
+    dt: T,
+) -> Check {
+    match f.update(gyro, accel, mag, dt) {
+        Ok(_) => state_ok(f),
+        Err(_) => Ok(()),
+    }
+}
+
+fn families<T: Tolerance>() -> Vec<Family<T>> {
+    vec![
+        family!("estimation: garbage bursts", |g| {
+            let mut tr = Truth::new(g, 0.5);
+            let burst = 1 + g.rng.below(100);
+            let seed = g.rng.next_u64();
+            probe(&(tr.q, tr.w, burst, seed), || {
+                stream::<T>("garbage-bursts", || {
+                    // The online magnetometer-delay estimate off: fed right after a burst it can
+                    // settle on a wrong delay (an open finding, ROBUSTNESS.md), which turns the
+                    // heading by delay × rate; the bounds hold with it off.
+                    let p = Params::<T> {
+                        mag_delay_estimation_time: T::ZERO,
+                        ..Params::default()
+                    };
+                    let mut f = Estimator::try_new(p)?;
+                    let mut g = Gen::<T>::new(seed);
+                    for _ in 0..40 {
+                        good(&mut f, &mut tr, 0.05)?;
+                    }
+                    for _ in 0..burst {
+                        let dt = if g.rng.chance(0.8) {
+                            g.ordinary_dt()
+                        } else {
+                            g.dt()
+                        };
+                        let gyro = garbage(&mut g, false);
+                        let accel = garbage(&mut g, true);
+                        let mag = garbage(&mut g, true);
+                        if f.update_9d(gyro, accel, mag, dt).is_ok() {
+                            state_ok(&f)?;
+                            tr.advance(dt.to_f64());
+                        }
+                    }
+                    recovery(&mut f, &mut tr, "after the burst", true)
+                })
+            })
+        }),
+        family!("estimation: extreme rate × step", |g| {
+            let p = params(g, true);
+            let mut tr = Truth::new(g, 1.0);
+            let seed = g.rng.next_u64();
+            probe(&(tr.q, seed), || {
+                stream::<T>("extreme-rate-x-step", || {
+                    let mut f = Estimator::try_new(p)?;
+                    let mut g = Gen::<T>::new(seed);
+                    good(&mut f, &mut tr, 0.01)?;
+                    for _ in 0..UPDATES {
+                        // |ω|·Δt up to just past π, Δt anywhere from subnormal to 1000 s.
+                        let pi = std::f64::consts::PI;
+                        let theta = *g.rng.pick(&[0.0, 1e-7, 0.01, 1.0, 3.0, pi, 3.2]);
+                        let theta = theta * g.rng.range(0.5, 1.0);
+                        let dt = g.magnitude_in(g.lim.min_subnormal, 1000.0);
+                        let d = g.finite_vec().to_array().map(|c| c.to_f64());
+                        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                        let w = if n.is_finite() && n > 0.0 {
+                            d.map(|c| c / n * theta / dt)
+                        } else {
+                            [theta / dt, 0.0, 0.0]
+                        };
+                        let (a, m) = if g.rng.chance(0.7) {
+                            (v(tr.accel()), Some(v(tr.mag())))
+                        } else {
+                            (g.vec(), g.rng.chance(0.5).then(|| g.vec()))
+                        };
+                        any_update(&mut f, v(w), a, m, T::from_f64(dt))?;
+                    }
+                    Ok(())
+                })
+            })
+        }),
+        family!("estimation: subnormal and huge steps", |g| {
+            let p = params(g, true);
+            let mut tr = Truth::new(g, 1.0);
+            let seed = g.rng.next_u64();
+            probe(&(tr.q, seed), || {
+                stream::<T>("subnormal-and-huge-steps", || {
+                    let mut f = Estimator::try_new(p)?;
+                    let mut g = Gen::<T>::new(seed);
+                    good(&mut f, &mut tr, 0.01)?;
+                    for _ in 0..UPDATES {
+                        let dt = match g.rng.below(10) {
+                            0..=3 => g.magnitude_in(g.lim.min_subnormal, 1e-20),
+                            4..=6 => g.magnitude_in(1.0, 1000.0),
+                            7 => g.magnitude_in(1000.0, g.lim.max),
+                            _ => g.dt().to_f64(),
+                        };
+                        let gyro = if g.rng.chance(0.8) {
+                            v(tr.w)
+                        } else {
+                            g.finite_vec()
+                        };
+                        any_update(
+                            &mut f,
+                            gyro,
+                            v(tr.accel()),
+                            Some(v(tr.mag())),
+                            T::from_f64(dt),
+                        )?;
+                        if dt.is_finite() && dt > 0.0 && dt <= 1000.0 {
+                            tr.advance(dt);
+                        }
+                    }
+                    Ok(())
+                })
+            })
+        }),
+        family!("estimation: fields near the vertical", |g| {
+            let p = params(g, true);
+            let tr = Truth::new(g, 0.0);
+            let seed = g.rng.next_u64();
+            probe(&(tr.q, seed), || {
+                stream::<T>("fields-near-the-vertical", || {
+                    let mut f = Estimator::try_new(p)?;
+                    let mut g = Gen::<T>::new(seed);
+                    let eps = T::EPSILON.to_f64();
+                    for k in 0..UPDATES {
+                        // The field within 10⁻⁹ … 10⁻¹ rad of the vertical (up or down).
+                        let a = g.magnitude_in(1e-9, 0.1);
+                        let ph = g.rng.range(0.0, std::f64::consts::TAU);
+                        let s = g.rng.sign();
+                        let earth = [a.sin() * ph.cos(), a.sin() * ph.sin(), s * a.cos()]
+                            .map(|c| c * g.magnitude_in(1.0, 100.0));
+                        let acc = tr.accel();
+                        let o = f.update_9d(
+                            v(tr.w),
+                            v(acc),
+                            v(to_sensor(tr.q, earth)),
+                            T::from_f64(0.01),
+                        )?;
+                        state_ok(&f)?;
+                        if k == 0 && o.initialized {
+                            // TRIAD: gravity is the exact direction.
+                            let q = f.attitude().into_quat().to_array().map(|c| c.to_f64());
+                            let up = to_earth(normalize(q), acc.map(|c| c / 9.81));
+                            let tilt = up[0].hypot(up[1]).atan2(up[2]);
+                            property(
+                                64,
+                                ensure(tilt <= 16.0 * eps, || {
+                                    format!(
+                                        "TRIAD tilts gravity by {tilt:e} rad (field {a:e} rad from the vertical)"
+                                    )
+                                }),
+                            )?;
+                        }
+                    }
+                    Ok(())
+                })
+            })
+        }),
+        family!("estimation: long disturbances", |g| {
+            let mut tr = Truth::new(g, 0.5);
+            let kind = g.rng.below(3);
+            let length = g.rng.range(5.0, 60.0);
+            let size = g.rng.range(0.5, 5.0);
+            let dir = [0, 1, 2].map(|_| g.rng.range(-1.0, 1.0));
+            probe(&(tr.q, tr.w, kind, length, size, dir), || {
+                stream::<T>("long-disturbances", || {
+                    let mut f = Estimator::try_new(Params::<T>::default())?;
+                    for _ in 0..40 {
+                        good(&mut f, &mut tr, 0.05)?;
+                    }
+                    let dt = 0.05;
+                    for _ in 0..(length / dt) as usize {
+                        tr.advance(dt);
+                        let (mut a, mut m) = (tr.accel(), tr.mag());
+                        match kind {
+                            // A magnet on the sensor: a constant sensor-frame field added.
+                            0 => m = [0, 1, 2].map(|i| m[i] + size * 40.0 * dir[i]),
+                            // Another homogeneous field (a place with a different field).
+                            1 => {
+                                let e =
+                                    [FIELD[0] + size * 10.0 * dir[0], FIELD[1] * size, FIELD[2]];
+                                m = to_sensor(tr.q, e);
+                            }
+                            // A sustained push: an earth-frame specific force added.
+                            _ => {
+                                let push = to_sensor(tr.q, dir.map(|c| c * size));
+                                a = [0, 1, 2].map(|i| a[i] + push[i]);
+                            }
+                        }
+                        f.update_9d(v(tr.w), v(a), v(m), T::from_f64(dt))?;
+                        state_ok(&f)?;
+                    }
+                    // The error after a long disturbance is not bounded here (an open finding,
+                    // ROBUSTNESS.md: the covariance has shrunk during it, and a tilt or heading
+                    // learned from the disturbance decays with the filter's slow steady-state
+                    // gain); the accelerometer is used again within its bound.
+                    recovery(
+                        &mut f,
+                        &mut tr,
+                        &format!("after the disturbance (kind {kind})"),
+                        false,
+                    )
+                })
+            })
+        }),
+    ]
+}
+
+#[test]
+fn campaign() {
+    run_stream_campaign("estimation", UPDATES, families::<f32>(), families::<f64>());
+}

@@ -1,0 +1,175 @@
+//! Hard iron estimated online: a constant field offset in the sensor frame (a magnet or
+//! magnetised steel fixed to the device), found from the field's norm staying constant while
+//! the device turns.
+//!
+//! In a homogeneous field `B_e` the sensor reads `B = Rᵀ B_e + h`: the samples lie on a sphere
+//! of radius `|B_e|` about `h`, whatever the attitudes. With `c = |B_e|² − |h|²` the sphere is
+//! linear in `x = (h, c)`: `|B|² = 2 Bᵀh + c`. [`HardIron`] is a four-state Kalman filter on
+//! that measurement (`z = |B|²`, `H = (2Bᵀ, 1)`), in units of a reference norm `n₀` (the first
+//! field's) so that the numbers stay near 1 in f32. Its covariance says what the rotation has
+//! made observable: turning about one axis only leaves `h` along that axis unknown, and its
+//! variance stays large; a slow random walk (1 % of the norm per `τ_h`) follows a drifting
+//! offset. A mean normalised innovation far above 1 means the samples are not on one sphere
+//! (a magnet attached or removed, the field changed in the earth frame, a gradient met while
+//! moving): the covariance is reset to the prior and the estimate is not offered until it has
+//! converged again. The fit is fed only while the device turns (the filter's gate): samples
+//! of a still sensor differ by noise alone, and a sphere fitted to noise about one point is a
+//! small one centred on that point (the regressor's own noise would pass for information).
+//!
+//! A field that changes in the earth frame without translation (a stationary magnet seen from
+//! one place) is still a sphere, about `h` and of another radius: the fit keeps `h` and only
+//! `c` moves; the heading's disturbance monitor ([`super::FieldMonitor`]) keeps rejecting it.
+
+use crate::{Real, Vec3};
+
+/// The prior standard deviation of each offset component, in reference norms.
+const PRIOR_OFFSET: f64 = 2.0;
+/// The prior standard deviation of `c`, in squared reference norms.
+const PRIOR_C: f64 = 4.0;
+/// Standard deviation of one sample's `|B|²` (squared reference norms): sensor noise and the
+/// model's error (soft iron, a field not quite homogeneous, axes sampled at slightly different
+/// times in fast rotation), about 4 % of the norm.
+const MEASUREMENT_STD: f64 = 0.08;
+/// How far (reference norms) the offset may drift within the random-walk time `τ_h`; `c`
+/// twice as far.
+const DRIFT: f64 = 0.01;
+/// Time constant (s) of the mean normalised innovation squared.
+const NIS_TIME: f64 = 1.0;
+/// A mean normalised innovation squared above this resets the covariance.
+const NIS_RESET: f64 = 25.0;
+/// The estimate is offered when the mean normalised innovation squared is below this …
+const NIS_READY: f64 = 3.0;
+/// … and each offset component's standard deviation below this (reference norms).
+const READY_STD: f64 = 0.01;
+
+/// The hard-iron estimator's state (see the module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct HardIron<T> {
+    /// The reference norm `n₀` (input units); zero before the first sample.
+    scale: T,
+    /// `(h_x, h_y, h_z, c)` in units of `n₀` (and `n₀²`).
+    x: [T; 4],
+    p: [[T; 4]; 4],
+    nis: T,
+}
+
+impl<T: Real> HardIron<T> {
+    /// Starts on the first field sample `b` (input units): no offset, the prior covariance.
+    pub fn new(b: Vec3<T>) -> Self {
+        let n = b.norm();
+        let mut s = Self {
+            // A reference norm that is zero, subnormal or not finite is no scale: the fit
+            // waits for a usable sample.
+            scale: if n.is_finite() && n > T::EPSILON {
+                n
+            } else {
+                T::ZERO
+            },
+            ..Self::default()
+        };
+        s.x = [T::ZERO, T::ZERO, T::ZERO, T::ONE];
+        s.reset();
+        s
+    }
+
+    fn reset(&mut self) {
+        let po = T::from_f64(PRIOR_OFFSET * PRIOR_OFFSET);
+        let pc = T::from_f64(PRIOR_C * PRIOR_C);
+        self.p = [[T::ZERO; 4]; 4];
+        for i in 0..3 {
+            if let Some(row) = self.p.get_mut(i)
+                && let Some(v) = row.get_mut(i)
+            {
+                *v = po;
+            }
+        }
+        self.p[3][3] = pc;
+        self.nis = T::ZERO;
+    }
+
+    /// One field sample `b` (input units) standing for `dt` seconds of samples; `tau` (s) the
+    /// random-walk time of the offset (it may drift by 1 % of the norm over `tau`).
+    pub fn update(&mut self, b: Vec3<T>, dt: T, tau: T) {
+        if self.scale <= T::ZERO {
+            *self = Self::new(b);
+            return;
+        }
+        let u = b.scale(T::ONE / self.scale);
+        if !(u.norm_squared().is_finite()) {
+            // A field far beyond the reference (garbage): not a sample of the sphere.
+            return;
+        }
+        // The random walk.
+        let grow = dt / tau;
+        let po = T::from_f64(DRIFT * DRIFT) * grow;
+        for i in 0..3 {
+            self.p[i][i] += po;
+        }
+        self.p[3][3] += T::from_f64(4.0 * DRIFT * DRIFT) * grow;
+        // z = |u|² = 2uᵀh + c.
+        let hv = [u.x + u.x, u.y + u.y, u.z + u.z, T::ONE];
+        let z = u.norm_squared();
+        let pred = hv[0] * self.x[0] + hv[1] * self.x[1] + hv[2] * self.x[2] + self.x[3];
+        let innov = z - pred;
+        let mut ph = [T::ZERO; 4];
+        for (phi, row) in ph.iter_mut().zip(self.p.iter()) {
+            *phi = row[0] * hv[0] + row[1] * hv[1] + row[2] * hv[2] + row[3] * hv[3];
+        }
+        // One raw sample's error, however long the time it stands for: the fit sees single
+        // samples, not averages.
+        let r = T::from_f64(MEASUREMENT_STD * MEASUREMENT_STD);
+        let s = hv[0] * ph[0] + hv[1] * ph[1] + hv[2] * ph[2] + hv[3] * ph[3] + r;
+        if !(s > T::ZERO && s.is_finite() && innov.is_finite()) {
+            self.reset();
+            return;
+        }
+        let k_nis = super::lowpass::first_order_gain(dt, T::from_f64(NIS_TIME));
+        self.nis += k_nis * (innov * innov / s - self.nis);
+        if self.nis > T::from_f64(NIS_RESET) {
+            self.reset();
+            return;
+        }
+        let inv = T::ONE / s;
+        for (xi, &phi) in self.x.iter_mut().zip(ph.iter()) {
+            *xi += phi * inv * innov;
+        }
+        // P ← P − (Ph)(Ph)ᵀ/s, the upper triangle computed and mirrored (symmetric by
+        // construction).
+        for i in 0..4 {
+            let ki = ph[i] * inv;
+            for (j, &phj) in ph.iter().enumerate().skip(i) {
+                let v = self.p[i][j] - ki * phj;
+                self.p[i][j] = v;
+                self.p[j][i] = v;
+            }
+        }
+    }
+
+    /// The offset (input units), when the fit has converged: each component's standard
+    /// deviation below 1 % of the reference norm and the samples consistent with one sphere.
+    pub fn offset(&self) -> Option<Vec3<T>> {
+        let ready = T::from_f64(READY_STD * READY_STD);
+        let ok = self.scale > T::ZERO
+            && self.nis < T::from_f64(NIS_READY)
+            && self.p[0][0] < ready
+            && self.p[1][1] < ready
+            && self.p[2][2] < ready;
+        ok.then(|| Vec3::new(self.x[0], self.x[1], self.x[2]).scale(self.scale))
+    }
+
+    /// The mean normalised innovation squared of the recent samples (about 1 when they lie on
+    /// one sphere as the noise model says; time constant 1 s).
+    pub fn consistency(&self) -> T {
+        self.nis
+    }
+
+    /// The offset estimate (input units) and each component's standard deviation, converged
+    /// or not.
+    pub fn estimate(&self) -> (Vec3<T>, Vec3<T>) {
+        let sd = |v: T| v.max(T::ZERO).sqrt() * self.scale;
+        (
+            Vec3::new(self.x[0], self.x[1], self.x[2]).scale(self.scale),
+            Vec3::new(sd(self.p[0][0]), sd(self.p[1][1]), sd(self.p[2][2])),
+        )
+    }
+}

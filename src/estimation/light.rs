@@ -1,0 +1,258 @@
+//! The light mode of [`Estimator`] ([`Mode::Light`]): the same filter with its corrections
+//! taken at a lower rate than the prediction.
+//!
+//! Every sample: the strapdown prediction `q_g ← q_g ⊗ exp((ω̄ − b̂)·Δt)` (trapezoid mean
+//! rate, as the full mode), the rest detector, and the specific force rotated into the
+//! gyroscope frame and low-passed there. Every `T_c` ([`Mode::Light`]'s `correction_period`,
+//! measured in sample time, so the same at any rate): the covariance prediction over the whole
+//! interval, `Φ = [[I, −R̂·T_c], [0, I]]` (the attitude's transition is the identity in the
+//! earth frame, so `k` steps of the full mode collapse into one with `R̂` held at its value at
+//! the end of the interval), with `Q = diag((σ_g²·T_c + s²·Σ|ω|²Δt)·I, σ_b²T_c/τ_b·I)`; the
+//! rest, inclination and heading updates of the full mode, with their measurement variances
+//! for one measurement per `T_c` (`σ²·τ_c/T_c`); and the current field sample. The error
+//! dynamics (bias, tilt and heading drift) are slow against `T_c`, so the corrections lose
+//! little by waiting (see BENCHMARKS.md for the measured accuracy on BROAD).
+//!
+//! What the light mode leaves out: the attitude history on the time grid and the online
+//! estimate of the magnetometer's delay. A fixed delay `d` is applied to first order in the
+//! sensor frame: the sample taken `d` ago is mapped to the current sensor frame by
+//! `exp(−ω·d) ≈ I − d[ω]×`, `m' = m − d·(ω × m)`. `d` is [`Params::mag_delay`] when
+//! [`Params::mag_delay_estimation_time`] is 0 (a fixed delay asked for); when an estimate is
+//! asked for (the default), which the light mode does not make, `d` is
+//! [`Mode::LIGHT_MAG_DELAY`], a typical delay in place of the estimate.
+//!
+//! Between corrections the [`Outcome`] reports the accelerometer sample as used (it fed the
+//! low-pass filter) and a valid magnetometer sample with the report of the last correction.
+
+use super::{
+    Estimator, GRAVITY, Gains, HARD_IRON_FEED_STEP, MAG_DELAY_MAX, Mode, Outcome, Params, SensorUse,
+};
+use crate::estimation::lowpass::LowPass;
+use crate::{Real, Vec3};
+
+/// What the light mode accumulates between two corrections.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct LightState<T> {
+    /// Time (s) since the last correction.
+    elapsed: T,
+    /// The rate-proportional attitude noise (rad²) accumulated since the last correction.
+    q_scale: T,
+    /// Attitude variance (rad²) added by saturated gyroscope samples since the last correction.
+    saturated: T,
+    /// Whether an accelerometer sample fed the low-pass filter since the last correction.
+    accel_fed: bool,
+    /// Whether the rest detector said "at rest" at the last accelerometer sample.
+    at_rest: bool,
+    /// The magnetometer's report at the last correction.
+    mag: SensorUse,
+    /// The bias-corrected rate (rad/s) at the correction, for the field's delay.
+    rate: Vec3<T>,
+}
+
+impl<T: Real> Mode<T> {
+    /// The default correction period (s) of [`Mode::Light`]: 25 ms (40 Hz).
+    pub const LIGHT_PERIOD: f64 = 0.025;
+
+    /// The magnetometer delay (s) the light mode applies in place of the online estimate:
+    /// 11 ms, the median of the full mode's online estimates on BROAD's trials of half A
+    /// (01 05 09 14 21 26 30 34: 5.1–13.9 ms), checked on half B (BENCHMARKS.md).
+    pub const LIGHT_MAG_DELAY: f64 = 0.011;
+
+    /// [`Mode::Light`] with the default correction period [`Mode::LIGHT_PERIOD`].
+    pub fn light() -> Self {
+        Mode::Light {
+            correction_period: T::from_f64(Self::LIGHT_PERIOD),
+        }
+    }
+}
+
+impl<T: Real> Estimator<T> {
+    /// The light mode's update after the checks and the initialisation of
+    /// [`Estimator::update`]: the prediction every sample, the corrections every `period`.
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the checked samples and their reports, as `update` holds them"
+    )]
+    pub(super) fn update_light(
+        &mut self,
+        mean_rate: Vec3<T>,
+        gyro: Vec3<T>,
+        accel: Vec3<T>,
+        mag: Option<Vec3<T>>,
+        (accel_use, mag_use): (SensorUse, SensorUse),
+        mut out: Outcome,
+        dt: T,
+        period: T,
+    ) -> Outcome {
+        let w = mean_rate - self.bias;
+        self.q_gyro = self
+            .q_gyro
+            .mul_exp_unchecked(w.scale(dt))
+            .renormalize_fast();
+        self.lead_rate = gyro - self.bias;
+        let pr = self.params;
+        let s = &mut self.light;
+        s.elapsed += dt;
+        // The full mode's rate-proportional noise per step, `θ²·min(s²/Δt, 1)`, summed.
+        let theta2 = w.scale(dt).norm_squared();
+        let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
+        s.q_scale += theta2 * (s2 / dt).min(T::ONE);
+        if out.gyro_saturated {
+            let a = (pr.gyro_range * dt).min(T::PI);
+            s.saturated += a * a;
+            self.lowpass_stale = true;
+        }
+        if accel_use == SensorUse::Used {
+            s.at_rest = self.rest.update(gyro, accel, dt, &pr.rest);
+            let a_gyro = self.q_gyro.rotate(accel);
+            if self.lowpass_stale {
+                self.accel_lp = LowPass::at(a_gyro);
+                self.lowpass_stale = false;
+            }
+            if pr.accel_time_constant > T::ZERO {
+                let k = LowPass::gain(pr.accel_time_constant, dt);
+                self.accel_lp.update(a_gyro, k);
+            } else {
+                self.accel_lp = LowPass::at(a_gyro);
+            }
+            self.light.accel_fed = true;
+        }
+        if let (Some(m), SensorUse::Used) = (mag, mag_use) {
+            self.light_hard_iron(m, gyro, dt);
+        }
+        out.at_rest = self.light.at_rest && accel_use == SensorUse::Used;
+        out.accel = accel_use;
+        let mag_ok = mag_use == SensorUse::Used;
+        if self.light.elapsed < period {
+            // A valid sample reports as the last correction did (as used before the first).
+            out.mag = match (mag_ok, self.light.mag) {
+                (true, SensorUse::Absent) => SensorUse::Used,
+                (true, last) => last,
+                (false, _) => mag_use,
+            };
+            self.last = out;
+            return out;
+        }
+
+        let s = core::mem::take(&mut self.light);
+        let tc = s.elapsed;
+        // The covariance over the interval, R̂ at its end.
+        let f = self.attitude_enu().to_rotation_matrix().scale(-tc);
+        let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * tc + s.q_scale;
+        let q_bias = pr.gyro_bias_stability * pr.gyro_bias_stability * tc / pr.gyro_bias_time;
+        self.p.predict(f, q_theta, q_bias);
+        if s.saturated > T::ZERO {
+            self.p.inflate_attitude(s.saturated);
+        }
+        self.p.bound(T::PI * T::PI, self.bias_variance_max());
+
+        let mut x = [T::ZERO; 6];
+        if s.accel_fed {
+            if s.at_rest {
+                self.rest_update(&mut x);
+            }
+            let used = self.tilt_update(self.accel_lp.output(), tc, &mut x);
+            if accel_use == SensorUse::Used {
+                out.accel = used;
+            }
+        }
+        self.inject(&x);
+
+        self.light.rate = w;
+        self.light.mag = match (mag, mag_use) {
+            (Some(m), SensorUse::Used) => self.mag_update(m, gyro, tc),
+            (_, u) => u,
+        };
+        out.mag = self.light.mag;
+        self.last = out;
+        out
+    }
+
+    /// The light mode's field sample (sensor frame; raw or hard-iron corrected) in the
+    /// gyroscope frame: the sample of `d` ago carried to the current sensor frame to first
+    /// order, `m − d·(ω × m)`, then rotated by `q_g` (see the module docs for `d`).
+    pub(super) fn light_field(&self, mag: Vec3<T>) -> Vec3<T> {
+        let pr = &self.params;
+        let d = if pr.mag_delay_estimation_time > T::ZERO {
+            T::from_f64(Mode::<T>::LIGHT_MAG_DELAY)
+        } else {
+            pr.mag_delay.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX))
+        };
+        self.q_gyro
+            .rotate(mag - self.light.rate.cross(mag).scale(d))
+    }
+
+    /// The full mode's hard-iron feed (`mag_update`) on every sample rather than at the
+    /// corrections: the fit's information grows with the samples it is fed (measured on BROAD
+    /// trial 36: fed at the 25 ms corrections 1.86°, on every sample 1.2°, as the full mode).
+    fn light_hard_iron(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) {
+        let pr = &self.params;
+        if pr.mag_hard_iron_time <= T::ZERO {
+            return;
+        }
+        self.hard_iron_clock += dt;
+        if self.hard_iron_clock < T::from_f64(HARD_IRON_FEED_STEP) {
+            return;
+        }
+        let min_rate = pr.field.new_field_min_rate;
+        if (gyro - self.bias).norm_squared() >= min_rate * min_rate {
+            self.hard_iron
+                .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
+            self.hard_iron_offer = match self.hard_iron.offset() {
+                Some(h) if h.norm() > pr.field.norm * self.field.reference().0 => h,
+                _ => Vec3::ZERO,
+            };
+        }
+        self.hard_iron_clock = T::ZERO;
+    }
+
+    /// The inclination update from the low-passed specific force `v` (gyroscope frame): the
+    /// full mode's, for one measurement per `dt`.
+    fn tilt_update(&mut self, v: Vec3<T>, dt: T, x: &mut [T; 6]) -> SensorUse {
+        let pr = self.params;
+        let g = T::from_f64(GRAVITY);
+        let residual = (v.norm() - g).abs() / g;
+        if residual > pr.accel_reject {
+            return SensorUse::Disturbed;
+        }
+        let v = self.q_corr.rotate(v);
+        let (ex, ey) = tilt_error(v);
+        let r = self.tilt_variance(dt);
+        match pr.gains {
+            Gains::Kalman => {
+                self.scalar_update(x, 0, ex, r);
+                self.scalar_update(x, 1, ey, r);
+            }
+            Gains::Fixed { .. } => {
+                let x0 = *x;
+                self.scalar_update(x, 0, ex, r);
+                self.scalar_update(x, 1, ey, r);
+                x[0] = x0[0] + ex;
+                x[1] = x0[1] + ey;
+            }
+        }
+        SensorUse::Used
+    }
+}
+
+/// The rotation vector (x, y parts) taking the earth-frame vector `v` to +z: about
+/// `(v_y, −v_x, 0)` by the angle between `v` and z.
+fn tilt_error<T: Real>(v: Vec3<T>) -> (T, T) {
+    let h = v.x.hypot(v.y);
+    let angle = h.atan2(v.z);
+    if h > T::ZERO {
+        (v.y * angle / h, -v.x * angle / h)
+    } else {
+        (T::ZERO, T::ZERO)
+    }
+}
+
+impl<T: Real> Params<T> {
+    /// The default parameters in [`Mode::light`].
+    pub fn light() -> Self {
+        Self {
+            mode: Mode::light(),
+            ..Self::default()
+        }
+    }
+}
