@@ -179,7 +179,7 @@
 //!
 //! Cost: 6267 M4F instructions per 9D f32 update (`fw_icount_estimation`; 3393 6D), within
 //! the 6344 of the design before, as measured before the merge of the robustness work of
-//! issue 29, which adds about 450–560 to every update (6870 / 3958 after it; that branch
+//! issue 29, which adds about 450–590 to every update (6890 / 3979 after it; that branch
 //! alone, with the design before this one: 6935 / 3842); reading
 //! [`Estimator::attitude`] adds the exponential of the delay step. Memory: the hard-iron fit
 //! 88 bytes in f32 and its offsets 28. f32 runs within 0.001° of f64 on every trial.
