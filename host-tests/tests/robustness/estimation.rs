@@ -504,4 +504,3 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
 fn campaign() {
     run_stream_campaign("estimation", UPDATES, families::<f32>(), families::<f64>());
 }
-
