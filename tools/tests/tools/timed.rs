@@ -1,13 +1,15 @@
 //! `propagate --time-column` and the sensor options, against computations written here:
 //!
-//! - the real x-io Fusion log (`../shared/real-data/fusion/sensor_data.csv`, deg/s gyro with
-//!   jittery timestamps, 13 514 samples): the f64 result against an independent integration on
+//! - the real x-io Fusion log (its first 4000 samples, 40 s, in
+//!   `data/fusion/sensor_data.first4000.csv.gz`; deg/s gyro with jittery timestamps, steps
+//!   7.56–30.24 ms, turns up to 6.4 rad/s): the f64 result against an independent integration on
 //!   the real timestamps (a product of exponentials, one per interval, of the trapezoid rotation
 //!   vector with its commutator term, on plain arrays);
 //! - synthetic coning streams with jitter (increments and rates), a dropped sample (a gap),
 //!   repeated and backwards timestamps, units, a calibration file and a remap.
 
 use std::f64::consts::TAU;
+use std::io::Read;
 use std::path::PathBuf;
 
 use crate::cli::{numbers, row, run};
@@ -38,8 +40,12 @@ fn qexp(phi: V3) -> Q {
 
 fn fusion() -> Vec<(f64, V3)> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../shared/real-data/fusion/sensor_data.csv");
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        .join("../data/fusion/sensor_data.first4000.csv.gz");
+    let file = std::fs::File::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut text = String::new();
+    flate2::read::GzDecoder::new(file)
+        .read_to_string(&mut text)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     text.lines()
         .skip(1)
         .map(|l| {
@@ -52,7 +58,7 @@ fn fusion() -> Vec<(f64, V3)> {
 #[test]
 fn fusion_log_on_its_own_timestamps() {
     let data = fusion();
-    assert_eq!(data.len(), 13_514);
+    assert_eq!(data.len(), 4000);
     let input: String = data
         .iter()
         .map(|(t, w)| format!("{t},{}\n", row(w)))
@@ -144,10 +150,10 @@ fn fusion_log_on_its_own_timestamps() {
          model ends {model:e} rad from the cubic one"
     );
     // Magnus-4 is 4th order in the interval: with steps up to 30 ms at up to 6.4 rad/s
-    // (|ω|h ≤ 0.19 rad) its truncation against the converged reference was measured at 8.6e-6
-    // rad worst over the 135 s, 600× below the interpolation model's own uncertainty (the
-    // linear model ends 5.4e-3 rad away).
-    assert!(worst < 2e-5, "{worst:e}");
+    // (|ω|h ≤ 0.19 rad) its truncation against the converged reference was measured at 3.2e-7
+    // rad worst over these 40 s (8.6e-6 over the full 135 s log), 4000× below the interpolation
+    // model's own uncertainty (the linear model ends 1.3e-3 rad away).
+    assert!(worst < 2e-6, "{worst:e}");
     // The same log on a fixed 10 ms clock (its mean step is 10.01 ms): far off.
     let fixed: String = data.iter().map(|(_, w)| row(w) + "\n").collect();
     let out = run(
