@@ -1,6 +1,6 @@
 """The estimator on a synthetic IMU record of known attitude and bias (the sensor model written
-here, independently of the library), in f64 and f32, and on a real BROAD trial when the
-repository's shared data is present (scored against the optical reference)."""
+here, independently of the library), in f64 and f32, and on a real BROAD trial (a trimmed copy in
+data/broad/, scored against the optical reference)."""
 
 from __future__ import annotations
 

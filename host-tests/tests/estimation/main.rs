@@ -1,7 +1,8 @@
 //! The attitude estimator (`gyrostat::estimation`): its pieces against independent references
 //! (closed-form attitudes, a numerically integrated covariance, synthetic sensors generated from
 //! a known motion), its behaviour on bad input, the BROAD metric against the dataset's
-//! `score.py`, and a short accuracy regression on two shared BROAD trials.
+//! `score.py`, and a short accuracy regression on two BROAD trials (trimmed copies in `data/broad/`;
+//! the full trials where `GYROSTAT_BROAD_DIR` or `../shared/real-data/broad` holds them).
 
 // Matrix and per-axis code reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
