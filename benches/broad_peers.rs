@@ -320,7 +320,8 @@ fn usage() -> ! {
 }
 
 fn main() -> io::Result<()> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    // The repository (this package is its benches/ folder).
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
     // The full trials (data/README.md says where to get them).
     let mut data = std::env::var_os("GYROSTAT_BROAD_DIR")
         .map(PathBuf::from)

@@ -505,7 +505,7 @@ def main():
     ap.add_argument("--estimates", metavar="LABEL=DIR", action="append", default=[],
                     help="score a directory of estimate CSVs (LABEL ending in 6D: scored as 6D)")
     ap.add_argument("--rust", action="store_true",
-                    help="first run `cargo bench --bench broad_peers` (uf-ahrs and vqf crates)")
+                    help="first run `cargo bench --bench broad_peers` (uf-ahrs and vqf crates; package gyrostat-benches)")
     ap.add_argument("--export", metavar="DIR", help="also write every peer estimate as CSV under DIR")
     ap.add_argument("--json", metavar="FILE", help="also write every score (per trial and rest phase) as JSON")
     args = ap.parse_args()
