@@ -962,8 +962,11 @@ const NOMINAL_ROWS: usize = 17;
 /// stopped the reading ahead, reported in its turn), then the rest of the input.
 struct TimedRows<'a, R> {
     lines: &'a mut Lines<R>,
-    ahead: VecDeque<Result<(u64, f64, Vec3<f64>), Failure>>,
+    ahead: VecDeque<Result<TimedRow, Failure>>,
 }
+
+/// A row of the time-column mode: line number, raw timestamp, the three numbers.
+type TimedRow = (u64, f64, Vec3<f64>);
 
 impl<R: io::Read> TimedRows<'_, R> {
     /// The next `t,x,y,z` row (t raw, in the input's unit), skipping blank lines.
@@ -1177,7 +1180,7 @@ fn within_limit(angle: f64, n: u64) -> Result<(), Failure> {
 /// is not positive.
 fn unequal_coning_coefficients(h: &[f64]) -> Option<[[f64; 4]; 4]> {
     let n = h.len();
-    if n == 0 || n > 4 || h.iter().any(|x| !(*x > 0.0)) {
+    if n == 0 || n > 4 || h.iter().any(|x| x.is_nan() || *x <= 0.0) {
         return None;
     }
     let total: f64 = h.iter().sum();
@@ -1187,11 +1190,11 @@ fn unequal_coning_coefficients(h: &[f64]) -> Option<[[f64; 4]; 4]> {
     }
     // [M | I] reduced to [I | G] by Gauss–Jordan elimination with partial pivoting.
     let mut a = [[0.0f64; 8]; 4];
-    for i in 0..n {
-        for k in 0..n {
-            a[i][k] = (u[i + 1].powi(k as i32 + 1) - u[i].powi(k as i32 + 1)) / (k + 1) as f64;
+    for (i, row) in a.iter_mut().enumerate().take(n) {
+        for (k, m) in row.iter_mut().enumerate().take(n) {
+            *m = (u[i + 1].powi(k as i32 + 1) - u[i].powi(k as i32 + 1)) / (k + 1) as f64;
         }
-        a[i][n + i] = 1.0;
+        row[n + i] = 1.0;
     }
     for c in 0..n {
         let p = (c..n).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
@@ -1225,9 +1228,9 @@ fn unequal_coning_coefficients(h: &[f64]) -> Option<[[f64; 4]; 4]> {
         0.5 * s
     };
     let mut c = [[0.0; 4]; 4];
-    for i in 0..n {
-        for j in i + 1..n {
-            c[i][j] = big_c(i, j) - big_c(j, i);
+    for (i, row) in c.iter_mut().enumerate().take(n) {
+        for (j, cij) in row.iter_mut().enumerate().take(n).skip(i + 1) {
+            *cij = big_c(i, j) - big_c(j, i);
         }
     }
     c.iter().flatten().all(|x| x.is_finite()).then_some(c)
@@ -1372,14 +1375,10 @@ impl<R: io::Read> TimedRun<'_, '_, R> {
                     let c = unequal_coning_coefficients(&hs)
                         .ok_or_else(|| Failure::Row(n, "interval not positive".into()))?;
                     let mut phi = pending[0].0;
-                    for j in 1..pending.len() {
-                        phi = phi + pending[j].0;
-                        for i in 0..j {
-                            phi = phi
-                                + pending[i]
-                                    .0
-                                    .cross(pending[j].0)
-                                    .scale(coefficient(c[i][j], n)?);
+                    for (j, (vj, _)) in pending.iter().enumerate().skip(1) {
+                        phi += *vj;
+                        for (i, (vi, _)) in pending.iter().enumerate().take(j) {
+                            phi += vi.cross(*vj).scale(coefficient(c[i][j], n)?);
                         }
                     }
                     q.rotated(phi)
