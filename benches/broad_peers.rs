@@ -6,7 +6,8 @@
 //! peers and gyrostat. Not a criterion bench and not in the test suite:
 //!
 //! ```text
-//! cargo bench --bench broad_peers                       # every trial of ../shared/real-data/broad
+//! cargo bench --bench broad_peers                       # every trial of $GYROSTAT_BROAD_DIR
+//!                                                       # (else ../shared/real-data/broad)
 //! cargo bench --bench broad_peers -- --trials 07,24 --data DIR
 //! python3 benches/broad/run_peers.py --rust             # runs this, then scores everything
 //! ```
@@ -319,8 +320,12 @@ fn usage() -> ! {
 }
 
 fn main() -> io::Result<()> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let mut data = root.join("../shared/real-data/broad");
+    // The repository (this package is its benches/ folder).
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
+    // The full trials (data/README.md says where to get them).
+    let mut data = std::env::var_os("GYROSTAT_BROAD_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root.join("../shared/real-data/broad"));
     let mut out = root.join("target/broad-peers/rust");
     let mut trials: Option<Vec<String>> = None;
     let mut args = std::env::args().skip(1);

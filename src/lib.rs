@@ -22,6 +22,7 @@
 //! | [Euler angles, with gimbal lock](#euler-angles-with-gimbal-lock) | [`UnitQuat::to_euler`], [`rotation::EulerSequence`], [`rotation::GimbalPolicy`] |
 //! | [a gyrostat with a reaction wheel](#a-gyrostat-with-a-reaction-wheel) | [`dynamics::Gyrostat::with_wheels`], [`dynamics::Gyrostat::step_with`], [`dynamics::Control`] |
 //! | [a real sensor stream: timestamps, calibration, mounting](#a-real-sensor-stream-timestamps-calibration-mounting) | [`sensor::SampleClock`], [`sensor::MicrosClock`], [`sensor::InertialCalibration`], [`sensor::AxisRemap`], [`sensor::ClipGuard`], [`propagation::kernels::coning2_update_unequal`], [`propagation::kernels::magnus4_step_unequal`] |
+//! | [attitude and gyro bias from an IMU](#attitude-and-gyro-bias-from-an-imu) | [`estimation::Estimator`], [`estimation::Params`], [`estimation::Outcome`] |
 //! | [converting an attitude log](#converting-an-attitude-log) | [`Quat::try_normalize`], [`UnitQuat::to_euler_angles`], [`RotationVector`], [`Dcm`] |
 //!
 //! ## Strapdown attitude from gyro increments, in f32
@@ -161,6 +162,30 @@
 //! # Ok::<(), gyrostat::Error>(())
 //! ```
 //!
+//! ## Attitude and gyro bias from an IMU
+//! A gyroscope, an accelerometer and (optionally) a magnetometer sampled together: an
+//! [`Estimator`](estimation::Estimator) propagates the attitude with the bias-corrected rate and
+//! corrects it with gravity (inclination) and the field (heading only), estimating the gyroscope
+//! bias online ([`estimation`]: the filter, its parameters and its handling of disturbed or bad
+//! samples). The first sample sets the attitude; the frame is ENU (x east, y magnetic north).
+//! ```
+//! use gyrostat::estimation::{Estimator, Params};
+//! use gyrostat::Vec3;
+//!
+//! let mut f = Estimator::<f32>::try_new(Params::default())?;
+//! let bias = Vec3::new(0.01, -0.005, 0.002); // rad/s
+//! // A sensor lying still for 20 s at 100 Hz: the gyroscope reads its bias alone.
+//! let (gravity, field) = (Vec3::new(0.0, 0.0, 9.81), Vec3::new(0.0, 15.8, -40.7));
+//! let mut at_rest = false;
+//! for _ in 0..2000 {
+//!     at_rest = f.update_9d(bias, gravity, field, 0.01)?.at_rest;
+//! }
+//! assert!(at_rest); // the rest detector saw it
+//! assert!((f.bias() - bias).norm() < 1e-3); // learnt at rest
+//! assert!(f.attitude().angle() < 1e-2); // sensor axes = ENU
+//! # Ok::<(), gyrostat::Error>(())
+//! ```
+//!
 //! ## Converting an attitude log
 //! Every representation converts to and from [`UnitQuat`] (`From`, or `TryFrom` and a `try_`
 //! method where the conversion can fail). A bad row becomes an [`Error`], never a NaN. (The
@@ -233,18 +258,23 @@
 //!   integrators as a `UnitQuat`).
 //!
 //! # Layers
-//! Every module depends only on the modules below it:
+//! Every module depends only on the layers above it in this table, and on exactly the layers its
+//! row lists (a host test, `layer_table` in `src/lib.rs`, reads this table and every module's
+//! `crate::` paths and fails when they disagree). The crate's [`Error`] is used by every layer.
 //!
-//! | layer | modules | depends on |
-//! |---|---|---|
-//! | scalars | [`real`]: [`Ring`], [`Real`], their f32/f64 implementations and the fixed-point number [`fixed::Fixed`] | nothing |
-//! | linear algebra | [`linalg`]: [`Vec3`], [`Mat3`], [`Complex`], [`Axis`] | scalars |
-//! | rotations | [`rotation`]: [`Quat`], [`UnitQuat`] and every representation; the exponential map and its per-scalar kernels ([`ExpMap`], fixed point's in [`fixed`]) | linear algebra |
-//! | step limits | [`step_limit`]: the validity limit of a step, shared by the two layers above it | linear algebra |
-//! | propagation | [`propagation`]: rules and interpolation, then the [`propagation::kernels`] and the compensated updates, the attitude trait, the integrators | rotations, step limits |
-//! | dynamics | [`dynamics`]: the body (inertia, Hamiltonian, gyrostat, state), the [`dynamics::integrators`] and the [`dynamics::closed_form`] on it, the step on the integrators | rotations, step limits |
-//! | at the edges | [`fixed`] (the fixed-point formats, conversions and sensor scale), the optional integrations (features below) | rotations |
-//! | sensor streams | [`sensor`]: timestamps and gap policy, calibration, mounting, raw registers and clipping, before the propagation core | rotations, propagation, fixed |
+//! | layer | modules | contents | depends on |
+//! |---|---|---|---|
+//! | scalars | [`real`] | [`Ring`], [`Real`], their f32/f64 implementations and the fixed-point number [`fixed::Fixed`] | nothing |
+//! | linear algebra | [`linalg`] | [`Vec3`], [`Mat3`], [`Complex`], [`Axis`] | scalars |
+//! | rotations | [`rotation`] | [`Quat`], [`UnitQuat`] and every representation; the exponential map ([`ExpMap`]) | scalars, linear algebra |
+//! | compensated arithmetic | `compensated` (private) | error-free sums and products, the compensated rotation update | scalars, linear algebra, rotations |
+//! | step limits | [`step_limit`] | the validity limit of a step, shared by the two layers below | scalars, linear algebra |
+//! | propagation | [`propagation`] | rules and interpolation, then the [`propagation::kernels`] and the compensated updates, the attitude trait, the integrators | scalars, linear algebra, rotations, compensated arithmetic, step limits |
+//! | dynamics | [`dynamics`] | the body (inertia, Hamiltonian, gyrostat, state), the [`dynamics::integrators`] and the [`dynamics::closed_form`] on it, the step on the integrators | scalars, linear algebra, rotations, compensated arithmetic, step limits |
+//! | fixed point | [`fixed`] | the fixed-point formats, conversions and raw increment scale, Q1.30's exponential map, the carried attitude on the propagation kernels | scalars, linear algebra, rotations, propagation |
+//! | sensor streams | [`sensor`] | timestamps and gap policy, calibration, mounting, raw registers and clipping, in f32, f64 and Q1.30, before the propagation core | scalars, linear algebra, rotations, fixed point |
+//! | estimation | [`estimation`] | the attitude and gyro-bias estimator: initialisation, covariance, rest detector, field monitor, the filter | scalars, linear algebra, rotations |
+//! | integrations | `interop` (private; the features below) | conversions to and from nalgebra and mint, `defmt::Format` | scalars, linear algebra, rotations |
 //!
 //! # Data path
 //! sensor samples or torques → a step function → [`UnitQuat`] (and body momentum) → conversions.
@@ -293,6 +323,15 @@ pub use rotation::{
     AxisAngle, Dcm, Euler, EulerSequence, ExpMap, Gibbs, GimbalPolicy, Mrp, PolarAxisAngle, Quat,
     RotationVector, Su2, UnitQuat,
 };
+
+/// The `heapless` crate, whose `Vec` appears in public types
+/// ([`propagation::Attitudes`], [`propagation::IncrementBuffer`]): re-exported so that callers
+/// name those types with the version this crate was built with (`gyrostat::heapless::Vec`).
+#[doc(no_inline)]
+pub use heapless;
+
+#[cfg(test)]
+mod layer_table;
 
 /// The README's Rust examples, compiled and run as doctests so that they stay true.
 #[cfg(doctest)]

@@ -8,9 +8,11 @@
         --gyrostat-6d 'target/release/broad_estimate --6d {trial} > {out}'
     python3 benches/broad/run_peers.py --estimates 'my filter=path/to/dir'
 
-Trials: every `*.csv.gz` of ../shared/real-data/broad/ (relative to the repository root; `--data`
-overrides). Metric: that folder's `score.py` (BROAD's official total / heading / inclination RMSE
-over the movement phase), imported and called as it is; nothing here recomputes an error.
+Trials: every `*.csv.gz` of the full BROAD folder: `--data DIR`, else $GYROSTAT_BROAD_DIR, else
+../shared/real-data/broad/ beside the repository (data/README.md says where to get the trials; the
+repository keeps only trimmed copies, in data/broad/, for its tests). Metric: that folder's
+`score.py` (BROAD's official total / heading / inclination RMSE over the movement phase), imported
+and called as it is; nothing here recomputes an error.
 
 Every estimator runs ONLINE (sample by sample, causal) over the whole trial, with the same
 initialisation rule, BROAD's: the initial attitude from the accelerometer and magnetometer of the
@@ -69,6 +71,7 @@ import gzip
 import importlib.util
 import json
 import math
+import os
 import pickle
 import re
 import subprocess
@@ -491,8 +494,10 @@ def group_mean(results, stems, nine):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--data", default=str(ROOT.parent / "shared" / "real-data" / "broad"),
-                    help="BROAD folder (default: ../shared/real-data/broad from the repository root)")
+    ap.add_argument("--data", default=os.environ.get("GYROSTAT_BROAD_DIR",
+                                                     str(ROOT.parent / "shared" / "real-data" / "broad")),
+                    help="BROAD folder with score.py (default: $GYROSTAT_BROAD_DIR, else "
+                         "../shared/real-data/broad beside the repository; see data/README.md)")
     ap.add_argument("--trials", help="comma-separated trial numbers, e.g. 07,24 (default: all)")
     ap.add_argument("--only", help="comma-separated peer labels to run (default: all), e.g. 'VQF 9D,strapdown'")
     ap.add_argument("--no-peers", action="store_true", help="score only gyrostat / --estimates / rust outputs")
@@ -502,7 +507,7 @@ def main():
     ap.add_argument("--estimates", metavar="LABEL=DIR", action="append", default=[],
                     help="score a directory of estimate CSVs (LABEL ending in 6D: scored as 6D)")
     ap.add_argument("--rust", action="store_true",
-                    help="first run `cargo bench --bench broad_peers` (uf-ahrs and vqf crates)")
+                    help="first run `cargo bench --bench broad_peers` (uf-ahrs and vqf crates; package gyrostat-benches)")
     ap.add_argument("--export", metavar="DIR", help="also write every peer estimate as CSV under DIR")
     ap.add_argument("--every", type=int, default=1, metavar="N",
                     help="keep every Nth row of each trial (rows 0, N, 2N, ...; nothing else changed): "
@@ -522,7 +527,8 @@ def main():
         want = set(args.trials.split(","))
         paths = [p for p in paths if p.name.split("_")[0] in want]
     if not paths:
-        sys.exit(f"error: no trials in {data}")
+        sys.exit(f"error: no trials in {data} (pass --data DIR or set GYROSTAT_BROAD_DIR; "
+                 "data/README.md says where to get them)")
     trials = [Trial(p, score, args.every) for p in paths]
     stems = [t.stem for t in trials]
 

@@ -417,9 +417,43 @@ pub fn score_rows(log: &Log, rows: &[EstimateRow]) -> Score {
     score(log, &est)
 }
 
-/// The shared BROAD folder, `../shared/real-data/broad` beside the repository.
-pub fn broad_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/real-data/broad")
+/// The environment variable naming the folder of the full BROAD trials (gzip CSV, as
+/// [`TRIALS`] names them; `data/README.md` says where to get them).
+pub const BROAD_DIR_VAR: &str = "GYROSTAT_BROAD_DIR";
+
+/// The folder of the full BROAD trials: `$GYROSTAT_BROAD_DIR` when set, else
+/// `../shared/real-data/broad` beside the repository when that folder exists; `None` otherwise
+/// (a clone on its own: the tests then use the trimmed copies, [`fixture_path`]).
+pub fn broad_dir() -> Option<PathBuf> {
+    if let Some(d) = std::env::var_os(BROAD_DIR_VAR) {
+        return Some(PathBuf::from(d));
+    }
+    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/real-data/broad");
+    d.is_dir().then_some(d)
+}
+
+/// How to get the full trials, for messages when [`broad_dir`] is `None`.
+pub const BROAD_DIR_HELP: &str = "the full BROAD trials are not here: set GYROSTAT_BROAD_DIR to a \
+    folder of NN_name.csv.gz trials (converted from the dataset's MATLAB files, see data/README.md; \
+    dataset: https://github.com/dlaidig/broad)";
+
+/// The trimmed BROAD trials kept in the repository (`data/broad/`, cut by `data/trim.py`): file
+/// stem, seconds kept from the start (the rest phase and the first part of the movement).
+pub const FIXTURES: [(&str, u32); 2] = [
+    ("07_undisturbed_fast_rotation_B", 60),
+    ("32_disturbed_attached_magnet_1cm", 65),
+];
+
+/// The path of a trimmed trial in the repository by its stem (see [`FIXTURES`]); panics on a
+/// stem that is not one of them.
+pub fn fixture_path(stem: &str) -> PathBuf {
+    let (_, s) = FIXTURES
+        .iter()
+        .find(|(f, _)| *f == stem)
+        .unwrap_or_else(|| panic!("{stem} is not a trimmed fixture (host_tests::broad::FIXTURES)"));
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../data/broad")
+        .join(format!("{stem}.first{s}s.csv.gz"))
 }
 
 /// The 16 shared BROAD trials: file stem and whether the trial is in the disturbed group.
@@ -442,9 +476,10 @@ pub const TRIALS: [(&str, bool); 16] = [
     ("36_disturbed_attached_magnet_5cm", true),
 ];
 
-/// The path of a shared trial by its stem (see [`TRIALS`]).
-pub fn trial_path(stem: &str) -> PathBuf {
-    broad_dir().join(format!("{stem}.csv.gz"))
+/// The path of a full trial by its stem (see [`TRIALS`]) in [`broad_dir`]; `None` when there is
+/// no such folder.
+pub fn trial_path(stem: &str) -> Option<PathBuf> {
+    broad_dir().map(|d| d.join(format!("{stem}.csv.gz")))
 }
 
 /// Counts of the sensors' uses over a run (for reports).

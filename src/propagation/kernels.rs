@@ -165,6 +165,52 @@ pub fn magnus4_step_unequal<T: Real, const M: usize>(
     )
 }
 
+/// One commutator-free CF4 step on rate samples at unequal times: [`cf4_step`] from `t0` to
+/// `t1` with the rates at the step's Gauss nodes taken from the Lagrange interpolant through the
+/// `M` samples, as [`magnus4_step_unequal`] (the same window, order and domain). Not
+/// renormalised.
+#[inline]
+pub fn cf4_step_unequal<T: Real, const M: usize>(
+    q: UnitQuat<T>,
+    times: &[T; M],
+    rates: &[Vec3<T>; M],
+    t0: T,
+    t1: T,
+) -> UnitQuat<T> {
+    let h = t1 - t0;
+    let g1 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_1);
+    let g2 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_2);
+    cf4_step(
+        q,
+        lagrange_at(times, rates, g1),
+        lagrange_at(times, rates, g2),
+        h,
+    )
+}
+
+/// One classical RK4 step on rate samples at unequal times: [`rk4_step`] from `t0` to `t1` with
+/// the rates at the step's start, midpoint and end taken from the Lagrange interpolant through
+/// the `M` samples (the start and end are samples of the window when `t0` and `t1` are two of
+/// its times, as in use), as [`magnus4_step_unequal`] (the same window, order and domain).
+/// Returns the raw quaternion, as [`rk4_step`]: apply a [`Normalization`] to it.
+#[inline]
+pub fn rk4_step_unequal<T: Real, const M: usize>(
+    q: Quat<T>,
+    times: &[T; M],
+    rates: &[Vec3<T>; M],
+    t0: T,
+    t1: T,
+) -> Quat<T> {
+    let h = t1 - t0;
+    rk4_step(
+        q,
+        lagrange_at(times, rates, t0),
+        lagrange_at(times, rates, t0 + h * T::HALF),
+        lagrange_at(times, rates, t1),
+        h,
+    )
+}
+
 /// One Magnus-4 step: `q ⊗ exp(φ)` with φ from [`magnus4_rotation_vector`]. Unchecked, not
 /// renormalised (a product of unit quaternions, unit to about one ulp). Domain (of this and the
 /// other step functions of this module): finite rates with `|ω|·h` at most a few times

@@ -4,6 +4,9 @@
 //! ```text
 //! cargo run --release -p host-tests --bin broad_estimate -- [OPTIONS] [TRIAL...]
 //!   TRIAL            trial numbers (01 07 …) or file paths; default: the 16 shared trials
+//!   --data DIR       the folder of the full trials (default: $GYROSTAT_BROAD_DIR, else
+//!                    ../shared/real-data/broad beside the repository; see data/README.md for
+//!                    where to get them; the repository keeps only trimmed copies in data/broad)
 //!   --f32            run the filter in f32 (default f64)
 //!   --both           run f64 and f32 and print the largest difference of the scores
 //!   --6d             no magnetometer (inclination is the meaningful score)
@@ -56,7 +59,9 @@ fn main() -> ExitCode {
     let mut out: Option<PathBuf> = None;
     let mut every = 1usize;
     let mut lead = 0.0f64;
-    let mut jobs = Vec::new();
+    let mut data: Option<PathBuf> = None;
+    // (name, disturbed, stem of a listed trial or a path)
+    let mut picked: Vec<(String, bool, Result<&str, PathBuf>)> = Vec::new();
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
@@ -96,6 +101,7 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             }
+            "--data" => data = args.next().map(PathBuf::from),
             "--set" => {
                 let Some(kv) = args.next() else {
                     eprintln!("error: --set needs NAME=VALUE");
@@ -116,30 +122,37 @@ fn main() -> ExitCode {
             }
             s => {
                 if let Some((stem, d)) = TRIALS.iter().find(|(stem, _)| stem.starts_with(s)) {
-                    jobs.push(Job {
-                        name: stem[..2].to_string(),
-                        disturbed: *d,
-                        path: broad::trial_path(stem),
-                    });
+                    picked.push((stem[..2].to_string(), *d, Ok(stem)));
                 } else {
-                    jobs.push(Job {
-                        name: s.to_string(),
-                        disturbed: false,
-                        path: PathBuf::from(s),
-                    });
+                    picked.push((s.to_string(), false, Err(PathBuf::from(s))));
                 }
             }
         }
     }
-    if jobs.is_empty() {
-        jobs = TRIALS
+    if picked.is_empty() {
+        picked = TRIALS
             .iter()
-            .map(|(stem, d)| Job {
-                name: stem[..2].to_string(),
-                disturbed: *d,
-                path: broad::trial_path(stem),
-            })
+            .map(|(stem, d)| (stem[..2].to_string(), *d, Ok(*stem)))
             .collect();
+    }
+    let dir = data.or_else(broad::broad_dir);
+    let mut jobs = Vec::new();
+    for (name, disturbed, which) in picked {
+        let path = match which {
+            Err(path) => path,
+            Ok(stem) => match &dir {
+                Some(d) => d.join(format!("{stem}.csv.gz")),
+                None => {
+                    eprintln!("error: {} (or pass --data DIR)", broad::BROAD_DIR_HELP);
+                    return ExitCode::from(2);
+                }
+            },
+        };
+        jobs.push(Job {
+            name,
+            disturbed,
+            path,
+        });
     }
     if let Some(dir) = &out
         && let Err(e) = std::fs::create_dir_all(dir)

@@ -114,11 +114,10 @@ fn the_timer_wraps_during_the_replay() {
 /// here independently from the shared CSV); skipped when the shared folder is absent.
 #[test]
 fn the_table_is_the_quantised_broad_trial() {
-    let path = host_tests::broad::trial_path("07_undisturbed_fast_rotation_B");
-    if !path.exists() {
-        eprintln!("skipped: {} absent", path.display());
+    let Some(path) = host_tests::broad::trial_path("07_undisturbed_fast_rotation_B") else {
+        eprintln!("skipped: {}", host_tests::broad::BROAD_DIR_HELP);
         return;
-    }
+    };
     let log = host_tests::broad::open_log(&path, host_tests::broad::Units::SI).unwrap();
     let q = |x: f64| (x + 0.5).floor().clamp(-32768.0, 32767.0) as i16;
     let mut worst = [0.0f64; 3];
@@ -164,11 +163,10 @@ fn the_replay_estimate_tracks_the_optical_reference() {
     use gyrostat::Vec3;
     use gyrostat::estimation::{Estimator, Params};
     use host_tests::broad::{Log, Units, open_log, score, trial_path};
-    let path = trial_path("07_undisturbed_fast_rotation_B");
-    if !path.exists() {
-        eprintln!("skipped: {} absent", path.display());
+    let Some(path) = trial_path("07_undisturbed_fast_rotation_B") else {
+        eprintln!("skipped: {}", host_tests::broad::BROAD_DIR_HELP);
         return;
-    }
+    };
     let full = open_log(&path, Units::SI).unwrap();
     let window = Log {
         rows: full.rows[6700..6700 + ROWS].to_vec(),

@@ -3,26 +3,32 @@
 //! ```text
 //! propagate --input increments|rates --algo ALGO --dt SECONDS [--q0 w,x,y,z] [--f32 | --fixed] \
 //!     [--compensated] [--every N] [--gyro-unit U] [--calibration FILE] [--remap x,-z,y]
-//! propagate --time-column --input increments|rates --algo ALGO --dt NOMINAL [--t0 T] \
-//!     [--time-unit s|ms|us] [--gap-factor K] [--gyro-unit U] [--calibration FILE] [--remap R]
+//! propagate --time-column --input increments|rates --algo ALGO [--dt NOMINAL] [--t0 T] \
+//!     [--f32 | --fixed] [--time-unit s|ms|us] [--gap-factor K] [--gyro-unit U] \
+//!     [--calibration FILE] [--remap R]
 //! ```
 //! Run with `--help` for the full description of the input and output formats.
 
+use std::collections::VecDeque;
 use std::fmt::Debug;
 use std::io::{self, Write};
 use std::process::ExitCode;
 use std::str::FromStr;
 
 use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
-use gyrostat::propagation::coning::two_sample_unequal_coefficient;
-use gyrostat::propagation::kernels::{coning2_update_unequal, magnus4_step_unequal};
+use gyrostat::propagation::coning::{
+    ConingTerms, two_sample_unequal_coefficient, two_sample_unequal_terms,
+};
+use gyrostat::propagation::kernels::{
+    apply_rotation_vector, cf4_step_unequal, magnus4_step_unequal, rk4_step_unequal,
+};
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
     RateIntegrator, RateMethod,
 };
 use gyrostat::sensor::{AxisRemap, InertialCalibration, Interval, MicrosClock, SampleClock};
 use gyrostat::step_limit::MAX_STEP_ANGLE;
-use gyrostat::{Quat, Real, UnitQuat, Vec3};
+use gyrostat::{Quat, Real, Ring, UnitQuat, Vec3};
 use gyrostat_tools::calibration;
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
 use gyrostat_tools::stream::{self, Csv, Lines};
@@ -59,8 +65,9 @@ propagate: integrate gyro increments or rate samples into attitude quaternions
 USAGE:
     propagate --input increments|rates --algo ALGO --dt SECONDS [--q0 w,x,y,z] [--f32 | --fixed]
               [--compensated] [--every N] [SENSOR OPTIONS]
-    propagate --time-column --input increments|rates --algo ALGO --dt NOMINAL [--t0 T]
-              [--time-unit s|ms|us] [--gap-factor K] [--q0 w,x,y,z] [--every N] [SENSOR OPTIONS]
+    propagate --time-column --input increments|rates --algo ALGO [--dt NOMINAL] [--t0 T]
+              [--f32 | --fixed] [--time-unit s|ms|us] [--gap-factor K] [--q0 w,x,y,z]
+              [--every N] [SENSOR OPTIONS]
 
     Flags take their value as the next argument or after `=` (--dt 0.01, --dt=0.01); a flag
     given twice is an error.
@@ -85,7 +92,7 @@ ALGO for --input rates (each integrates from t = 0 to the last sample's time):
     consecutive samples (quadratic for a 3-sample record, linear for a 2-sample one).
 
 OPTIONS:
-    --dt SECONDS   sample interval, finite and > 0 (required)
+    --dt SECONDS   sample interval, finite and > 0 (required, except with --time-column)
     --q0 w,x,y,z   initial attitude (scalar first, maps body to lab), default 1,0,0,0;
                    its norm must be within 1e-3 of 1 (it is then normalised exactly)
     --f32          run the propagation in f32 (default f64)
@@ -124,20 +131,43 @@ SENSOR OPTIONS (every mode): each sample goes raw -> unit -> calibration -> rema
                    with an optional sign (x,-z,y: body y = -sensor z). Only the 24 proper
                    rotations are accepted (a reflection is an error). Applied after calibration.
 
-TIME COLUMN (--time-column, f64 only): each row starts with its timestamp, `t,x,y,z`.
+TIME COLUMN (--time-column; f64, --f32, or --fixed for increments; not --compensated): each
+    row starts with its timestamp, `t,x,y,z`.
     --time-unit s|ms|us       the unit of t and --t0 (default s)
-    --dt NOMINAL   the nominal sample interval (s), for the gap policy only
+    --dt NOMINAL   the nominal sample interval (s), for the gap policy only. Optional: without
+                   it, the median of the intervals between the first 17 timestamps (for
+                   increments --t0 and the first 16 rows; fewer in a shorter input; the mean of
+                   the two middle ones for an even count; rounded to whole us with --time-wrap).
+                   The first rows are then read before the first line is printed. A median that
+                   is not positive (timestamps that do not increase) is a row error.
     --gap-factor K an interval longer than K*NOMINAL is a gap (K >= 1, default 5)
     --input increments   t is the END of the interval the increment covers; the first interval
-                   starts at --t0 T (required). ALGO exp (one exponential per increment) or
-                   coning2 (2-sample rule for unequal intervals h1, h2: coefficient
-                   (h1+h2)^2/(6 h1 h2), 2/3 when equal; one update per two increments; a row
-                   inside a pair, and the last row of an odd record, apply the pending
-                   increment as an exponential, not fed back).
-    --input rates        the rate sampled at t. ALGO magnus4: 4th-order Magnus on the cubic
+                   starts at --t0 T (required). Every ALGO, in the form for unequal intervals:
+                   exp       one exponential per increment
+                   coning1   th + c th(k-1) x th, c = h^2/(6 h(k-1) (h(k-1) + h)) (1/12 when
+                             equal): the linear rate model through the two intervals
+                   coning2   2-sample rule, coefficient (h1+h2)^2/(6 h1 h2) (2/3 when equal)
+                   coning3, coning4   N-sample rule of the rate polynomial of degree N-1 fitted
+                             to the N increments on their own intervals:
+                             phi = sum th_i + sum_{i<j} c_ij th_i x th_j, the coefficients
+                             from the intervals (at equal intervals 57/80, 33/80, 57/80 for
+                             three; for four 736/945, 334/945, 526/945, 218/315, 334/945,
+                             736/945: the polynomial rules, while the fixed-interval coning3
+                             and coning4 are Miller's rules tuned for pure coning, which have no
+                             unequal-interval form)
+                   coningN updates once per N increments; a row inside a group, and the last
+                   row of an unfinished group, apply the pending increments by the rule of their
+                   number (one: an exponential), not fed back. --fixed: the increments are
+                   quantised as without --time-column, the attitude is the carried Q1.30
+                   attitude, the coefficients are computed from the timestamps in f64 and
+                   rounded to Q1.30 (|c| < 2, else a row error); coning1 and coning2 carry their
+                   coning term's residual, coning3 and coning4 round their further cross
+                   products each update.
+    --input rates        the rate sampled at t. ALGO magnus4, cf4 or rk4 on the Lagrange
                    interpolant through the actual times of samples k-3..k (the first three
                    intervals use samples 0..3; a record of 2 or 3 samples the linear or
-                   quadratic interpolant). --t0 is not used.
+                   quadratic interpolant): Magnus-4 and CF4 at the interval's Gauss nodes, RK4
+                   at its start, midpoint and end. --t0 is not used.
     --time-wrap    t is a free-running 32-bit microsecond counter (whole numbers 0..2^32-1, needs
                    --time-unit us and a whole --gap-factor) that wraps every 2^32 us (71.6 min):
                    intervals are wrapped differences, the printed t is unwrapped (counted from
@@ -199,7 +229,9 @@ enum Arith {
 
 struct Args {
     algo: Algo,
-    dt: f64,
+    /// `--dt`: required without `--time-column`; with it, the nominal interval, inferred from
+    /// the timestamps when not given ([`nominal_from`]).
+    dt: Option<f64>,
     q0: [f64; 4],
     arith: Arith,
     compensated: bool,
@@ -384,7 +416,9 @@ fn arguments(f: &Flags) -> Result<Args, String> {
     };
     let input = input.ok_or("--input is required (increments or rates)")?;
     let algo_name = algo.ok_or("--algo is required")?;
-    let dt = dt.ok_or("--dt is required")?;
+    if timed.is_none() && dt.is_none() {
+        return Err("--dt is required".into());
+    }
     let algo = match (input, algo_name) {
         ("increments", "exp") => Algo::Increments(ConingRule::Exp),
         ("increments", "coning1") => Algo::Increments(ConingRule::OnePlusPrevious),
@@ -407,19 +441,8 @@ fn arguments(f: &Flags) -> Result<Args, String> {
         (i, _) => return Err(format!("--input must be increments or rates, got '{i}'")),
     };
     if timed.is_some() {
-        if arith != Arith::F64 || compensated {
-            return Err(
-                "--time-column runs in f64 only (not --f32, --fixed, --compensated)".into(),
-            );
-        }
-        match algo {
-            Algo::Increments(ConingRule::Exp | ConingRule::TwoSample)
-            | Algo::Rates(RateMethod::Magnus4) => {}
-            _ => {
-                return Err(format!(
-                    "--time-column supports --algo exp or coning2 (increments) and magnus4 (rates), not '{algo_name}'"
-                ));
-            }
+        if compensated {
+            return Err("--time-column runs in f64, f32 or Q1.30, not --compensated".into());
         }
         if matches!(algo, Algo::Increments(_)) && timed.as_ref().is_some_and(|t| t.t0.is_none()) {
             return Err(
@@ -739,11 +762,11 @@ fn run<T: Real + FromStr + Debug, A: PropagatedAttitude<T> + From<UnitQuat<T>>>(
         t(1e-3),
     )
     .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
-    let dt = t(args.dt);
+    let dt_given = args.dt.unwrap_or(1.0);
+    let dt = t(dt_given);
     if !(dt.is_finite() && dt > T::ZERO) {
         return Err(Failure::Usage(format!(
-            "--dt: {:?} is not a positive finite f32",
-            args.dt
+            "--dt: {dt_given:?} is not a positive finite f32"
         )));
     }
     let mut p = Printer {
@@ -754,10 +777,10 @@ fn run<T: Real + FromStr + Debug, A: PropagatedAttitude<T> + From<UnitQuat<T>>>(
     let mut lines = Lines::new(io::stdin().lock());
     let result = match args.algo {
         Algo::Increments(rule) => {
-            increments::<T, A, _>(&mut lines, &mut p, q0, rule, &args.sensor, args.dt)
+            increments::<T, A, _>(&mut lines, &mut p, q0, rule, &args.sensor, dt_given)
         }
         Algo::Rates(method) => {
-            rates::<T, A, _>(&mut lines, &mut p, q0, method, args.dt, &args.sensor)
+            rates::<T, A, _>(&mut lines, &mut p, q0, method, dt_given, &args.sensor)
         }
     };
     finish(result, &mut p)
@@ -788,13 +811,13 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
     let mut last = q0; // the attitude after sample k - 1
     let result = (|| -> Result<(), Failure> {
         let stop = loop {
-            let (n, v) =
-                match next_sample::<f64, _>(&mut lines, &mut p.out, &args.sensor, Some(args.dt)) {
-                    Ok(Some(s)) => s,
-                    Ok(None) => break None,
-                    Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
-                    Err(e) => return Err(e),
-                };
+            let (n, v) = match next_sample::<f64, _>(&mut lines, &mut p.out, &args.sensor, args.dt)
+            {
+                Ok(Some(s)) => s,
+                Ok(None) => break None,
+                Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
+                Err(e) => return Err(e),
+            };
             let v = quantizer
                 .try_quantize(v)
                 .map_err(|e| Failure::Row(n, format!("{e} (Q1.30 holds |value| < 2 rad)")));
@@ -931,30 +954,145 @@ fn next_timed<R: io::Read>(
     Ok(next_row(lines, out, parse_timed_row)?.map(|(n, (t, v))| (n, t, v)))
 }
 
-/// `--time-column`: increments over their own intervals (exp, or the 2-sample rule for unequal
-/// intervals) or rates at their own times (Magnus-4 on the interpolant through the actual
-/// times), in f64.
-fn run_timed(args: &Args) -> Result<(), Failure> {
-    let mut clip = args.timed.as_ref().and_then(|t| {
-        t.clip.as_ref().map(|c| Clip {
-            full_scale: c.full_scale,
-            policy: c.policy,
-            last_rate: [None; 3],
-            count: 0,
+/// Rows read ahead to infer the nominal interval when `--dt` is not given: the intervals
+/// between the first 17 timestamps (16 intervals; for increments `--t0` and the first 16 rows).
+const NOMINAL_ROWS: usize = 17;
+
+/// The rows of the time-column mode: the rows read ahead at the start (with the row error that
+/// stopped the reading ahead, reported in its turn), then the rest of the input.
+struct TimedRows<'a, R> {
+    lines: &'a mut Lines<R>,
+    ahead: VecDeque<Result<TimedRow, Failure>>,
+}
+
+/// A row of the time-column mode: line number, raw timestamp, the three numbers.
+type TimedRow = (u64, f64, Vec3<f64>);
+
+impl<R: io::Read> TimedRows<'_, R> {
+    /// The next `t,x,y,z` row (t raw, in the input's unit), skipping blank lines.
+    fn next(&mut self, out: &mut Csv) -> Result<Option<(u64, f64, Vec3<f64>)>, Failure> {
+        match self.ahead.pop_front() {
+            Some(r) => r.map(Some),
+            None => next_timed(self.lines, out),
+        }
+    }
+
+    /// Reads up to `n` rows ahead (fewer at the end of the input or at a bad row) and returns
+    /// their line numbers and raw timestamps.
+    fn read_ahead(&mut self, out: &mut Csv, n: usize) -> Result<Vec<(u64, f64)>, Failure> {
+        let mut rows = Vec::new();
+        while self.ahead.len() < n {
+            match next_timed(self.lines, out) {
+                Ok(Some(r)) => {
+                    rows.push((r.0, r.1));
+                    self.ahead.push_back(Ok(r));
+                }
+                Ok(None) => break,
+                Err(e @ Failure::Row(..)) => {
+                    self.ahead.push_back(Err(e));
+                    break;
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(rows)
+    }
+}
+
+/// The nominal interval (s) inferred from raw timestamps when `--dt` is not given: the median
+/// of the intervals between consecutive ones (the mean of the two middle ones for an even
+/// count), the intervals of a `--time-wrap` counter taken modulo 2^32 µs; `None` when there is
+/// no interval, `Some` of a value that is not positive when the timestamps do not increase.
+fn nominal_from(raw: &[f64], time_factor: f64, wrap: bool) -> Option<f64> {
+    let mut d: Vec<f64> = raw
+        .windows(2)
+        .filter_map(|w| {
+            if wrap {
+                let (a, b) = (counter(w[0])?, counter(w[1])?);
+                Some(f64::from(b.wrapping_sub(a)) * 1e-6)
+            } else {
+                Some((w[1] - w[0]) * time_factor)
+            }
         })
-    });
+        .collect();
+    if d.is_empty() {
+        return None;
+    }
+    d.sort_by(f64::total_cmp);
+    let m = d.len() / 2;
+    Some(if d.len() % 2 == 1 {
+        d[m]
+    } else {
+        0.5 * (d[m - 1] + d[m])
+    })
+}
+
+/// `--time-column`: increments over their own intervals (every rule, in the form for unequal
+/// intervals) or rates at their own times (every method on the interpolant through the actual
+/// times), in f64, f32 or (increments) Q1.30.
+fn run_timed(args: &Args) -> Result<(), Failure> {
     let Some(timed) = &args.timed else {
         return Err(Failure::Usage("--time-column expected".into()));
     };
+    let mut clip = timed.clip.as_ref().map(|c| Clip {
+        full_scale: c.full_scale,
+        policy: c.policy,
+        last_rate: [None; 3],
+        count: 0,
+    });
     let [w, x, y, z] = args.q0;
     let q0 = UnitQuat::try_from_near_unit(Quat::new(w, x, y, z), 1e-3)
         .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
+    let increments = matches!(args.algo, Algo::Increments(_));
+    let t0 = match (increments, timed.t0) {
+        (true, None) => return Err(Failure::Usage("--t0 is required".into())),
+        (_, t0) => t0,
+    };
+    let mut p = Printer {
+        out: Csv::stdout(),
+        every: args.every,
+        last_printed: None,
+    };
+    let mut lines = Lines::new(io::stdin().lock());
+    let mut rows = TimedRows {
+        lines: &mut lines,
+        ahead: VecDeque::new(),
+    };
+    let nominal = match args.dt {
+        Some(dt) => dt,
+        None => {
+            let ahead = rows.read_ahead(&mut p.out, NOMINAL_ROWS - usize::from(increments))?;
+            let raw: Vec<f64> = t0
+                .filter(|_| increments)
+                .into_iter()
+                .chain(ahead.iter().map(|r| r.1))
+                .collect();
+            match nominal_from(&raw, timed.time_factor, timed.wrap) {
+                // No interval in the input: the nominal interval is never used.
+                None => 1.0,
+                Some(h) if h > 0.0 && h.is_finite() => h,
+                Some(h) => {
+                    let line = ahead.last().map_or(0, |r| r.0);
+                    return finish(
+                        Err(Failure::Row(
+                            line,
+                            format!(
+                                "no --dt and the first {} timestamps give no nominal interval \
+                                 (their median interval is {h:e} s): give --dt",
+                                raw.len()
+                            ),
+                        )),
+                        &mut p,
+                    );
+                }
+            }
+        }
+    };
     let mut clock = if timed.wrap {
-        let nominal_us = (args.dt * 1e6).round();
+        let nominal_us = (nominal * 1e6).round();
         if !(1.0..4_294_967_296.0).contains(&nominal_us) || timed.gap_factor >= 4_294_967_296.0 {
             return Err(Failure::Usage(format!(
-                "--dt {}: with --time-wrap a whole number of microseconds >= 1",
-                args.dt
+                "--dt {nominal}: with --time-wrap a whole number of microseconds >= 1"
             )));
         }
         let c = MicrosClock::try_new(nominal_us as u32, timed.gap_factor as u32).map_err(|e| {
@@ -964,30 +1102,36 @@ fn run_timed(args: &Args) -> Result<(), Failure> {
         })?;
         TimedClock::Counter(c, 0)
     } else {
-        let c = SampleClock::try_with_gap_factor(args.dt, timed.gap_factor)
+        let c = SampleClock::try_with_gap_factor(nominal, timed.gap_factor)
             .map_err(|e| Failure::Usage(format!("--dt, --gap-factor: {e}")))?;
         TimedClock::Seconds(c, timed.time_factor)
     };
-    let mut p = Printer {
-        out: Csv::stdout(),
-        every: args.every,
-        last_printed: None,
+    if let Some(t0) = t0.filter(|_| increments) {
+        clock.restart(t0, 0).map_err(|e| match e {
+            Failure::Row(_, m) => Failure::Usage(m),
+            e => e,
+        })?;
+    }
+    let mut run = TimedRun {
+        rows,
+        p: &mut p,
+        clock: &mut clock,
+        clip: &mut clip,
+        sensor: &args.sensor,
     };
-    let mut lines = Lines::new(io::stdin().lock());
-    let result = match args.algo {
-        Algo::Increments(rule) => match timed.t0 {
-            Some(t0) => clock
-                .restart(t0, 0)
-                .map_err(|e| match e {
-                    Failure::Row(_, m) => Failure::Usage(m),
-                    e => e,
-                })
-                .and_then(|()| {
-                    timed_increments(&mut lines, &mut p, &mut clock, q0, rule, args, &mut clip)
-                }),
-            None => Err(Failure::Usage("--t0 is required".into())),
-        },
-        Algo::Rates(_) => timed_rates(&mut lines, &mut p, &mut clock, q0, args, &mut clip),
+    let result = match (args.algo, args.arith) {
+        (Algo::Increments(rule), Arith::F64) => run.increments(q0, rule),
+        (Algo::Increments(rule), Arith::F32) => {
+            q0_in::<f32>(args.q0).and_then(|q| run.increments(q, rule))
+        }
+        (Algo::Increments(rule), Arith::Fixed) => UnitQuat::<Q30>::try_from_f64(q0)
+            .map_err(|e| Failure::Usage(format!("--q0: {e}")))
+            .and_then(|q| run.increments(CarriedAttitude::new(q), rule)),
+        (Algo::Rates(m), Arith::F64) => run.rates(q0, m),
+        (Algo::Rates(m), Arith::F32) => q0_in::<f32>(args.q0).and_then(|q| run.rates(q, m)),
+        (Algo::Rates(_), Arith::Fixed) => Err(Failure::Usage(
+            "--fixed supports --input increments only".into(),
+        )),
     };
     if let Some(c) = &clip
         && c.count > 0
@@ -1005,11 +1149,11 @@ fn run_timed(args: &Args) -> Result<(), Failure> {
     finish(result, &mut p)
 }
 
-fn print_timed(p: &mut Printer, k: u64, t: f64, q: UnitQuat<f64>) -> io::Result<()> {
-    p.last_printed = Some(k);
-    let [w, x, y, z] = q.to_array();
-    writeln!(p.out, "{k},{t:?},{w:?},{x:?},{y:?},{z:?}")?;
-    p.out.row_done()
+/// `--q0` in `T` (normalised exactly there, as the fixed-interval runs do).
+fn q0_in<T: Real>(q0: [f64; 4]) -> Result<UnitQuat<T>, Failure> {
+    let [w, x, y, z] = q0.map(T::from_f64);
+    UnitQuat::try_from_near_unit(Quat::new(w, x, y, z), T::from_f64(1e-3))
+        .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))
 }
 
 /// A step's rotation within the methods' validity limit, else a row error.
@@ -1023,169 +1167,408 @@ fn within_limit(angle: f64, n: u64) -> Result<(), Failure> {
     ))
 }
 
-fn timed_increments<R: io::Read>(
-    lines: &mut Lines<R>,
-    p: &mut Printer,
-    clock: &mut TimedClock,
-    q0: UnitQuat<f64>,
-    rule: ConingRule,
-    args: &Args,
-    clip: &mut Option<Clip>,
-) -> Result<(), Failure> {
-    let mut q = q0;
-    let mut pending: Option<(Vec3<f64>, f64)> = None;
-    let mut k: u64 = 0;
-    let mut last = None; // (k, t, attitude) of the latest sample
-    let stop = loop {
-        let (n, raw_t, raw) = match next_timed(lines, &mut p.out) {
-            Ok(Some(r)) => r,
-            Ok(None) => break None,
-            Err(e @ Failure::Row(..)) => break Some(e),
-            Err(e) => return Err(e),
-        };
-        let (t, h) = match timed_step(clock, raw_t, n) {
-            Ok((t, Some(h))) => (t, h),
-            Ok((_, None)) => break Some(Failure::Row(n, "no interval start (--t0)".into())),
-            Err(e) => break Some(e),
-        };
-        let raw = match clip.as_mut().map_or(Ok(raw), |c| c.filter(raw, Some(h))) {
-            Ok(r) => r,
-            Err(e) => break Some(Failure::Row(n, e)),
-        };
-        let v = args.sensor.apply(raw, Some(h));
-        if let Err(e) = within_limit(v.norm(), n) {
-            break Some(e);
-        }
-        let shown = match (rule, pending.take()) {
-            (ConingRule::TwoSample, Some((v1, h1))) => {
-                let c = two_sample_unequal_coefficient(h1, h);
-                q = coning2_update_unequal(q, v1, v, c).renormalize();
-                q
-            }
-            (ConingRule::TwoSample, None) => {
-                pending = Some((v, h));
-                (q * UnitQuat::exp_unchecked(v)).renormalize()
-            }
-            _ => {
-                q = (q * UnitQuat::exp_unchecked(v)).renormalize();
-                q
-            }
-        };
-        if !shown.to_array().iter().all(|c| c.is_finite()) {
-            break Some(Failure::Row(n, "the attitude is not finite".into()));
-        }
-        if p.due(k) {
-            print_timed(p, k, t, shown)?;
-        }
-        last = Some((k, t, shown));
-        k += 1;
-    };
-    if let Some((k, t, q)) = last
-        && p.last_printed != Some(k)
-    {
-        print_timed(p, k, t, q)?;
+/// The coefficients `c[i][j]` (`i < j`) of the `N`-sample coning rule on unequal intervals
+/// (`N = h.len()`, 1 to 4): `φ = Σθᵢ + Σ_{i<j} c[i][j] θᵢ × θⱼ`, the rotation vector to second
+/// order of the rate polynomial of degree `N − 1` whose integrals over the intervals `h` are the
+/// increments (Bortz: `φ = ∫ω + ½ ∫ θ(t) × ω(t) dt`, `θ(t)` the integral from the group's
+/// start). In the time normalised by the group's length, with `M[i][k] = ∫ uᵏ` over interval
+/// `i`, `G = M⁻¹` and `B[k][l] = 1/((k+1)(k+l+2))`: `C = ½ Gᵀ B G`, `c[i][j] = C[i][j] − C[j][i]`.
+/// At equal intervals: 2/3 for two samples (the library's 2-sample rule; on unequal ones its
+/// `(h₁+h₂)²/(6 h₁ h₂)`), 57/80, 33/80, 57/80 for three and 736/945, 334/945, 526/945,
+/// 218/315, 334/945, 736/945 for four (the polynomial rules: the library's 3- and 4-sample rules
+/// are Miller's, tuned for pure coning, with no unequal-interval form). `None` if an interval
+/// is not positive.
+fn unequal_coning_coefficients(h: &[f64]) -> Option<[[f64; 4]; 4]> {
+    let n = h.len();
+    if n == 0 || n > 4 || h.iter().any(|x| x.is_nan() || *x <= 0.0) {
+        return None;
     }
-    stop.map_or(Ok(()), Err)
+    let total: f64 = h.iter().sum();
+    let mut u = [0.0; 5];
+    for i in 0..n {
+        u[i + 1] = u[i] + h[i] / total;
+    }
+    // [M | I] reduced to [I | G] by Gauss–Jordan elimination with partial pivoting.
+    let mut a = [[0.0f64; 8]; 4];
+    for (i, row) in a.iter_mut().enumerate().take(n) {
+        for (k, m) in row.iter_mut().enumerate().take(n) {
+            *m = (u[i + 1].powi(k as i32 + 1) - u[i].powi(k as i32 + 1)) / (k + 1) as f64;
+        }
+        row[n + i] = 1.0;
+    }
+    for c in 0..n {
+        let p = (c..n).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
+        a.swap(c, p);
+        let pivot = a[c][c];
+        if pivot == 0.0 {
+            return None;
+        }
+        for v in a[c].iter_mut() {
+            *v /= pivot;
+        }
+        for r in 0..n {
+            if r != c {
+                let f = a[r][c];
+                let row = a[c];
+                for (x, y) in a[r].iter_mut().zip(row) {
+                    *x -= f * y;
+                }
+            }
+        }
+    }
+    let g = |k: usize, i: usize| a[k][n + i];
+    let b = |k: usize, l: usize| 1.0 / ((k + 1) * (k + l + 2)) as f64;
+    let big_c = |i: usize, j: usize| -> f64 {
+        let mut s = 0.0;
+        for k in 0..n {
+            for l in 0..n {
+                s += g(k, i) * b(k, l) * g(l, j);
+            }
+        }
+        0.5 * s
+    };
+    let mut c = [[0.0; 4]; 4];
+    for (i, row) in c.iter_mut().enumerate().take(n) {
+        for (j, cij) in row.iter_mut().enumerate().take(n).skip(i + 1) {
+            *cij = big_c(i, j) - big_c(j, i);
+        }
+    }
+    c.iter().flatten().all(|x| x.is_finite()).then_some(c)
 }
 
-fn timed_rates<R: io::Read>(
-    lines: &mut Lines<R>,
-    p: &mut Printer,
-    clock: &mut TimedClock,
-    q0: UnitQuat<f64>,
-    args: &Args,
-    clip: &mut Option<Clip>,
-) -> Result<(), Failure> {
-    // The last four samples (t, ω, line); `done` the number of attitudes printed or skipped.
-    let mut win: Vec<(f64, Vec3<f64>, u64)> = Vec::with_capacity(5);
-    let mut q = q0;
-    let mut k: u64 = 0; // samples read
-    let mut last: Option<(u64, f64, UnitQuat<f64>)> = None;
-    // Integrates the interval ending at window index `end` (≥ 1) with the whole window.
-    let step = |q: UnitQuat<f64>,
-                win: &[(f64, Vec3<f64>, u64)],
-                end: usize|
-     -> Result<UnitQuat<f64>, Failure> {
-        let (t_a, w_a, _) = win[end - 1];
-        let (t_b, w_b, n) = win[end];
-        within_limit(w_a.norm().max(w_b.norm()) * (t_b - t_a), n)?;
-        let base = win[0].0;
-        let ts: Vec<f64> = win.iter().map(|s| s.0 - base).collect();
-        let ws: Vec<Vec3<f64>> = win.iter().map(|s| s.1).collect();
-        let (a, b) = (t_a - base, t_b - base);
-        let q = match (ts.as_slice(), ws.as_slice()) {
-            ([t0, t1], [w0, w1]) => magnus4_step_unequal(q, &[*t0, *t1], &[*w0, *w1], a, b),
-            ([t0, t1, t2], [w0, w1, w2]) => {
-                magnus4_step_unequal(q, &[*t0, *t1, *t2], &[*w0, *w1, *w2], a, b)
-            }
-            ([t0, t1, t2, t3], [w0, w1, w2, w3]) => {
-                magnus4_step_unequal(q, &[*t0, *t1, *t2, *t3], &[*w0, *w1, *w2, *w3], a, b)
-            }
-            _ => q,
-        }
-        .renormalize();
-        if q.to_array().iter().all(|c| c.is_finite()) {
-            Ok(q)
+/// The attitude of the time-column mode, in the arithmetic of a run: a plain `UnitQuat` in f64
+/// or f32, or the Q1.30 [`CarriedAttitude`] of the firmware.
+trait TimedAttitude: Copy {
+    /// The number type of the increments and the coning terms.
+    type N: Ring + Copy;
+    /// An increment (rad, after the sensor model) in the run's numbers, or the row error.
+    fn increment(v: Vec3<f64>, quant: &mut IncrementQuantizer<30>)
+    -> Result<Vec3<Self::N>, String>;
+    /// A coefficient in the run's numbers, or the row error.
+    fn coefficient(c: f64) -> Result<Self::N, String>;
+    /// `q ⊗ exp(φ)`, renormalised (the run's policy).
+    fn rotated(self, phi: Vec3<Self::N>) -> Self;
+    /// `q ⊗ exp(sum + lever × last)`, renormalised (Q1.30: with the coning residual carried).
+    fn rotated_coning(self, terms: ConingTerms<Self::N>) -> Self {
+        self.rotated(terms.rotation_vector())
+    }
+    /// The attitude as f64 components for the output, and whether it is finite.
+    fn components(&self) -> [f64; 4];
+    /// Prints one component as the run's type does (shortest round trip).
+    fn print(&self, p: &mut Printer, k: u64, t: f64) -> io::Result<()>;
+}
+
+impl<T: Real + Debug> TimedAttitude for UnitQuat<T> {
+    type N = T;
+    fn increment(v: Vec3<f64>, _: &mut IncrementQuantizer<30>) -> Result<Vec3<T>, String> {
+        Ok(Vec3::from_array(v.to_array().map(T::from_f64)))
+    }
+    fn coefficient(c: f64) -> Result<T, String> {
+        Ok(T::from_f64(c))
+    }
+    fn rotated(self, phi: Vec3<T>) -> Self {
+        (self * UnitQuat::exp_unchecked(phi)).renormalize()
+    }
+    fn rotated_coning(self, terms: ConingTerms<T>) -> Self {
+        apply_rotation_vector(self, terms, Normalization::Fast).renormalize()
+    }
+    fn components(&self) -> [f64; 4] {
+        self.to_array().map(T::to_f64)
+    }
+    fn print(&self, p: &mut Printer, k: u64, t: f64) -> io::Result<()> {
+        p.last_printed = Some(k);
+        let [w, x, y, z] = self.to_array();
+        writeln!(p.out, "{k},{t:?},{w:?},{x:?},{y:?},{z:?}")?;
+        p.out.row_done()
+    }
+}
+
+impl TimedAttitude for CarriedAttitude<30> {
+    type N = Q30;
+    fn increment(v: Vec3<f64>, quant: &mut IncrementQuantizer<30>) -> Result<Vec3<Q30>, String> {
+        quant
+            .try_quantize(v)
+            .map_err(|e| format!("{e} (Q1.30 holds |value| < 2 rad)"))
+    }
+    fn coefficient(c: f64) -> Result<Q30, String> {
+        Q30::try_from_f64(c).map_err(|_| {
+            format!("the coning coefficient {c:e} of these intervals is outside Q1.30 (|c| < 2)")
+        })
+    }
+    fn rotated(self, phi: Vec3<Q30>) -> Self {
+        self.rotated_unchecked(phi, Normalization::Fast)
+    }
+    fn rotated_coning(self, terms: ConingTerms<Q30>) -> Self {
+        self.rotated_coning_unchecked(terms, Normalization::Fast)
+    }
+    fn components(&self) -> [f64; 4] {
+        self.attitude().to_f64().to_array()
+    }
+    fn print(&self, p: &mut Printer, k: u64, t: f64) -> io::Result<()> {
+        p.last_printed = Some(k);
+        let [w, x, y, z] = self.components();
+        writeln!(p.out, "{k},{t:?},{w:?},{x:?},{y:?},{z:?}")?;
+        p.out.row_done()
+    }
+}
+
+/// The state of a time-column run.
+struct TimedRun<'a, 'l, R> {
+    rows: TimedRows<'l, R>,
+    p: &'a mut Printer,
+    clock: &'a mut TimedClock,
+    clip: &'a mut Option<Clip>,
+    sensor: &'a Sensor,
+}
+
+impl<R: io::Read> TimedRun<'_, '_, R> {
+    /// The next row with its time and interval, through the clock's policy, the clipping check
+    /// and the sensor model (`increment`: the row is an increment over its interval). `Ok(None)`
+    /// at the end; a row error ends the record.
+    #[allow(clippy::type_complexity)]
+    fn next(
+        &mut self,
+        increment: bool,
+    ) -> Result<Option<(u64, f64, Option<f64>, Vec3<f64>)>, Failure> {
+        let Some((n, raw_t, raw)) = self.rows.next(&mut self.p.out)? else {
+            return Ok(None);
+        };
+        let (t, h) = timed_step(self.clock, raw_t, n)?;
+        let h_inc = if increment {
+            Some(h.ok_or_else(|| Failure::Row(n, "no interval start (--t0)".into()))?)
         } else {
-            Err(Failure::Row(n, "the attitude is not finite".into()))
-        }
-    };
-    let mut emit = |p: &mut Printer, idx: u64, t: f64, q: UnitQuat<f64>| -> io::Result<()> {
-        if p.due(idx) {
-            print_timed(p, idx, t, q)?;
-        }
-        last = Some((idx, t, q));
-        Ok(())
-    };
-    let stop = loop {
-        let (n, raw_t, raw) = match next_timed(lines, &mut p.out) {
-            Ok(Some(r)) => r,
-            Ok(None) => break None,
-            Err(e @ Failure::Row(..)) => break Some(e),
-            Err(e) => return Err(e),
+            None
         };
-        let t = match timed_step(clock, raw_t, n) {
-            Ok((t, _)) => t,
-            Err(e) => break Some(e),
+        let raw = match self.clip.as_mut() {
+            Some(c) => c.filter(raw, h_inc).map_err(|e| Failure::Row(n, e))?,
+            None => raw,
         };
-        let raw = match clip.as_mut().map_or(Ok(raw), |c| c.filter(raw, None)) {
-            Ok(r) => r,
-            Err(e) => break Some(Failure::Row(n, e)),
+        Ok(Some((n, t, h, self.sensor.apply(raw, h_inc))))
+    }
+
+    /// Increments over their own intervals: `exp`; `coning1` with the previous interval's
+    /// correction `h²/(6 h₋₁ (h₋₁ + h)) θ₋₁ × θ` (1/12 when equal); `coningN` one update per `N`
+    /// increments by the rule of [`unequal_coning_coefficients`] (coning2 in the library's
+    /// closed form); a row inside a group, and the last row of an unfinished group, apply the
+    /// pending increments by the rule of their number (one: an exponential), not fed back.
+    fn increments<A: TimedAttitude>(&mut self, q0: A, rule: ConingRule) -> Result<(), Failure> {
+        let group = rule.samples_per_update();
+        let mut quant = IncrementQuantizer::<30>::new();
+        let mut q = q0;
+        let mut pending: Vec<(Vec3<A::N>, f64)> = Vec::with_capacity(4);
+        let mut previous: Option<(Vec3<A::N>, f64)> = None;
+        let mut k: u64 = 0;
+        let mut last = None; // (k, t, attitude) of the latest sample
+        let coefficient = |c: f64, n: u64| A::coefficient(c).map_err(|e| Failure::Row(n, e));
+        // The pending increments by the rule of their number.
+        let apply = |q: A, pending: &[(Vec3<A::N>, f64)], n: u64| -> Result<A, Failure> {
+            Ok(match pending {
+                [] => q,
+                [(v, _)] => q.rotated(*v),
+                [(v1, h1), (v2, h2)] => q.rotated_coning(two_sample_unequal_terms(
+                    *v1,
+                    *v2,
+                    coefficient(two_sample_unequal_coefficient(*h1, *h2), n)?,
+                )),
+                _ => {
+                    let hs: Vec<f64> = pending.iter().map(|s| s.1).collect();
+                    let c = unequal_coning_coefficients(&hs)
+                        .ok_or_else(|| Failure::Row(n, "interval not positive".into()))?;
+                    let mut phi = pending[0].0;
+                    for (j, (vj, _)) in pending.iter().enumerate().skip(1) {
+                        phi += *vj;
+                        for (i, (vi, _)) in pending.iter().enumerate().take(j) {
+                            phi += vi.cross(*vj).scale(coefficient(c[i][j], n)?);
+                        }
+                    }
+                    q.rotated(phi)
+                }
+            })
         };
-        win.push((t, args.sensor.apply(raw, None), n));
-        if win.len() > 4 {
-            win.remove(0);
+        let stop = loop {
+            let (n, t, h, v) = match self.next(true) {
+                Ok(Some(r)) => r,
+                Ok(None) => break None,
+                Err(e @ Failure::Row(..)) => break Some(e),
+                Err(e) => return Err(e),
+            };
+            let h = h.unwrap_or(0.0);
+            if let Err(e) = within_limit(v.norm(), n) {
+                break Some(e);
+            }
+            let v = match A::increment(v, &mut quant) {
+                Ok(v) => v,
+                Err(e) => break Some(Failure::Row(n, e)),
+            };
+            let shown = match rule {
+                ConingRule::Exp => {
+                    q = q.rotated(v);
+                    Ok(q)
+                }
+                ConingRule::OnePlusPrevious => {
+                    let terms = match previous {
+                        Some((v1, h1)) => {
+                            coefficient(h * h / (6.0 * h1 * (h1 + h)), n).map(|c| ConingTerms {
+                                sum: v,
+                                lever: v1.scale(c),
+                                last: v,
+                            })
+                        }
+                        None => Ok(ConingTerms {
+                            sum: v,
+                            lever: Vec3::ZERO,
+                            last: v,
+                        }),
+                    };
+                    previous = Some((v, h));
+                    terms.map(|terms| {
+                        q = q.rotated_coning(terms);
+                        q
+                    })
+                }
+                _ => {
+                    pending.push((v, h));
+                    let r = apply(q, &pending, n);
+                    if pending.len() == group {
+                        pending.clear();
+                        if let Ok(qn) = r {
+                            q = qn;
+                        }
+                    }
+                    r
+                }
+            };
+            let shown = match shown {
+                Ok(s) => s,
+                Err(e) => break Some(e),
+            };
+            if !shown.components().iter().all(|c| c.is_finite()) {
+                break Some(Failure::Row(n, "the attitude is not finite".into()));
+            }
+            if self.p.due(k) {
+                shown.print(self.p, k, t)?;
+            }
+            last = Some((k, t, shown));
+            k += 1;
+        };
+        if let Some((k, t, q)) = last
+            && self.p.last_printed != Some(k)
+        {
+            q.print(self.p, k, t)?;
         }
-        let r = match k {
-            0 => emit(p, 0, t, q).map_err(Failure::Io),
-            1 | 2 => Ok(()),
-            3 => (1..=3).try_for_each(|j| {
+        stop.map_or(Ok(()), Err)
+    }
+
+    /// Rates at their own times: one step of `method` per interval on the Lagrange interpolant
+    /// through the samples `k−3 … k` (the first three intervals with samples `0 … 3`; a record of
+    /// 2 or 3 samples, the linear or quadratic interpolant), in the run's type `T`.
+    fn rates<T: Real + Debug>(
+        &mut self,
+        q0: UnitQuat<T>,
+        method: RateMethod,
+    ) -> Result<(), Failure> {
+        // The last four samples (t, ω, line).
+        let mut win: Vec<(f64, Vec3<T>, u64)> = Vec::with_capacity(5);
+        let mut q = q0;
+        let mut k: u64 = 0; // samples read
+        let mut last: Option<(u64, f64, UnitQuat<T>)> = None;
+        // Integrates the interval ending at window index `end` (≥ 1) with the whole window.
+        let step = |q: UnitQuat<T>,
+                    win: &[(f64, Vec3<T>, u64)],
+                    end: usize|
+         -> Result<UnitQuat<T>, Failure> {
+            let (t_a, w_a, _) = win[end - 1];
+            let (t_b, w_b, n) = win[end];
+            within_limit(w_a.norm().max(w_b.norm()).to_f64() * (t_b - t_a), n)?;
+            let base = win[0].0;
+            let ts: Vec<T> = win.iter().map(|s| T::from_f64(s.0 - base)).collect();
+            let ws: Vec<Vec3<T>> = win.iter().map(|s| s.1).collect();
+            let (a, b) = (ts[end - 1], ts[end]);
+            let q = match (ts.as_slice(), ws.as_slice()) {
+                (&[t0, t1], &[w0, w1]) => rate_step(method, q, &[t0, t1], &[w0, w1], a, b),
+                (&[t0, t1, t2], &[w0, w1, w2]) => {
+                    rate_step(method, q, &[t0, t1, t2], &[w0, w1, w2], a, b)
+                }
+                (&[t0, t1, t2, t3], &[w0, w1, w2, w3]) => {
+                    rate_step(method, q, &[t0, t1, t2, t3], &[w0, w1, w2, w3], a, b)
+                }
+                _ => Some(q),
+            };
+            match q {
+                Some(q) if q.to_array().iter().all(|c| c.is_finite()) => Ok(q),
+                _ => Err(Failure::Row(n, "the attitude is not finite".into())),
+            }
+        };
+        let print = |p: &mut Printer, k: u64, t: f64, q: &UnitQuat<T>| q.print(p, k, t);
+        let mut emit = |p: &mut Printer, idx: u64, t: f64, q: UnitQuat<T>| -> io::Result<()> {
+            if p.due(idx) {
+                print(p, idx, t, &q)?;
+            }
+            last = Some((idx, t, q));
+            Ok(())
+        };
+        let stop = loop {
+            let (n, t, _, v) = match self.next(false) {
+                Ok(Some(r)) => r,
+                Ok(None) => break None,
+                Err(e @ Failure::Row(..)) => break Some(e),
+                Err(e) => return Err(e),
+            };
+            win.push((t, Vec3::from_array(v.to_array().map(T::from_f64)), n));
+            if win.len() > 4 {
+                win.remove(0);
+            }
+            let p = &mut *self.p;
+            let r = match k {
+                0 => emit(p, 0, t, q).map_err(Failure::Io),
+                1 | 2 => Ok(()),
+                3 => (1..=3).try_for_each(|j| {
+                    q = step(q, &win, j)?;
+                    emit(p, j as u64, win[j].0, q).map_err(Failure::Io)
+                }),
+                _ => step(q, &win, 3).and_then(|qn| {
+                    q = qn;
+                    emit(p, k, t, q).map_err(Failure::Io)
+                }),
+            };
+            if let Err(e) = r {
+                break Some(e);
+            }
+            k += 1;
+        };
+        // A record of 2 or 3 samples: the intervals wait for the end.
+        if (2..=3).contains(&k) {
+            for j in 1..win.len() {
                 q = step(q, &win, j)?;
-                emit(p, j as u64, win[j].0, q).map_err(Failure::Io)
-            }),
-            _ => step(q, &win, 3).and_then(|qn| {
-                q = qn;
-                emit(p, k, t, q).map_err(Failure::Io)
-            }),
-        };
-        if let Err(e) = r {
-            break Some(e);
+                emit(self.p, j as u64, win[j].0, q)?;
+            }
         }
-        k += 1;
-    };
-    // A record of 2 or 3 samples: the intervals wait for the end.
-    if (2..=3).contains(&k) {
-        for j in 1..win.len() {
-            q = step(q, &win, j)?;
-            emit(p, j as u64, win[j].0, q)?;
+        if let Some((k, t, q)) = last
+            && self.p.last_printed != Some(k)
+        {
+            print(self.p, k, t, &q)?;
         }
+        stop.map_or(Ok(()), Err)
     }
-    if let Some((k, t, q)) = last
-        && p.last_printed != Some(k)
-    {
-        print_timed(p, k, t, q)?;
-    }
-    stop.map_or(Ok(()), Err)
+}
+
+/// One step of `method` from `a` to `b` on the interpolant through the window, renormalised
+/// exactly; `None` when RK4's quaternion cannot be normalised.
+fn rate_step<T: Real, const M: usize>(
+    method: RateMethod,
+    q: UnitQuat<T>,
+    ts: &[T; M],
+    ws: &[Vec3<T>; M],
+    a: T,
+    b: T,
+) -> Option<UnitQuat<T>> {
+    Some(match method {
+        RateMethod::Magnus4 => magnus4_step_unequal(q, ts, ws, a, b).renormalize(),
+        RateMethod::Cf4 => cf4_step_unequal(q, ts, ws, a, b).renormalize(),
+        RateMethod::Rk4 => rk4_step_unequal(q.into_quat(), ts, ws, a, b)
+            .try_normalize()
+            .ok()?,
+    })
 }
 
 /// Flushes the rows; a closed stdout is a quiet end, as if the input ended there.

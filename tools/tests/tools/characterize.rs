@@ -400,9 +400,8 @@ fn tool_errors() {
 /// `../shared`.
 #[test]
 fn broad_rest_phases() {
-    let dir = host_tests::broad::broad_dir();
-    if !dir.is_dir() {
-        eprintln!("skipped: no {}", dir.display());
+    if host_tests::broad::broad_dir().is_none() {
+        eprintln!("skipped: {}", host_tests::broad::BROAD_DIR_HELP);
         return;
     }
     let median = |mut v: Vec<f64>| {
@@ -412,7 +411,9 @@ fn broad_rest_phases() {
     let mut gyro_n = Vec::new();
     let mut accel_n = Vec::new();
     for (stem, _) in host_tests::broad::TRIALS.iter().filter(|t| !t.1) {
-        let path = host_tests::broad::trial_path(stem);
+        let Some(path) = host_tests::broad::trial_path(stem) else {
+            return;
+        };
         let out = run(
             "characterize",
             &["--rest-phase", "--fit-from", "0.4", path.to_str().unwrap()],

@@ -1,13 +1,15 @@
 //! `propagate --time-column` and the sensor options, against computations written here:
 //!
-//! - the real x-io Fusion log (`../shared/real-data/fusion/sensor_data.csv`, deg/s gyro with
-//!   jittery timestamps, 13 514 samples): the f64 result against an independent integration on
+//! - the real x-io Fusion log (its first 4000 samples, 40 s, in
+//!   `data/fusion/sensor_data.first4000.csv.gz`; deg/s gyro with jittery timestamps, steps
+//!   7.56–30.24 ms, turns up to 6.4 rad/s): the f64 result against an independent integration on
 //!   the real timestamps (a product of exponentials, one per interval, of the trapezoid rotation
 //!   vector with its commutator term, on plain arrays);
 //! - synthetic coning streams with jitter (increments and rates), a dropped sample (a gap),
 //!   repeated and backwards timestamps, units, a calibration file and a remap.
 
 use std::f64::consts::TAU;
+use std::io::Read;
 use std::path::PathBuf;
 
 use crate::cli::{numbers, row, run};
@@ -38,8 +40,12 @@ fn qexp(phi: V3) -> Q {
 
 fn fusion() -> Vec<(f64, V3)> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../shared/real-data/fusion/sensor_data.csv");
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        .join("../data/fusion/sensor_data.first4000.csv.gz");
+    let file = std::fs::File::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut text = String::new();
+    flate2::read::GzDecoder::new(file)
+        .read_to_string(&mut text)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     text.lines()
         .skip(1)
         .map(|l| {
@@ -52,7 +58,7 @@ fn fusion() -> Vec<(f64, V3)> {
 #[test]
 fn fusion_log_on_its_own_timestamps() {
     let data = fusion();
-    assert_eq!(data.len(), 13_514);
+    assert_eq!(data.len(), 4000);
     let input: String = data
         .iter()
         .map(|(t, w)| format!("{t},{}\n", row(w)))
@@ -144,10 +150,10 @@ fn fusion_log_on_its_own_timestamps() {
          model ends {model:e} rad from the cubic one"
     );
     // Magnus-4 is 4th order in the interval: with steps up to 30 ms at up to 6.4 rad/s
-    // (|ω|h ≤ 0.19 rad) its truncation against the converged reference was measured at 8.6e-6
-    // rad worst over the 135 s, 600× below the interpolation model's own uncertainty (the
-    // linear model ends 5.4e-3 rad away).
-    assert!(worst < 2e-5, "{worst:e}");
+    // (|ω|h ≤ 0.19 rad) its truncation against the converged reference was measured at 3.2e-7
+    // rad worst over these 40 s (8.6e-6 over the full 135 s log), 4000× below the interpolation
+    // model's own uncertainty (the linear model ends 1.3e-3 rad away).
+    assert!(worst < 2e-6, "{worst:e}");
     // The same log on a fixed 10 ms clock (its mean step is 10.01 ms): far off.
     let fixed: String = data.iter().map(|(_, w)| row(w) + "\n").collect();
     let out = run(
@@ -352,8 +358,9 @@ fn drops_repeats_and_backwards_are_row_errors() {
                 "rk4",
                 "--dt",
                 "0.01",
+                "--compensated",
             ],
-            "--time-column supports",
+            "--time-column runs in f64, f32 or Q1.30, not --compensated",
         ),
         (
             vec![
@@ -361,12 +368,24 @@ fn drops_repeats_and_backwards_are_row_errors() {
                 "--input",
                 "rates",
                 "--algo",
-                "magnus4",
-                "--dt",
-                "0.01",
-                "--f32",
+                "cf4",
+                "--fixed",
             ],
-            "--time-column runs in f64 only",
+            "--fixed supports --input increments only",
+        ),
+        (
+            vec![
+                "--time-column",
+                "--input",
+                "increments",
+                "--algo",
+                "coning3",
+            ],
+            "--time-column --input increments needs --t0",
+        ),
+        (
+            vec!["--input", "increments", "--algo", "coning3"],
+            "--dt is required",
         ),
         (
             vec![
@@ -836,4 +855,296 @@ fn sensor_options_on_the_fixed_clock() {
     let e = quat_angle([last[1], last[2], last[3], last[4]], exact);
     assert!(e < 1e-7, "{e:e}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The arithmetic flag of a run and its name.
+const ARITH: [(&str, &[&str]); 3] = [("f64", &[]), ("f32", &["--f32"]), ("Q1.30", &["--fixed"])];
+
+/// Every increment rule in f64, f32 and Q1.30 and every rate method in f64 and f32 on a jittered
+/// clock (±40 % around 1 ms; coning at 3.3 Hz, half-angle 0.05 rad): the final and worst
+/// attitude against the closed form of the motion (`host_tests::ref_propagation::Coning`,
+/// exact), and the same samples integrated on the nominal 1 ms clock (timestamps ignored) far
+/// off. Bounds: the measured error times about 3 (printed), per rule and type; the order of the
+/// rules is the theory's (exp first order, coning1..4 and the rate methods higher).
+#[test]
+fn every_rule_and_method_on_a_jittered_clock() {
+    let c = Coning {
+        alpha: 0.05,
+        omega_c: TAU * 3.3,
+    };
+    let n = 4000;
+    let ts = jittered(1e-3, n, 11);
+    let q0 = row(&c.attitude(0.0));
+    let inc: Vec<V3> = ts.windows(2).map(|w| c.increment(w[0], w[1])).collect();
+    let timed_inc: String = ts[1..]
+        .iter()
+        .zip(&inc)
+        .map(|(t, v)| format!("{t},{}\n", row(v)))
+        .collect();
+    let plain_inc: String = inc.iter().map(|v| row(v) + "\n").collect();
+    // (algo, bound f64, bound f32, bound Q1.30), about 3 times the measured worst: exp 8.6e-6
+    // (first order: the coning drift) in every type; the coning rules 4.9e-9 to 5.9e-9 in f64
+    // and Q1.30 (the third-order terms of the rotation vector, which no rule here carries: at
+    // these steps they dominate the rules' own truncation), f32 at its rounding floor (7e-8 to
+    // 2.2e-7). With the timestamps ignored every coning rule ends 4e-7 to 8e-7 rad off.
+    // In Q1.30 coning3 and coning4 form their cross products of earlier increments in the
+    // format, rounded each update (the carried attitude carries the residual of one
+    // `lever × last` term, which is all the 1- and 2-sample rules have): their floor here is
+    // 7e-8 rad, against 6e-9 for coning1 and coning2.
+    let cases = [
+        ("exp", 3e-5, 3e-5, 3e-5),
+        ("coning1", 2e-8, 7e-7, 2e-8),
+        ("coning2", 2e-8, 3e-7, 2e-8),
+        ("coning3", 2e-8, 3e-7, 2e-7),
+        ("coning4", 2e-8, 3e-7, 2e-7),
+    ];
+    for (algo, b64, b32, bq) in cases {
+        for ((arith, flag), bound) in ARITH.iter().zip([b64, b32, bq]) {
+            let mut args = vec![
+                "--time-column",
+                "--input",
+                "increments",
+                "--algo",
+                algo,
+                "--t0",
+                "0",
+                "--q0",
+                &q0,
+            ];
+            args.extend_from_slice(flag);
+            let out = run("propagate", &args, &timed_inc);
+            assert_eq!(out.status, Some(0), "{algo} {arith}: {}", out.stderr);
+            let rows = timed_rows(&out.stdout);
+            assert_eq!(rows.len(), n, "{algo} {arith}");
+            let worst = rows
+                .iter()
+                .map(|(_, t, q)| quat_angle(*q, c.attitude(*t)))
+                .fold(0.0, f64::max);
+            let (k, t, _) = rows[n - 1];
+            assert_eq!((k, t), ((n - 1) as u64, ts[n]));
+            // The same increments on the nominal clock: the rule's coefficients for equal
+            // intervals, the printed time k·dt.
+            let mut fixed_clock = vec![
+                "--input",
+                "increments",
+                "--algo",
+                algo,
+                "--dt",
+                "0.001",
+                "--q0",
+                &q0,
+            ];
+            fixed_clock.extend_from_slice(flag);
+            let out = run("propagate", &fixed_clock, &plain_inc);
+            assert_eq!(out.status, Some(0), "{}", out.stderr);
+            let last = numbers(out.stdout.lines().last().unwrap());
+            let ignored = quat_angle([last[1], last[2], last[3], last[4]], c.attitude(ts[n]));
+            println!(
+                "{algo} {arith}: worst {worst:.2e} rad on the jittered clock; its timestamps ignored: {ignored:.2e} rad at the end"
+            );
+            assert!(worst < bound, "{algo} {arith}: {worst:e}");
+            // (In f32, and for coning3 and coning4 in Q1.30, the rounding floor hides part of
+            // the difference.)
+            if algo != "exp" && (*arith == "f64" || (*arith == "Q1.30" && algo < "coning3")) {
+                assert!(ignored > 10.0 * worst, "{algo} {arith}: {ignored:e}");
+            }
+        }
+    }
+    let rates: String = ts
+        .iter()
+        .map(|&t| format!("{t},{}\n", row(&c.body_rate(t))))
+        .collect();
+    // Measured worst: f64 1.35e-9 (magnus4, cf4) and 1.42e-9 (rk4), fourth order at h <= 1.4
+    // ms; f32 1.7e-7 to 2.9e-7 (its rounding floor).
+    for algo in ["magnus4", "cf4", "rk4"] {
+        for ((arith, flag), bound) in ARITH[..2].iter().zip([5e-9, 1e-6]) {
+            let mut args = vec![
+                "--time-column",
+                "--input",
+                "rates",
+                "--algo",
+                algo,
+                "--q0",
+                &q0,
+            ];
+            args.extend_from_slice(flag);
+            let out = run("propagate", &args, &rates);
+            assert_eq!(out.status, Some(0), "{algo} {arith}: {}", out.stderr);
+            let rows = timed_rows(&out.stdout);
+            assert_eq!(rows.len(), n + 1);
+            let worst = rows
+                .iter()
+                .map(|(_, t, q)| quat_angle(*q, c.attitude(*t)))
+                .fold(0.0, f64::max);
+            println!("{algo} {arith}: worst {worst:.2e} rad on jittered rate samples");
+            assert!(worst < bound, "{algo} {arith}: {worst:e}");
+        }
+    }
+}
+
+/// On an exactly regular clock (whole microseconds) the time-column rules whose unequal form
+/// reduces to the equal one give the fixed-interval run's attitudes bit for bit in Q1.30 (exp,
+/// coning1, coning2: the coefficients 1/12 and 2/3 of equal intervals, rounded to Q1.30 as the
+/// library's rules round them); the unequal rule's coefficients there, checked through coning3
+/// and coning4 on a rate polynomial of degree 2 and 3, leave only the third-order terms.
+#[test]
+fn regular_clock_reduces_to_the_fixed_interval_rules() {
+    let c = Coning {
+        alpha: 0.3,
+        omega_c: TAU * 2.1,
+    };
+    let n = 600;
+    let ts: Vec<f64> = (0..=n).map(|k| k as f64 * 1e-3).collect();
+    let inc: Vec<V3> = ts.windows(2).map(|w| c.increment(w[0], w[1])).collect();
+    let timed_inc: String = (0..n)
+        .map(|k| format!("{},{}\n", (k + 1) * 1000, row(&inc[k])))
+        .collect();
+    let plain_inc: String = inc.iter().map(|v| row(v) + "\n").collect();
+    for algo in ["exp", "coning1", "coning2"] {
+        let timed = run(
+            "propagate",
+            &[
+                "--time-column",
+                "--input",
+                "increments",
+                "--algo",
+                algo,
+                "--t0",
+                "0",
+                "--time-unit",
+                "us",
+                "--fixed",
+            ],
+            &timed_inc,
+        );
+        assert_eq!(timed.status, Some(0), "{}", timed.stderr);
+        let plain = run(
+            "propagate",
+            &[
+                "--input",
+                "increments",
+                "--algo",
+                algo,
+                "--dt",
+                "0.001",
+                "--fixed",
+            ],
+            &plain_inc,
+        );
+        // The attitudes after each update (inside a group the two modes print different
+        // provisional attitudes: the fixed-interval one by the rule of the pending number with
+        // the increment before them, the time-column one without it).
+        let group = if algo == "coning2" { 2 } else { 1 };
+        let attitudes = |s: &str, drop: usize| -> Vec<String> {
+            s.lines()
+                .enumerate()
+                .filter(|(k, _)| (k + 1) % group == 0)
+                .map(|(_, l)| l.split(',').skip(drop).collect::<Vec<_>>().join(","))
+                .collect()
+        };
+        let (a, b) = (attitudes(&timed.stdout, 2), attitudes(&plain.stdout, 1));
+        assert_eq!(a.len(), n / group, "{algo}");
+        let first = a.iter().zip(&b).position(|(x, y)| x != y);
+        assert!(
+            first.is_none(),
+            "{algo}: update {first:?}: {:?} vs {:?}",
+            first.map(|k| &a[k]),
+            first.map(|k| &b[k])
+        );
+    }
+}
+
+/// `--dt` is optional with `--time-column`: the nominal interval is the median of the first 16
+/// intervals. The attitudes are those of a run with `--dt` (it only sets the gap threshold), the
+/// gap threshold follows the inferred interval, a wrapping microsecond counter infers it
+/// modulo 2^32, and timestamps that do not increase give no nominal interval.
+#[test]
+fn nominal_interval_from_the_timestamps() {
+    let c = Coning {
+        alpha: 0.05,
+        omega_c: TAU * 3.3,
+    };
+    let ts = jittered(1e-2, 300, 5);
+    let rates: String = ts
+        .iter()
+        .map(|&t| format!("{t},{}\n", row(&c.body_rate(t))))
+        .collect();
+    let base = ["--time-column", "--input", "rates", "--algo", "rk4"];
+    let inferred = run("propagate", &base, &rates);
+    assert_eq!(inferred.status, Some(0), "{}", inferred.stderr);
+    let mut with_dt = base.to_vec();
+    with_dt.extend(["--dt", "0.01"]);
+    assert_eq!(inferred.stdout, run("propagate", &with_dt, &rates).stdout);
+    // 10 ms samples with a 60 ms step: a gap at the default factor 5 of the inferred 10 ms
+    // (with --dt 0.02 it is not).
+    let gap: String = (0..20)
+        .map(|k| format!("{},0.1,0,0\n", if k < 18 { k * 10 } else { k * 10 + 50 }))
+        .collect();
+    let ms = [
+        "--time-column",
+        "--input",
+        "rates",
+        "--algo",
+        "cf4",
+        "--time-unit",
+        "ms",
+    ];
+    let out = run("propagate", &ms, &gap);
+    assert_eq!(out.status, Some(1));
+    assert!(
+        out.stderr.starts_with("error: line 19: gap: 6e-2 s since the previous sample, more than --gap-factor 5 times the nominal 1e-2 s"),
+        "{}",
+        out.stderr
+    );
+    let mut ms20 = ms.to_vec();
+    ms20.extend(["--dt", "0.02"]);
+    assert_eq!(run("propagate", &ms20, &gap).status, Some(0));
+    // A 32-bit microsecond counter wrapping in the first intervals: 1 ms inferred.
+    let start = 4_294_967_296u64 - 3_000;
+    let wrapped: String = (0..40u64)
+        .map(|k| format!("{},0,0,0.5\n", (start + k * 1000) % 4_294_967_296))
+        .collect();
+    let out = run(
+        "propagate",
+        &[
+            "--time-column",
+            "--input",
+            "rates",
+            "--algo",
+            "magnus4",
+            "--time-unit",
+            "us",
+            "--time-wrap",
+        ],
+        &wrapped,
+    );
+    assert_eq!(out.status, Some(0), "{}", out.stderr);
+    let rows = timed_rows(&out.stdout);
+    let (_, t, q) = rows[39];
+    assert!((t - rows[0].1 - 0.039).abs() < 1e-9, "{t}");
+    assert!((q[3] - (0.5f64 * 0.039 / 2.0).sin()).abs() < 1e-12, "{q:?}");
+    // Increments: --t0 and the first rows; repeated timestamps give no nominal interval.
+    let same: String = (0..20).map(|_| "5,0.001,0,0\n").collect();
+    let out = run(
+        "propagate",
+        &[
+            "--time-column",
+            "--input",
+            "increments",
+            "--algo",
+            "coning4",
+            "--t0",
+            "5",
+        ],
+        &same,
+    );
+    assert_eq!(out.status, Some(1));
+    assert!(
+        out.stderr.starts_with(
+            "error: line 16: no --dt and the first 17 timestamps give no nominal interval"
+        ),
+        "{}",
+        out.stderr
+    );
+    assert_eq!(out.stdout, "");
 }
