@@ -868,7 +868,8 @@ fn print_quietly(text: &str) -> Result<(), String> {
 
 /// Where the default scenario's plot goes: `simulate-default.svg` in the Cargo target directory
 /// the binary was built in (`<target>/<profile>/simulate`, or `<target>/<triple>/<profile>/...`:
-/// the nearest directory above the binary holding Cargo's `CACHEDIR.TAG`), so that running it
+/// the nearest directory above the binary holding Cargo's `CACHEDIR.TAG` or `.rustc_info.json`:
+/// Cargo writes the tag only into a target directory it creates itself), so that running it
 /// from a checkout leaves the work tree clean; the current directory otherwise (an installed
 /// binary).
 fn default_plot_path() -> PathBuf {
@@ -879,7 +880,7 @@ fn default_plot_path() -> PathBuf {
         .flat_map(Path::ancestors)
         .skip(1)
         .take(3)
-        .find(|dir| dir.join("CACHEDIR.TAG").is_file())
+        .find(|dir| dir.join("CACHEDIR.TAG").is_file() || dir.join(".rustc_info.json").is_file())
         .map_or_else(|| PathBuf::from(name), |target| target.join(name))
 }
 
