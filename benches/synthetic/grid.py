@@ -4,7 +4,7 @@
     cargo build --release -p gyrostat-tools --bin synthesize --bin estimate
     python3 benches/synthetic/grid.py                        # the whole grid, gyrostat's estimate
     python3 benches/synthetic/grid.py --quick                # a slice (seconds)
-    python3 benches/synthetic/grid.py --vqf                  # + VQF (PyPI vqf, from /work/venv)
+    python3 benches/synthetic/grid.py --vqf                  # + VQF (PyPI vqf: pip install vqf)
     python3 benches/synthetic/grid.py --estimator 'mine=path/to/filter {log} > {out}'
     python3 benches/synthetic/grid.py --set rest.gyro=0.05   # estimate with a parameter changed
     python3 benches/synthetic/grid.py --estimate-bin ../other/target/release/estimate  # another build

@@ -735,7 +735,7 @@ fn presets_print_and_errors_are_one_line() {
 
 /// The loop the spec file closes: a rest log of the industrial preset, characterised by
 /// `characterize --spec`, gives a spec `synthesize` reads; its white noise densities are the
-/// preset's (within 10 %: 1 h at 200 Hz; the Allan helper's tests hold the rest of the fit).
+/// preset's (within 10 %: 1 h at 200 Hz; tools/tests/tools/characterize.rs holds the rest of the fit).
 #[test]
 fn characterize_writes_a_spec_synthesize_reads() {
     let log = run(
