@@ -10,6 +10,9 @@ use std::env;
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=memory.x");
+    // `gyrostat_board_small_flash`: the example's board has 256 KiB of flash (Cortex-M0 and M3):
+    // `fw_nopanic` checks the f64 estimator only on the larger boards.
+    println!("cargo::rustc-check-cfg=cfg(gyrostat_board_small_flash)");
     let target = env::var("TARGET").unwrap_or_default();
     // (FLASH origin, length, RAM origin, length) of the QEMU board each target runs on.
     let (flash_origin, flash, ram_origin, ram) = if target.starts_with("thumbv6m") {
@@ -25,6 +28,9 @@ fn main() {
     } else {
         return;
     };
+    if flash == "256K" {
+        println!("cargo::rustc-cfg=gyrostat_board_small_flash");
+    }
     println!("cargo:rustc-link-arg-examples=-Tlink.x");
     for (sym, value) in [
         ("flash_origin", flash_origin),

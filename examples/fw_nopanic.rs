@@ -462,10 +462,10 @@ mod firmware {
         }
         // The attitude estimator (`gyrostat::estimation`): every entry point, f32 and f64.
         estimator::<f32>();
-        // The f64 estimator (both modes: the mode is a runtime parameter) does not fit the M0
-        // board's 256 KiB beside the rest of the library; cores without compare-and-swap
-        // (thumbv6m) check it in f32 only, the others in both precisions.
-        #[cfg(target_has_atomic = "32")]
+        // The f64 estimator (both modes: the mode is a runtime parameter) does not fit the
+        // 256 KiB of the M0 and M3 boards beside the rest of the library (`build.rs` sets the
+        // cfg): they check it in f32 only, the M4F, M33 and RISC-V boards in both precisions.
+        #[cfg(not(gyrostat_board_small_flash))]
         estimator::<f64>();
         estimator_light();
         // f64 (soft float on every Cortex-M) goes through the same paths.
