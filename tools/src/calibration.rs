@@ -50,52 +50,7 @@ const KEYS: [(&str, usize); 8] = [
 /// Parses the text of a calibration file. Errors read `line N: reason` (or, for a model the
 /// library rejects, `gyro (lines …): reason`).
 pub fn parse(text: &str) -> Result<CalibrationFile, String> {
-    let mut values: [Option<(usize, Vec<f64>)>; 8] = Default::default();
-    for (i, raw_line) in text.lines().enumerate() {
-        let n = i + 1;
-        let line = raw_line.split('#').next().unwrap_or("").trim();
-        if line.is_empty() {
-            continue;
-        }
-        let (key, rest) = line
-            .split_once('=')
-            .ok_or_else(|| format!("line {n}: expected 'key = numbers', found '{line}'"))?;
-        let key = key.trim();
-        let (slot, count) = KEYS
-            .iter()
-            .position(|(k, _)| *k == key)
-            .and_then(|p| Some((values.get_mut(p)?, KEYS.get(p)?.1)))
-            .ok_or_else(|| {
-                let names: Vec<&str> = KEYS.iter().map(|k| k.0).collect();
-                format!(
-                    "line {n}: unknown key '{key}' (one of {})",
-                    names.join(", ")
-                )
-            })?;
-        if let Some((first, _)) = slot {
-            return Err(format!(
-                "line {n}: '{key}' given twice (first on line {first})"
-            ));
-        }
-        let mut nums = Vec::with_capacity(count);
-        for p in rest.split(',') {
-            let p = p.trim();
-            let x: f64 = p
-                .parse()
-                .map_err(|_| format!("line {n}: {key}: invalid number '{p}'"))?;
-            if !x.is_finite() {
-                return Err(format!("line {n}: {key}: not a finite number '{p}'"));
-            }
-            nums.push(x);
-        }
-        if nums.len() != count {
-            return Err(format!(
-                "line {n}: {key}: expected {count} comma-separated numbers, found {}",
-                nums.len()
-            ));
-        }
-        *slot = Some((n, nums));
-    }
+    let values = crate::key_values::parse(text, &KEYS, |_, _, _| Ok(()))?;
     let get = |i: usize| values.get(i).and_then(|v| v.as_ref());
     let vec3 = |i: usize, default: f64| {
         get(i).map_or(Vec3::new(default, default, default), |(_, v)| {

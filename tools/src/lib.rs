@@ -2,7 +2,8 @@
 //! `characterize`, `synthesize`) and what they share: one flag dialect and error style
 //! ([`flags`]), one stream reader and CSV writer ([`stream`]), the units of sensor data on the
 //! command line ([`units`]), the IMU log columns of `estimate` and `characterize` ([`imu_log`]),
-//! the plots' colours ([`plot`]), the scenarios of `simulate` ([`simulation`], with the external
+//! the `key = numbers` line syntax of the calibration file and the sensor spec
+//! ([`key_values`]), the plots' colours ([`plot`]), the scenarios of `simulate` ([`simulation`], with the external
 //! torque of [`torque`]), the sensor noise model ([`noise`]) and its characterisation by the
 //! Allan deviation ([`allan`], [`characterization`]), which the Python package (`python/`) runs
 //! too; and the synthetic logs of `synthesize`: closed-form motions ([`motion`]), the sensor
@@ -24,6 +25,7 @@ pub mod calibration;
 pub mod characterization;
 pub mod flags;
 pub mod imu_log;
+pub mod key_values;
 pub mod motion;
 pub mod noise;
 pub mod plot;

@@ -282,59 +282,12 @@ mag_rate = 100
 /// Parses the text of a sensor spec file. Errors read `line N: reason` (or, for a matrix the
 /// library rejects, `gyro (lines …): reason`).
 pub fn parse(text: &str) -> Result<SensorSpec, String> {
-    let mut values: [Option<(usize, Vec<f64>)>; 27] = Default::default();
-    for (i, raw_line) in text.lines().enumerate() {
-        let n = i + 1;
-        let line = raw_line.split('#').next().unwrap_or("").trim();
-        if line.is_empty() {
-            continue;
-        }
-        let (key, rest) = line
-            .split_once('=')
-            .ok_or_else(|| format!("line {n}: expected 'key = numbers', found '{line}'"))?;
-        let key = key.trim();
-        let Some(p) = KEYS.iter().position(|(k, _, _)| *k == key) else {
-            let names: Vec<&str> = KEYS.iter().map(|k| k.0).collect();
-            return Err(format!(
-                "line {n}: unknown key '{key}' (one of {})",
-                names.join(", ")
-            ));
-        };
-        let (_, count, domain) = KEYS[p];
-        if let Some((first, _)) = &values[p] {
-            return Err(format!(
-                "line {n}: '{key}' given twice (first on line {first})"
-            ));
-        }
-        let mut nums = Vec::with_capacity(count);
-        for part in rest.split(',') {
-            let part = part.trim();
-            let x: f64 = part
-                .parse()
-                .map_err(|_| format!("line {n}: {key}: invalid number '{part}'"))?;
-            if !x.is_finite() {
-                return Err(format!("line {n}: {key}: not a finite number '{part}'"));
-            }
-            match domain {
-                Domain::NonNegative if x < 0.0 => {
-                    return Err(format!("line {n}: {key}: must be >= 0, got {part}"));
-                }
-                Domain::Positive if x <= 0.0 => {
-                    return Err(format!("line {n}: {key}: must be > 0, got {part}"));
-                }
-                _ => {}
-            }
-            nums.push(x);
-        }
-        if nums.len() != count {
-            return Err(format!(
-                "line {n}: {key}: expected {count} comma-separated number{}, found {}",
-                if count == 1 { "" } else { "s" },
-                nums.len()
-            ));
-        }
-        values[p] = Some((n, nums));
-    }
+    let names: Vec<(&str, usize)> = KEYS.iter().map(|&(k, c, _)| (k, c)).collect();
+    let values = crate::key_values::parse(text, &names, |p, x, part| match KEYS[p].2 {
+        Domain::NonNegative if x < 0.0 => Err(format!("must be >= 0, got {part}")),
+        Domain::Positive if x <= 0.0 => Err(format!("must be > 0, got {part}")),
+        _ => Ok(()),
+    })?;
     let get = |key: &str| {
         KEYS.iter()
             .position(|(k, _, _)| *k == key)
