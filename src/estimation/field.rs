@@ -18,24 +18,8 @@
 use super::lowpass::first_order_gain;
 use crate::Real;
 
-/// The disturbance monitor's settings (see the module docs).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FieldThresholds<T> {
-    /// `th_B`: the largest relative change of the norm, `| |B| − |B|_ref | / |B|_ref`.
-    pub norm: T,
-    /// `th_δ` (rad): the largest change of the dip angle.
-    pub dip: T,
-    /// `τ_ref` (s): how slowly the reference follows an undisturbed field.
-    pub reference_time_constant: T,
-    /// `t_back` (s): how long the field must be back within the thresholds to count as
-    /// undisturbed again.
-    pub min_undisturbed: T,
-    /// `t_new` (s): how long a new homogeneous field must be seen while turning to replace the
-    /// reference.
-    pub new_field_time: T,
-    /// `ω_new` (rad/s): the least rate at which that time counts.
-    pub new_field_min_rate: T,
-}
+/// The disturbance monitor's settings, declared with the estimator's parameters.
+pub use super::params::FieldThresholds;
 
 /// The state of the disturbance monitor (see the module docs).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

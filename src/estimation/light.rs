@@ -25,7 +25,7 @@
 //! low-pass filter) and a valid magnetometer sample with the report of the last correction.
 
 use super::{
-    Estimator, GRAVITY, Gains, HARD_IRON_FEED_STEP, MAG_DELAY_MAX, Mode, Outcome, Params, SensorUse,
+    Estimator, GRAVITY, Gains, HARD_IRON_FEED_STEP, MAG_DELAY_MAX, Mode, Outcome, SensorUse,
 };
 use crate::estimation::lowpass::LowPass;
 use crate::{Real, Vec3};
@@ -47,23 +47,6 @@ pub(super) struct LightState<T> {
     mag: SensorUse,
     /// The bias-corrected rate (rad/s) at the correction, for the field's delay.
     rate: Vec3<T>,
-}
-
-impl<T: Real> Mode<T> {
-    /// The default correction period (s) of [`Mode::Light`]: 25 ms (40 Hz).
-    pub const LIGHT_PERIOD: f64 = 0.025;
-
-    /// The magnetometer delay (s) the light mode applies in place of the online estimate:
-    /// 11 ms, the median of the full mode's online estimates on BROAD's trials of half A
-    /// (01 05 09 14 21 26 30 34: 5.1–13.9 ms), checked on half B (BENCHMARKS.md).
-    pub const LIGHT_MAG_DELAY: f64 = 0.011;
-
-    /// [`Mode::Light`] with the default correction period [`Mode::LIGHT_PERIOD`].
-    pub fn light() -> Self {
-        Mode::Light {
-            correction_period: T::from_f64(Self::LIGHT_PERIOD),
-        }
-    }
 }
 
 impl<T: Real> Estimator<T> {
@@ -244,15 +227,5 @@ fn tilt_error<T: Real>(v: Vec3<T>) -> (T, T) {
         (v.y * angle / h, -v.x * angle / h)
     } else {
         (T::ZERO, T::ZERO)
-    }
-}
-
-impl<T: Real> Params<T> {
-    /// The default parameters in [`Mode::light`].
-    pub fn light() -> Self {
-        Self {
-            mode: Mode::light(),
-            ..Self::default()
-        }
     }
 }

@@ -190,17 +190,18 @@ pub mod filter;
 pub mod hard_iron;
 pub mod init;
 pub mod lowpass;
+pub mod params;
 pub mod params_text;
 pub mod rest;
 
 pub use covariance::Covariance;
-pub use field::{FieldMonitor, FieldThresholds};
+pub use field::FieldMonitor;
 pub use filter::{
-    EarthFrame, Estimator, Gains, MAG_DELAY_MAX, MAG_HISTORY, MAG_HISTORY_STEP, MAX_STEP, Mode,
-    Outcome, Params, SensorUse,
+    Estimator, MAG_DELAY_MAX, MAG_HISTORY, MAG_HISTORY_STEP, MAX_STEP, Outcome, SensorUse,
 };
 pub use hard_iron::HardIron;
 pub use init::{attitude_from_gravity, attitude_from_gravity_and_field};
 pub use lowpass::{LowPass, first_order_gain};
+pub use params::{Domain, EarthFrame, FieldThresholds, Gains, Mode, Params, RestThresholds};
 pub use params_text::{ParamsTextError, ParamsTextErrorKind};
-pub use rest::{RestDetector, RestThresholds};
+pub use rest::RestDetector;

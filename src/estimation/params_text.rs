@@ -18,7 +18,7 @@
 
 use core::fmt;
 
-use super::filter::Params;
+use super::params::{PARAMETER_COUNT, Params};
 use crate::Real;
 
 /// Why a line of a parameter file was rejected.
@@ -66,7 +66,7 @@ impl<T: Real> Params<T> {
     /// # Errors
     /// [`ParamsTextError`] naming the first rejected line.
     pub fn set_from_text(&mut self, text: &str) -> Result<(), ParamsTextError> {
-        let mut seen = [false; Params::<f64>::NAMES.len() + 1];
+        let mut seen = [false; PARAMETER_COUNT + 1];
         for (i, raw) in text.lines().enumerate() {
             let line = i + 1;
             let err = |kind| ParamsTextError { line, kind };
@@ -79,9 +79,9 @@ impl<T: Real> Params<T> {
                 .ok_or(err(ParamsTextErrorKind::MissingEquals))?;
             let (name, value) = (name.trim(), value.trim());
             let index = if name == HEADING_TIME_CONSTANT {
-                Params::<f64>::NAMES.len()
+                Self::NAMES.len()
             } else {
-                Params::<f64>::NAMES
+                Self::NAMES
                     .iter()
                     .position(|n| *n == name)
                     .ok_or(err(ParamsTextErrorKind::UnknownName))?
@@ -113,11 +113,8 @@ impl<T: Real> Params<T> {
     /// # Errors
     /// Whatever `out` returns.
     pub fn write_text(&self, out: &mut impl fmt::Write) -> fmt::Result {
-        let mut p = *self;
-        for name in Params::<f64>::NAMES {
-            if let Some(v) = p.parameter_mut(name) {
-                writeln!(out, "{name} = {:?}", v.to_f64())?;
-            }
+        for (name, v) in Self::NAMES.iter().zip(self.values()) {
+            writeln!(out, "{name} = {:?}", v.to_f64())?;
         }
         Ok(())
     }

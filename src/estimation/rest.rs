@@ -18,20 +18,8 @@ pub struct RestDetector<T> {
     at_rest: bool,
 }
 
-/// The rest detector's thresholds (SI units).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RestThresholds<T> {
-    /// `τ_rest` (s): the time constant of the means.
-    pub time_constant: T,
-    /// `th_ω` (rad/s): the largest deviation of the rate from its mean at rest.
-    pub gyro: T,
-    /// `th_a` (m/s²): the largest deviation of the specific force from its mean at rest.
-    pub accel: T,
-    /// The largest `|ω̄|` (rad/s) taken as a bias: a steadier turn is motion.
-    pub max_bias: T,
-    /// `t_min` (s): how long the sensor must be still before it counts as at rest.
-    pub min_duration: T,
-}
+/// The rest detector's thresholds, declared with the estimator's parameters.
+pub use super::params::RestThresholds;
 
 impl<T: Real> RestDetector<T> {
     /// Starts on the first sample (`gyro`, `accel`), not at rest.
