@@ -1,14 +1,15 @@
 //! The crate's typed error.
 //!
 //! Every fallible gyrostat function returns `Result<_, Error>`; none panics on bad input and none
-//! returns a silent NaN. The enum is `#[non_exhaustive]` so that new checks can be added without a
-//! breaking change.
+//! returns a silent NaN. The enum is exhaustive on purpose: every face (the C interface's status
+//! codes, the Python messages) names every variant in a match without a wildcard, so that a new
+//! variant fails to compile until each face has a code for it (a new variant is a breaking
+//! change of the library).
 
 use core::fmt;
 
 /// Why an input was rejected.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
 pub enum Error {
     /// An input number was NaN or infinite.
     NonFinite,

@@ -264,9 +264,10 @@ typedef enum {
    */
   GYRO_OUT_OF_RANGE = 12,
   /**
-   * An error of a newer library version that this interface does not name.
+   * A raw sensor reading at its register's limit, rejected by the clip policy (the
+   * library's `Error::Clipped`; the code that versions before it called `GYRO_OTHER_ERROR`).
    */
-  GYRO_OTHER_ERROR = 13,
+  GYRO_CLIPPED = 13,
 } gyro_status;
 
 /**
@@ -647,9 +648,11 @@ typedef struct {
 } gyro_estimator_outcome;
 
 /**
- * The estimator's parameters, f32 (SI units, angles in rad): the library's `Params`, field
- * for field (see its documentation for each one and for how the defaults were chosen).
- * `gyro_estimator_f32_default_params` fills it with the defaults.
+ * The estimator's parameters, f32 (SI units, angles in rad): the library's
+ * `Params` field for field, generated from its parameter table
+ * (`gyrostat::estimator_parameters!`; group fields flattened, `field.norm` is
+ * `field_norm`). `gyro_estimator_f32_default_params` fills it with the
+ * defaults (each one's value is in the library's `Params` documentation).
  */
 typedef struct {
   /**
@@ -657,8 +660,9 @@ typedef struct {
    */
   uint32_t frame;
   /**
-   * 0: Kalman gains from the covariance (the default); 1: complementary gains, the heading
-   * corrected with the first-order gain `dt/(heading_time_constant + dt)`.
+   * 0: Kalman gains from the covariance (the default); 1: complementary gains,
+   * the heading corrected with the first-order gain
+   * `1 − exp(−dt/heading_time_constant)`.
    */
   uint32_t fixed_gains;
   /**
@@ -670,140 +674,195 @@ typedef struct {
    */
   uint32_t mode;
   /**
-   * The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored otherwise;
-   * the defaults hold 0.025).
+   * The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored
+   * otherwise; the defaults hold 0.025).
    */
   float correction_period;
   /**
-   * Gyroscope white noise, rad/s/√Hz (angle random walk).
+   * Gyroscope white noise, rad/s/√Hz (angle random walk). Default: the rate noise
+   * spectral density of a consumer MEMS gyroscope (MPU-9250: 0.01 °/s/√Hz); a
+   * characterisation reads it as the Allan deviation's slope −½ at 1 s.
    */
   float gyro_noise_density;
   /**
-   * Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
+   * Rate-proportional gyroscope error, 1/√Hz: scale-factor and axis-misalignment
+   * errors (and timing) turn the estimate by an error proportional to the rate,
+   * modelled as white noise of density `s·|ω|` added to `gyro_noise_density`.
+   * Default: the sensitivity tolerance and cross-axis sensitivity (MPU-9250: ±3 %,
+   * ±2 % raw) after a calibration to 0.2 %, as a density over 1 s.
    */
   float gyro_scale_noise;
   /**
-   * Standard deviation of the gyroscope bias at start, rad/s.
+   * Standard deviation of the gyroscope bias at start, rad/s. Default: the zero-rate
+   * output after a power-on calibration (raw tolerance ±5 °/s).
    */
   float gyro_bias_initial;
   /**
-   * How far the bias wanders (rad/s) within `gyro_bias_time`.
+   * How far the bias wanders (rad/s) within `gyro_bias_time`: a random walk of
+   * variance `σ²·Δt/τ` per step. Default: the zero-rate output's temperature drift
+   * (MPU-9250: ±30 °/s over −40…85 °C, 0.24 °/s/K) over the 0.4 K a device warms in
+   * 100 s; an Allan deviation's bias-instability floor is its lower bound.
    */
   float gyro_bias_stability;
   /**
-   * The time (s) over which the bias wanders by `gyro_bias_stability`.
+   * The time (s) over which the bias wanders by `gyro_bias_stability` (positive).
    */
   float gyro_bias_time;
   /**
    * The largest bias magnitude per axis, rad/s (estimates are clipped to it).
+   * Default: a bound on the calibrated bias.
    */
   float gyro_bias_max;
   /**
-   * The gyroscope's full scale, rad/s (`INFINITY`: none).
+   * The gyroscope's full scale, rad/s: a component at or beyond it is saturated
+   * (clipped, its uncertainty added); `+∞` disables the check. Set it to the
+   * sensor's range. Default: the largest range of consumer MEMS gyroscopes
+   * (MPU-9250: ±2000 °/s).
    */
   float gyro_range;
   /**
-   * The accelerometer's full scale, m/s² (`INFINITY`: none).
-   */
-  float accel_range;
-  /**
-   * Time constant (s) of the specific force's low-pass filter; 0: each sample as it is.
-   */
-  float accel_time_constant;
-  /**
-   * Standard deviation (rad) of the inclination measured from the accelerometer.
-   */
-  float accel_tilt_noise;
-  /**
-   * Correlation time (s) of that error.
-   */
-  float accel_correlation_time;
-  /**
-   * Largest relative deviation of the low-passed specific force's norm from gravity for the inclination update to use it.
-   */
-  float accel_reject;
-  /**
-   * Standard deviation (rad) of the heading measured from the magnetometer.
-   */
-  float mag_heading_noise;
-  /**
-   * Correlation time (s) of that error.
-   */
-  float mag_correlation_time;
-  /**
-   * Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
+   * Delay (s) of the gyroscope's samples behind the motion: the group delay of its
+   * digital low-pass filter and of the sampling chain. The filter integrates the
+   * samples as they come and the output attitude is carried forward by this time at
+   * the current rate, `q̂ ⊗ exp((ω − b̂)·d_g)`; the corrections are unaffected. 0
+   * outputs the attitude of the samples' own time. Default: the digital low-pass
+   * delay at its common setting (MPU-9250: 184 Hz bandwidth, 2.9 ms).
    */
   float gyro_delay;
   /**
-   * Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
+   * The accelerometer's full scale, m/s²: a component at or beyond it is saturated
+   * (the sample is not used), so that garbage values (1e30 m/s²) are not fed to the
+   * inclination low-pass; `+∞` disables the check. Set it to the sensor's range.
+   * Default: the largest range of consumer MEMS accelerometers (MPU-9250: ±16 g).
+   */
+  float accel_range;
+  /**
+   * Time constant (s) of the low-pass filter of the specific force in the
+   * gyroscope's (almost inertial) frame; 0 uses each sample as it is. Default: a
+   * design choice (module docs of `estimation`).
+   */
+  float accel_time_constant;
+  /**
+   * Standard deviation (rad) of the inclination measured from the (filtered)
+   * accelerometer (positive). Default: the zero-g offset after calibration (5 mg ≈
+   * 0.3°); the noise density (300 µg/√Hz) averages out in the low-pass.
+   */
+  float accel_tilt_noise;
+  /**
+   * Correlation time (s) of that error: one independent measurement per this time.
+   * Default: a design choice.
+   */
+  float accel_correlation_time;
+  /**
+   * Largest relative deviation of the low-passed specific force's norm from gravity
+   * (9.81 m/s²) for the inclination update to use it: a larger one is acceleration
+   * that the low-pass filter could not average out (a sustained push). Every sample
+   * still feeds the filter. Default: a design choice.
+   */
+  float accel_reject;
+  /**
+   * Standard deviation (rad) of the heading measured from the magnetometer
+   * (positive). Default: the magnetometer's resolution and noise (AK8963: 0.6 µT)
+   * over a horizontal field of about 17 µT.
+   */
+  float mag_heading_noise;
+  /**
+   * Correlation time (s) of that error. Default: a design choice.
+   */
+  float mag_correlation_time;
+  /**
+   * Delay (s) of the magnetometer behind the gyroscope: its sample is compared with
+   * the attitude that long ago (linear between the two nearest attitudes of the
+   * history, up to `MAG_DELAY_MAX`). Default 0: set it when known, else it is
+   * estimated online (`mag_delay_estimation_time`).
    */
   float mag_delay;
   /**
-   * Averaging time (s of rotation in an undisturbed field) of the online estimate of the
-   * magnetometer's delay; 0 keeps `mag_delay` fixed.
+   * Averaging time `τ_d` (s of rotation in an undisturbed field) of the online
+   * estimate of the magnetometer's delay; 0 keeps `mag_delay` fixed. A positive
+   * value starts at `mag_delay` and, after `τ_d` of rotation faster than
+   * `field.new_field_min_rate` in an undisturbed field, replaces it by the delay
+   * whose earth-frame field heading deviates least from its recent mean (module docs
+   * of `estimation`). Default: a design choice.
    */
   float mag_delay_estimation_time;
   /**
-   * Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
+   * Random-walk time `τ_h` (s) of the online hard-iron estimate: the offset may
+   * drift by 1 % of the field's norm over `τ_h`; 0 switches the estimate off (the
+   * field is used as it comes). Once the fit has converged an offset larger than
+   * `field.norm` of the field's norm is subtracted from a field sample when the
+   * corrected field is closer to the disturbance monitor's reference than the raw
+   * one. Default: a design choice.
    */
   float mag_hard_iron_time;
   /**
-   * Weight of a disturbed field's heading error (0: rejected outright).
+   * Weight of a disturbed field's heading error: 0 rejects a disturbed field
+   * outright; a positive `g` uses it with the heading variance increased by
+   * `(g·ε·|B|/|B_h|)²`, `ε = ||B| − |B|_ref|/|B|_ref + |δ − δ_ref|` bounding the
+   * relative size of the disturbance. Default: a design choice.
    */
   float mag_disturbance_weight;
   /**
-   * Disturbance monitor: the largest relative change of the field's norm.
+   * Disturbance monitor, `th_B`: the largest relative change of the field's norm,
+   * `||B| − |B|_ref| / |B|_ref`.
    */
   float field_norm;
   /**
-   * Disturbance monitor: the largest change of the dip angle, rad.
+   * Disturbance monitor, `th_δ` (rad): the largest change of the dip angle.
    */
   float field_dip;
   /**
-   * Disturbance monitor: how slowly (s) the reference follows an undisturbed field.
+   * Disturbance monitor, `τ_ref` (s): how slowly the reference follows an
+   * undisturbed field.
    */
   float field_reference_time_constant;
   /**
-   * Disturbance monitor: how long (s) the field must be back within the thresholds.
+   * Disturbance monitor, `t_back` (s): how long the field must be back within the
+   * thresholds to count as undisturbed again.
    */
   float field_min_undisturbed;
   /**
-   * Disturbance monitor: how long (s) a new homogeneous field must be seen while turning to replace the reference.
+   * Disturbance monitor, `t_new` (s): how long a new homogeneous field must be seen
+   * while turning to replace the reference.
    */
   float field_new_field_time;
   /**
-   * Disturbance monitor: the least rate (rad/s) at which that time counts.
+   * Disturbance monitor, `ω_new` (rad/s): the least rate at which that time counts.
    */
   float field_new_field_min_rate;
   /**
-   * Rest detector: the time constant (s) of the means.
+   * Rest detector, `τ_rest` (s): the time constant of the means.
    */
   float rest_time_constant;
   /**
-   * Rest detector: the largest deviation of the rate from its mean at rest, rad/s.
+   * Rest detector, `th_ω` (rad/s): the largest deviation of the rate from its mean
+   * at rest.
    */
   float rest_gyro;
   /**
-   * Rest detector: the largest deviation of the specific force from its mean at rest, m/s².
+   * Rest detector, `th_a` (m/s²): the largest deviation of the specific force from
+   * its mean at rest.
    */
   float rest_accel;
   /**
-   * Rest detector: the largest mean rate taken as a bias, rad/s (a steadier turn is motion).
+   * Rest detector: the largest mean rate `|ω̄|` (rad/s) taken as a bias; a steadier
+   * turn is motion.
    */
   float rest_max_bias;
   /**
-   * Rest detector: how long (s) the sensor must be still before it counts as at rest.
+   * Rest detector, `t_min` (s): how long the sensor must be still before it counts
+   * as at rest.
    */
   float rest_min_duration;
   /**
-   * Standard deviation (rad/s) of the mean rate at rest as a bias measurement.
+   * Standard deviation (rad/s) of the mean rate at rest as a bias measurement
+   * (positive).
    */
   float rest_bias_noise;
 } gyro_estimator_params_f32;
 
 /**
- * The estimator's parameters, f64 (SI units, angles in rad): the library's `Params`, field
- * for field (see its documentation for each one and for how the defaults were chosen).
+ * The estimator's parameters, f64 (see `gyro_estimator_params_f32`).
  * `gyro_estimator_f64_default_params` fills it with the defaults.
  */
 typedef struct {
@@ -812,8 +871,9 @@ typedef struct {
    */
   uint32_t frame;
   /**
-   * 0: Kalman gains from the covariance (the default); 1: complementary gains, the heading
-   * corrected with the first-order gain `dt/(heading_time_constant + dt)`.
+   * 0: Kalman gains from the covariance (the default); 1: complementary gains,
+   * the heading corrected with the first-order gain
+   * `1 − exp(−dt/heading_time_constant)`.
    */
   uint32_t fixed_gains;
   /**
@@ -825,133 +885,189 @@ typedef struct {
    */
   uint32_t mode;
   /**
-   * The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored otherwise;
-   * the defaults hold 0.025).
+   * The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored
+   * otherwise; the defaults hold 0.025).
    */
   double correction_period;
   /**
-   * Gyroscope white noise, rad/s/√Hz (angle random walk).
+   * Gyroscope white noise, rad/s/√Hz (angle random walk). Default: the rate noise
+   * spectral density of a consumer MEMS gyroscope (MPU-9250: 0.01 °/s/√Hz); a
+   * characterisation reads it as the Allan deviation's slope −½ at 1 s.
    */
   double gyro_noise_density;
   /**
-   * Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
+   * Rate-proportional gyroscope error, 1/√Hz: scale-factor and axis-misalignment
+   * errors (and timing) turn the estimate by an error proportional to the rate,
+   * modelled as white noise of density `s·|ω|` added to `gyro_noise_density`.
+   * Default: the sensitivity tolerance and cross-axis sensitivity (MPU-9250: ±3 %,
+   * ±2 % raw) after a calibration to 0.2 %, as a density over 1 s.
    */
   double gyro_scale_noise;
   /**
-   * Standard deviation of the gyroscope bias at start, rad/s.
+   * Standard deviation of the gyroscope bias at start, rad/s. Default: the zero-rate
+   * output after a power-on calibration (raw tolerance ±5 °/s).
    */
   double gyro_bias_initial;
   /**
-   * How far the bias wanders (rad/s) within `gyro_bias_time`.
+   * How far the bias wanders (rad/s) within `gyro_bias_time`: a random walk of
+   * variance `σ²·Δt/τ` per step. Default: the zero-rate output's temperature drift
+   * (MPU-9250: ±30 °/s over −40…85 °C, 0.24 °/s/K) over the 0.4 K a device warms in
+   * 100 s; an Allan deviation's bias-instability floor is its lower bound.
    */
   double gyro_bias_stability;
   /**
-   * The time (s) over which the bias wanders by `gyro_bias_stability`.
+   * The time (s) over which the bias wanders by `gyro_bias_stability` (positive).
    */
   double gyro_bias_time;
   /**
    * The largest bias magnitude per axis, rad/s (estimates are clipped to it).
+   * Default: a bound on the calibrated bias.
    */
   double gyro_bias_max;
   /**
-   * The gyroscope's full scale, rad/s (`INFINITY`: none).
+   * The gyroscope's full scale, rad/s: a component at or beyond it is saturated
+   * (clipped, its uncertainty added); `+∞` disables the check. Set it to the
+   * sensor's range. Default: the largest range of consumer MEMS gyroscopes
+   * (MPU-9250: ±2000 °/s).
    */
   double gyro_range;
   /**
-   * The accelerometer's full scale, m/s² (`INFINITY`: none).
-   */
-  double accel_range;
-  /**
-   * Time constant (s) of the specific force's low-pass filter; 0: each sample as it is.
-   */
-  double accel_time_constant;
-  /**
-   * Standard deviation (rad) of the inclination measured from the accelerometer.
-   */
-  double accel_tilt_noise;
-  /**
-   * Correlation time (s) of that error.
-   */
-  double accel_correlation_time;
-  /**
-   * Largest relative deviation of the low-passed specific force's norm from gravity for the inclination update to use it.
-   */
-  double accel_reject;
-  /**
-   * Standard deviation (rad) of the heading measured from the magnetometer.
-   */
-  double mag_heading_noise;
-  /**
-   * Correlation time (s) of that error.
-   */
-  double mag_correlation_time;
-  /**
-   * Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
+   * Delay (s) of the gyroscope's samples behind the motion: the group delay of its
+   * digital low-pass filter and of the sampling chain. The filter integrates the
+   * samples as they come and the output attitude is carried forward by this time at
+   * the current rate, `q̂ ⊗ exp((ω − b̂)·d_g)`; the corrections are unaffected. 0
+   * outputs the attitude of the samples' own time. Default: the digital low-pass
+   * delay at its common setting (MPU-9250: 184 Hz bandwidth, 2.9 ms).
    */
   double gyro_delay;
   /**
-   * Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
+   * The accelerometer's full scale, m/s²: a component at or beyond it is saturated
+   * (the sample is not used), so that garbage values (1e30 m/s²) are not fed to the
+   * inclination low-pass; `+∞` disables the check. Set it to the sensor's range.
+   * Default: the largest range of consumer MEMS accelerometers (MPU-9250: ±16 g).
+   */
+  double accel_range;
+  /**
+   * Time constant (s) of the low-pass filter of the specific force in the
+   * gyroscope's (almost inertial) frame; 0 uses each sample as it is. Default: a
+   * design choice (module docs of `estimation`).
+   */
+  double accel_time_constant;
+  /**
+   * Standard deviation (rad) of the inclination measured from the (filtered)
+   * accelerometer (positive). Default: the zero-g offset after calibration (5 mg ≈
+   * 0.3°); the noise density (300 µg/√Hz) averages out in the low-pass.
+   */
+  double accel_tilt_noise;
+  /**
+   * Correlation time (s) of that error: one independent measurement per this time.
+   * Default: a design choice.
+   */
+  double accel_correlation_time;
+  /**
+   * Largest relative deviation of the low-passed specific force's norm from gravity
+   * (9.81 m/s²) for the inclination update to use it: a larger one is acceleration
+   * that the low-pass filter could not average out (a sustained push). Every sample
+   * still feeds the filter. Default: a design choice.
+   */
+  double accel_reject;
+  /**
+   * Standard deviation (rad) of the heading measured from the magnetometer
+   * (positive). Default: the magnetometer's resolution and noise (AK8963: 0.6 µT)
+   * over a horizontal field of about 17 µT.
+   */
+  double mag_heading_noise;
+  /**
+   * Correlation time (s) of that error. Default: a design choice.
+   */
+  double mag_correlation_time;
+  /**
+   * Delay (s) of the magnetometer behind the gyroscope: its sample is compared with
+   * the attitude that long ago (linear between the two nearest attitudes of the
+   * history, up to `MAG_DELAY_MAX`). Default 0: set it when known, else it is
+   * estimated online (`mag_delay_estimation_time`).
    */
   double mag_delay;
   /**
-   * Averaging time (s of rotation in an undisturbed field) of the online estimate of the
-   * magnetometer's delay; 0 keeps `mag_delay` fixed.
+   * Averaging time `τ_d` (s of rotation in an undisturbed field) of the online
+   * estimate of the magnetometer's delay; 0 keeps `mag_delay` fixed. A positive
+   * value starts at `mag_delay` and, after `τ_d` of rotation faster than
+   * `field.new_field_min_rate` in an undisturbed field, replaces it by the delay
+   * whose earth-frame field heading deviates least from its recent mean (module docs
+   * of `estimation`). Default: a design choice.
    */
   double mag_delay_estimation_time;
   /**
-   * Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
+   * Random-walk time `τ_h` (s) of the online hard-iron estimate: the offset may
+   * drift by 1 % of the field's norm over `τ_h`; 0 switches the estimate off (the
+   * field is used as it comes). Once the fit has converged an offset larger than
+   * `field.norm` of the field's norm is subtracted from a field sample when the
+   * corrected field is closer to the disturbance monitor's reference than the raw
+   * one. Default: a design choice.
    */
   double mag_hard_iron_time;
   /**
-   * Weight of a disturbed field's heading error (0: rejected outright).
+   * Weight of a disturbed field's heading error: 0 rejects a disturbed field
+   * outright; a positive `g` uses it with the heading variance increased by
+   * `(g·ε·|B|/|B_h|)²`, `ε = ||B| − |B|_ref|/|B|_ref + |δ − δ_ref|` bounding the
+   * relative size of the disturbance. Default: a design choice.
    */
   double mag_disturbance_weight;
   /**
-   * Disturbance monitor: the largest relative change of the field's norm.
+   * Disturbance monitor, `th_B`: the largest relative change of the field's norm,
+   * `||B| − |B|_ref| / |B|_ref`.
    */
   double field_norm;
   /**
-   * Disturbance monitor: the largest change of the dip angle, rad.
+   * Disturbance monitor, `th_δ` (rad): the largest change of the dip angle.
    */
   double field_dip;
   /**
-   * Disturbance monitor: how slowly (s) the reference follows an undisturbed field.
+   * Disturbance monitor, `τ_ref` (s): how slowly the reference follows an
+   * undisturbed field.
    */
   double field_reference_time_constant;
   /**
-   * Disturbance monitor: how long (s) the field must be back within the thresholds.
+   * Disturbance monitor, `t_back` (s): how long the field must be back within the
+   * thresholds to count as undisturbed again.
    */
   double field_min_undisturbed;
   /**
-   * Disturbance monitor: how long (s) a new homogeneous field must be seen while turning to replace the reference.
+   * Disturbance monitor, `t_new` (s): how long a new homogeneous field must be seen
+   * while turning to replace the reference.
    */
   double field_new_field_time;
   /**
-   * Disturbance monitor: the least rate (rad/s) at which that time counts.
+   * Disturbance monitor, `ω_new` (rad/s): the least rate at which that time counts.
    */
   double field_new_field_min_rate;
   /**
-   * Rest detector: the time constant (s) of the means.
+   * Rest detector, `τ_rest` (s): the time constant of the means.
    */
   double rest_time_constant;
   /**
-   * Rest detector: the largest deviation of the rate from its mean at rest, rad/s.
+   * Rest detector, `th_ω` (rad/s): the largest deviation of the rate from its mean
+   * at rest.
    */
   double rest_gyro;
   /**
-   * Rest detector: the largest deviation of the specific force from its mean at rest, m/s².
+   * Rest detector, `th_a` (m/s²): the largest deviation of the specific force from
+   * its mean at rest.
    */
   double rest_accel;
   /**
-   * Rest detector: the largest mean rate taken as a bias, rad/s (a steadier turn is motion).
+   * Rest detector: the largest mean rate `|ω̄|` (rad/s) taken as a bias; a steadier
+   * turn is motion.
    */
   double rest_max_bias;
   /**
-   * Rest detector: how long (s) the sensor must be still before it counts as at rest.
+   * Rest detector, `t_min` (s): how long the sensor must be still before it counts
+   * as at rest.
    */
   double rest_min_duration;
   /**
-   * Standard deviation (rad/s) of the mean rate at rest as a bias measurement.
+   * Standard deviation (rad/s) of the mean rate at rest as a bias measurement
+   * (positive).
    */
   double rest_bias_noise;
 } gyro_estimator_params_f64;

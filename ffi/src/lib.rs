@@ -38,9 +38,7 @@ use core::ffi::c_char;
 use core::mem::{align_of, size_of};
 
 use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
-use gyrostat::estimation::{
-    EarthFrame, Estimator, FieldThresholds, Gains, Mode, Outcome, Params, RestThresholds, SensorUse,
-};
+use gyrostat::estimation::{EarthFrame, Estimator, Gains, Mode, Outcome, Params, SensorUse};
 use gyrostat::fixed::{CarriedAttitude, Fixed, IncrementQuantizer, IncrementScale, Q30};
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
@@ -97,12 +95,16 @@ pub enum gyro_status {
     GYRO_STEP_TOO_LONG = 11,
     /// A value outside the range of the fixed-point format.
     GYRO_OUT_OF_RANGE = 12,
-    /// An error of a newer library version that this interface does not name.
-    GYRO_OTHER_ERROR = 13,
+    /// A raw sensor reading at its register's limit, rejected by the clip policy (the
+    /// library's `Error::Clipped`; the code that versions before it called `GYRO_OTHER_ERROR`).
+    GYRO_CLIPPED = 13,
 }
 
 use gyro_status::*;
 
+/// Every library error has its own code. The match has no wildcard: a new `Error` variant does
+/// not compile until it has one (`tests/contract.rs` checks the codes are distinct and
+/// documented in the header).
 impl From<Error> for gyro_status {
     fn from(e: Error) -> Self {
         match e {
@@ -116,7 +118,7 @@ impl From<Error> for gyro_status {
             Error::StepTooLong => GYRO_STEP_TOO_LONG,
             Error::InvalidArgument => GYRO_INVALID_ARGUMENT,
             Error::OutOfRange => GYRO_OUT_OF_RANGE,
-            _ => GYRO_OTHER_ERROR,
+            Error::Clipped => GYRO_CLIPPED,
         }
     }
 }
@@ -2094,177 +2096,52 @@ pub struct gyro_estimator_f64 {
 slot!(gyro_estimator_f32, Estimator<f32>, 0x6779_0401);
 slot!(gyro_estimator_f64, Estimator<f64>, 0x6779_0402);
 
-/// The estimator's parameters, f32 (SI units, angles in rad): the library's `Params`, field
-/// for field (see its documentation for each one and for how the defaults were chosen).
-/// `gyro_estimator_f32_default_params` fills it with the defaults.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct gyro_estimator_params_f32 {
-    /// The earth frame of the attitude: `GYRO_FRAME_ENU` or `GYRO_FRAME_NED`.
-    pub frame: u32,
-    /// 0: Kalman gains from the covariance (the default); 1: complementary gains, the heading
-    /// corrected with the first-order gain `dt/(heading_time_constant + dt)`.
-    pub fixed_gains: u32,
-    /// `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
-    pub heading_time_constant: f32,
-    /// `GYRO_MODE_FULL` (the default) or `GYRO_MODE_LIGHT`.
-    pub mode: u32,
-    /// The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored otherwise;
-    /// the defaults hold 0.025).
-    pub correction_period: f32,
-    /// Gyroscope white noise, rad/s/√Hz (angle random walk).
-    pub gyro_noise_density: f32,
-    /// Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
-    pub gyro_scale_noise: f32,
-    /// Standard deviation of the gyroscope bias at start, rad/s.
-    pub gyro_bias_initial: f32,
-    /// How far the bias wanders (rad/s) within `gyro_bias_time`.
-    pub gyro_bias_stability: f32,
-    /// The time (s) over which the bias wanders by `gyro_bias_stability`.
-    pub gyro_bias_time: f32,
-    /// The largest bias magnitude per axis, rad/s (estimates are clipped to it).
-    pub gyro_bias_max: f32,
-    /// The gyroscope's full scale, rad/s (`INFINITY`: none).
-    pub gyro_range: f32,
-    /// The accelerometer's full scale, m/s² (`INFINITY`: none).
-    pub accel_range: f32,
-    /// Time constant (s) of the specific force's low-pass filter; 0: each sample as it is.
-    pub accel_time_constant: f32,
-    /// Standard deviation (rad) of the inclination measured from the accelerometer.
-    pub accel_tilt_noise: f32,
-    /// Correlation time (s) of that error.
-    pub accel_correlation_time: f32,
-    /// Largest relative deviation of the low-passed specific force's norm from gravity for the inclination update to use it.
-    pub accel_reject: f32,
-    /// Standard deviation (rad) of the heading measured from the magnetometer.
-    pub mag_heading_noise: f32,
-    /// Correlation time (s) of that error.
-    pub mag_correlation_time: f32,
-    /// Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
-    pub gyro_delay: f32,
-    /// Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
-    pub mag_delay: f32,
-    /// Averaging time (s of rotation in an undisturbed field) of the online estimate of the
-    /// magnetometer's delay; 0 keeps `mag_delay` fixed.
-    pub mag_delay_estimation_time: f32,
-    /// Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
-    pub mag_hard_iron_time: f32,
-    /// Weight of a disturbed field's heading error (0: rejected outright).
-    pub mag_disturbance_weight: f32,
-    /// Disturbance monitor: the largest relative change of the field's norm.
-    pub field_norm: f32,
-    /// Disturbance monitor: the largest change of the dip angle, rad.
-    pub field_dip: f32,
-    /// Disturbance monitor: how slowly (s) the reference follows an undisturbed field.
-    pub field_reference_time_constant: f32,
-    /// Disturbance monitor: how long (s) the field must be back within the thresholds.
-    pub field_min_undisturbed: f32,
-    /// Disturbance monitor: how long (s) a new homogeneous field must be seen while turning to replace the reference.
-    pub field_new_field_time: f32,
-    /// Disturbance monitor: the least rate (rad/s) at which that time counts.
-    pub field_new_field_min_rate: f32,
-    /// Rest detector: the time constant (s) of the means.
-    pub rest_time_constant: f32,
-    /// Rest detector: the largest deviation of the rate from its mean at rest, rad/s.
-    pub rest_gyro: f32,
-    /// Rest detector: the largest deviation of the specific force from its mean at rest, m/s².
-    pub rest_accel: f32,
-    /// Rest detector: the largest mean rate taken as a bias, rad/s (a steadier turn is motion).
-    pub rest_max_bias: f32,
-    /// Rest detector: how long (s) the sensor must be still before it counts as at rest.
-    pub rest_min_duration: f32,
-    /// Standard deviation (rad/s) of the mean rate at rest as a bias measurement.
-    pub rest_bias_noise: f32,
+/// Items and their source text (`$name`), for cbindgen, which does not expand macros: the
+/// header test hands it the text of the items a macro made (`tests/header.rs`).
+macro_rules! with_source {
+    ($name:ident, $($item:tt)*) => {
+        $($item)*
+        #[doc(hidden)]
+        pub const $name: &str = stringify!($($item)*);
+    };
 }
 
-/// The estimator's parameters, f64 (SI units, angles in rad): the library's `Params`, field
-/// for field (see its documentation for each one and for how the defaults were chosen).
-/// `gyro_estimator_f64_default_params` fills it with the defaults.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct gyro_estimator_params_f64 {
-    /// The earth frame of the attitude: `GYRO_FRAME_ENU` or `GYRO_FRAME_NED`.
-    pub frame: u32,
-    /// 0: Kalman gains from the covariance (the default); 1: complementary gains, the heading
-    /// corrected with the first-order gain `dt/(heading_time_constant + dt)`.
-    pub fixed_gains: u32,
-    /// `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
-    pub heading_time_constant: f64,
-    /// `GYRO_MODE_FULL` (the default) or `GYRO_MODE_LIGHT`.
-    pub mode: u32,
-    /// The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored otherwise;
-    /// the defaults hold 0.025).
-    pub correction_period: f64,
-    /// Gyroscope white noise, rad/s/√Hz (angle random walk).
-    pub gyro_noise_density: f64,
-    /// Rate-proportional gyroscope error (scale factor, misalignment), 1/√Hz.
-    pub gyro_scale_noise: f64,
-    /// Standard deviation of the gyroscope bias at start, rad/s.
-    pub gyro_bias_initial: f64,
-    /// How far the bias wanders (rad/s) within `gyro_bias_time`.
-    pub gyro_bias_stability: f64,
-    /// The time (s) over which the bias wanders by `gyro_bias_stability`.
-    pub gyro_bias_time: f64,
-    /// The largest bias magnitude per axis, rad/s (estimates are clipped to it).
-    pub gyro_bias_max: f64,
-    /// The gyroscope's full scale, rad/s (`INFINITY`: none).
-    pub gyro_range: f64,
-    /// The accelerometer's full scale, m/s² (`INFINITY`: none).
-    pub accel_range: f64,
-    /// Time constant (s) of the specific force's low-pass filter; 0: each sample as it is.
-    pub accel_time_constant: f64,
-    /// Standard deviation (rad) of the inclination measured from the accelerometer.
-    pub accel_tilt_noise: f64,
-    /// Correlation time (s) of that error.
-    pub accel_correlation_time: f64,
-    /// Largest relative deviation of the low-passed specific force's norm from gravity for the inclination update to use it.
-    pub accel_reject: f64,
-    /// Standard deviation (rad) of the heading measured from the magnetometer.
-    pub mag_heading_noise: f64,
-    /// Correlation time (s) of that error.
-    pub mag_correlation_time: f64,
-    /// Delay (s) of the gyroscope's samples behind the motion (the output is carried forward by it).
-    pub gyro_delay: f64,
-    /// Delay (s) of the magnetometer behind the gyroscope (the start of the online estimate).
-    pub mag_delay: f64,
-    /// Averaging time (s of rotation in an undisturbed field) of the online estimate of the
-    /// magnetometer's delay; 0 keeps `mag_delay` fixed.
-    pub mag_delay_estimation_time: f64,
-    /// Random-walk time (s) of the online hard-iron estimate; 0 switches it off.
-    pub mag_hard_iron_time: f64,
-    /// Weight of a disturbed field's heading error (0: rejected outright).
-    pub mag_disturbance_weight: f64,
-    /// Disturbance monitor: the largest relative change of the field's norm.
-    pub field_norm: f64,
-    /// Disturbance monitor: the largest change of the dip angle, rad.
-    pub field_dip: f64,
-    /// Disturbance monitor: how slowly (s) the reference follows an undisturbed field.
-    pub field_reference_time_constant: f64,
-    /// Disturbance monitor: how long (s) the field must be back within the thresholds.
-    pub field_min_undisturbed: f64,
-    /// Disturbance monitor: how long (s) a new homogeneous field must be seen while turning to replace the reference.
-    pub field_new_field_time: f64,
-    /// Disturbance monitor: the least rate (rad/s) at which that time counts.
-    pub field_new_field_min_rate: f64,
-    /// Rest detector: the time constant (s) of the means.
-    pub rest_time_constant: f64,
-    /// Rest detector: the largest deviation of the rate from its mean at rest, rad/s.
-    pub rest_gyro: f64,
-    /// Rest detector: the largest deviation of the specific force from its mean at rest, m/s².
-    pub rest_accel: f64,
-    /// Rest detector: the largest mean rate taken as a bias, rad/s (a steadier turn is motion).
-    pub rest_max_bias: f64,
-    /// Rest detector: how long (s) the sensor must be still before it counts as at rest.
-    pub rest_min_duration: f64,
-    /// Standard deviation (rad/s) of the mean rate at rest as a bias measurement.
-    pub rest_bias_noise: f64,
-}
+/// The C parameter struct of one float width and its conversions to and from `Params`: the
+/// choices (frame, gains, mode) as `uint32_t` codes, then every numeric parameter of the
+/// library's table (`gyrostat::estimator_parameters!`), in its order, under its flat name.
+macro_rules! c_params_struct {
+    ($t:ty, $c:ident, $source:ident, [$(#[$doc:meta])*],
+        [$( $(#[$m:meta])* $flat:ident; )*]) => {
+        with_source! { $source,
+            $(#[$doc])*
+            #[repr(C)]
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            pub struct $c {
+                /// The earth frame of the attitude: `GYRO_FRAME_ENU` or `GYRO_FRAME_NED`.
+                pub frame: u32,
+                /// 0: Kalman gains from the covariance (the default); 1: complementary gains,
+                /// the heading corrected with the first-order gain
+                /// `1 − exp(−dt/heading_time_constant)`.
+                pub fixed_gains: u32,
+                /// `τ` (s) of the heading correction with `fixed_gains` 1 (ignored otherwise).
+                pub heading_time_constant: $t,
+                /// `GYRO_MODE_FULL` (the default) or `GYRO_MODE_LIGHT`.
+                pub mode: u32,
+                /// The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored
+                /// otherwise; the defaults hold 0.025).
+                pub correction_period: $t,
+                $(
+                    $(#[$m])*
+                    pub $flat: $t,
+                )*
+            }
+        }
 
-/// Conversions between the C parameter structs and `Params`.
-macro_rules! params_io {
-    ($t:ty, $c:ident) => {
         impl $c {
-            fn to_params(self) -> Result<Params<$t>, gyro_status> {
+            /// The library's parameters of these (`GYRO_INVALID_ARGUMENT` for an unknown
+            /// frame, gains or mode code).
+            #[doc(hidden)]
+            pub fn to_params(self) -> Result<Params<$t>, gyro_status> {
                 let frame = match self.frame {
                     GYRO_FRAME_ENU => EarthFrame::Enu,
                     GYRO_FRAME_NED => EarthFrame::Ned,
@@ -2284,48 +2161,12 @@ macro_rules! params_io {
                     },
                     _ => return Err(GYRO_INVALID_ARGUMENT),
                 };
-                Ok(Params {
-                    frame,
-                    gains,
-                    mode,
-                    gyro_noise_density: self.gyro_noise_density,
-                    gyro_scale_noise: self.gyro_scale_noise,
-                    gyro_bias_initial: self.gyro_bias_initial,
-                    gyro_bias_stability: self.gyro_bias_stability,
-                    gyro_bias_time: self.gyro_bias_time,
-                    gyro_bias_max: self.gyro_bias_max,
-                    gyro_range: self.gyro_range,
-                    accel_range: self.accel_range,
-                    accel_time_constant: self.accel_time_constant,
-                    accel_tilt_noise: self.accel_tilt_noise,
-                    accel_correlation_time: self.accel_correlation_time,
-                    accel_reject: self.accel_reject,
-                    mag_heading_noise: self.mag_heading_noise,
-                    mag_correlation_time: self.mag_correlation_time,
-                    gyro_delay: self.gyro_delay,
-                    mag_delay: self.mag_delay,
-                    mag_delay_estimation_time: self.mag_delay_estimation_time,
-                    mag_hard_iron_time: self.mag_hard_iron_time,
-                    mag_disturbance_weight: self.mag_disturbance_weight,
-                    rest_bias_noise: self.rest_bias_noise,
-                    field: FieldThresholds {
-                        norm: self.field_norm,
-                        dip: self.field_dip,
-                        reference_time_constant: self.field_reference_time_constant,
-                        min_undisturbed: self.field_min_undisturbed,
-                        new_field_time: self.field_new_field_time,
-                        new_field_min_rate: self.field_new_field_min_rate,
-                    },
-                    rest: RestThresholds {
-                        time_constant: self.rest_time_constant,
-                        gyro: self.rest_gyro,
-                        accel: self.rest_accel,
-                        max_bias: self.rest_max_bias,
-                        min_duration: self.rest_min_duration,
-                    },
-                })
+                Ok(Params::from_values(frame, gains, mode, [$(self.$flat),*]))
             }
-            fn from_params(p: &Params<$t>) -> Self {
+
+            /// The C struct of the library's parameters `p`.
+            #[doc(hidden)]
+            pub fn from_params(p: &Params<$t>) -> Self {
                 let (fixed_gains, heading_time_constant) = match p.gains {
                     Gains::Kalman => (0, 0.0),
                     Gains::Fixed {
@@ -2336,53 +2177,54 @@ macro_rules! params_io {
                     Mode::Full => (GYRO_MODE_FULL, <$t>::from_f64(Mode::<$t>::LIGHT_PERIOD)),
                     Mode::Light { correction_period } => (GYRO_MODE_LIGHT, correction_period),
                 };
+                let frame = match p.frame {
+                    EarthFrame::Enu => GYRO_FRAME_ENU,
+                    EarthFrame::Ned => GYRO_FRAME_NED,
+                };
+                let [$($flat),*] = p.values();
                 $c {
-                    mode,
-                    correction_period,
-                    frame: match p.frame {
-                        EarthFrame::Enu => GYRO_FRAME_ENU,
-                        EarthFrame::Ned => GYRO_FRAME_NED,
-                    },
+                    frame,
                     fixed_gains,
                     heading_time_constant,
-                    gyro_noise_density: p.gyro_noise_density,
-                    gyro_scale_noise: p.gyro_scale_noise,
-                    gyro_bias_initial: p.gyro_bias_initial,
-                    gyro_bias_stability: p.gyro_bias_stability,
-                    gyro_bias_time: p.gyro_bias_time,
-                    gyro_bias_max: p.gyro_bias_max,
-                    gyro_range: p.gyro_range,
-                    accel_range: p.accel_range,
-                    accel_time_constant: p.accel_time_constant,
-                    accel_tilt_noise: p.accel_tilt_noise,
-                    accel_correlation_time: p.accel_correlation_time,
-                    accel_reject: p.accel_reject,
-                    mag_heading_noise: p.mag_heading_noise,
-                    mag_correlation_time: p.mag_correlation_time,
-                    gyro_delay: p.gyro_delay,
-                    mag_delay: p.mag_delay,
-                    mag_delay_estimation_time: p.mag_delay_estimation_time,
-                    mag_hard_iron_time: p.mag_hard_iron_time,
-                    mag_disturbance_weight: p.mag_disturbance_weight,
-                    rest_bias_noise: p.rest_bias_noise,
-                    field_norm: p.field.norm,
-                    field_dip: p.field.dip,
-                    field_reference_time_constant: p.field.reference_time_constant,
-                    field_min_undisturbed: p.field.min_undisturbed,
-                    field_new_field_time: p.field.new_field_time,
-                    field_new_field_min_rate: p.field.new_field_min_rate,
-                    rest_time_constant: p.rest.time_constant,
-                    rest_gyro: p.rest.gyro,
-                    rest_accel: p.rest.accel,
-                    rest_max_bias: p.rest.max_bias,
-                    rest_min_duration: p.rest.min_duration,
+                    mode,
+                    correction_period,
+                    $($flat,)*
                 }
             }
         }
     };
 }
-params_io!(f32, gyro_estimator_params_f32);
-params_io!(f64, gyro_estimator_params_f64);
+
+/// The callback of `gyrostat::estimator_parameters!`: the f32 and f64 parameter structs.
+macro_rules! c_params {
+    ($( $(#[$m:meta])* $flat:ident $(@ $g:ident . $f:ident)? : $d:expr, $dom:ident; )*) => {
+        c_params_struct!(
+            f32,
+            gyro_estimator_params_f32,
+            ESTIMATOR_PARAMS_F32_SOURCE,
+            [
+                /// The estimator's parameters, f32 (SI units, angles in rad): the library's
+                /// `Params` field for field, generated from its parameter table
+                /// (`gyrostat::estimator_parameters!`; group fields flattened, `field.norm` is
+                /// `field_norm`). `gyro_estimator_f32_default_params` fills it with the
+                /// defaults (each one's value is in the library's `Params` documentation).
+            ],
+            [$( $(#[$m])* $flat; )*]
+        );
+        c_params_struct!(
+            f64,
+            gyro_estimator_params_f64,
+            ESTIMATOR_PARAMS_F64_SOURCE,
+            [
+                /// The estimator's parameters, f64 (see `gyro_estimator_params_f32`).
+                /// `gyro_estimator_f64_default_params` fills it with the defaults.
+            ],
+            [$( $(#[$m])* $flat; )*]
+        );
+    };
+}
+
+gyrostat::estimator_parameters!(c_params);
 
 fn est_init<T: CFloat, S: Slot<Inner = Estimator<T>>>(s: *mut S, frame: u32) -> gyro_status {
     status((|| {

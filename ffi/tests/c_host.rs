@@ -79,7 +79,7 @@ fn code(e: Error) -> u32 {
         Error::StepTooLong => 11,
         Error::InvalidArgument => 3,
         Error::OutOfRange => 12,
-        _ => 13,
+        Error::Clipped => 13,
     }
 }
 const BAD_POINTER: u32 = 1;

@@ -543,3 +543,120 @@ fn estimator_parameters_from_c() {
         assert_eq!(gyro_estimator_f32_init_params(&mut c, &p32), GYRO_OK);
     }
 }
+
+/// Every library error, listed beside a match without a wildcard: a new variant does not
+/// compile here until it is added to the list.
+fn every_error() -> Vec<gyrostat::Error> {
+    use gyrostat::Error as E;
+    let list = vec![
+        E::NonFinite,
+        E::ZeroNorm,
+        E::NotUnit,
+        E::NotRotation,
+        E::Singular,
+        E::NonPhysicalInertia,
+        E::NotConverged,
+        E::StepTooLong,
+        E::InvalidArgument,
+        E::OutOfRange,
+        E::Clipped,
+    ];
+    for e in &list {
+        match e {
+            E::NonFinite
+            | E::ZeroNorm
+            | E::NotUnit
+            | E::NotRotation
+            | E::Singular
+            | E::NonPhysicalInertia
+            | E::NotConverged
+            | E::StepTooLong
+            | E::InvalidArgument
+            | E::OutOfRange
+            | E::Clipped => {}
+        }
+    }
+    list
+}
+
+/// The C body of `typedef enum|struct { ... } NAME;` in the committed header.
+fn header_body(name: &str) -> String {
+    let header = include_str!("../include/gyrostat.h");
+    let end = header
+        .find(&format!("}} {name};"))
+        .unwrap_or_else(|| panic!("{name} in the header"));
+    let start = header[..end].rfind("typedef ").expect("typedef");
+    header[start..end].to_string()
+}
+
+/// Each library error has its own status code (none of them `GYRO_OK`, none shared), and the
+/// header declares that code with a comment.
+#[test]
+fn every_error_has_its_own_documented_code() {
+    let body = header_body("gyro_status");
+    let mut seen = std::collections::BTreeMap::new();
+    for e in every_error() {
+        let s = gyro_status::from(e);
+        assert_ne!(s, GYRO_OK, "{e:?}");
+        if let Some(other) = seen.insert(s as u32, e) {
+            panic!("{e:?} and {other:?} share the code {s:?}");
+        }
+        let declaration = format!("{s:?} = {},", s as u32);
+        let at = body
+            .find(&declaration)
+            .unwrap_or_else(|| panic!("the header declares `{declaration}`"));
+        assert!(
+            body[..at].trim_end().ends_with("*/"),
+            "{s:?} has a comment in the header"
+        );
+    }
+    assert_eq!(seen.len(), every_error().len());
+}
+
+/// The C parameter structs follow the library's parameter table: the header's fields are the
+/// choices then `Params::FLAT_NAMES` in order, every field reaches its parameter (distinct
+/// values through the struct come out of `Params::values` in the order of `Params::NAMES`, and
+/// back), and the default struct holds `Params::default()`.
+#[test]
+fn parameter_structs_follow_the_library_table() {
+    use gyrostat::estimation::Params;
+    for name in ["gyro_estimator_params_f32", "gyro_estimator_params_f64"] {
+        let body = header_body(name);
+        let fields: Vec<&str> = body
+            .lines()
+            .map(str::trim)
+            .filter(|l| l.ends_with(';') && !l.starts_with('*'))
+            .map(|l| l.trim_end_matches(';').rsplit(' ').next().unwrap())
+            .collect();
+        let mut want = vec![
+            "frame",
+            "fixed_gains",
+            "heading_time_constant",
+            "mode",
+            "correction_period",
+        ];
+        want.extend(Params::<f64>::FLAT_NAMES);
+        assert_eq!(fields, want, "{name}");
+    }
+    macro_rules! check {
+        ($( $(#[$m:meta])* $flat:ident $(@ $g:ident . $f:ident)? : $d:expr, $dom:ident; )*) => {{
+            let mut c = gyro_estimator_params_f64::default();
+            unsafe {
+                assert_eq!(gyro_estimator_f64_default_params(&mut c), GYRO_OK);
+            }
+            assert_eq!([$(c.$flat),*], Params::<f64>::default().values());
+            let mut k = 0.0;
+            $(
+                k += 1.0;
+                c.$flat = k / 8.0;
+            )*
+            let p = c.to_params().unwrap();
+            let want: Vec<f64> = (1..=Params::<f64>::NAMES.len()).map(|k| k as f64 / 8.0).collect();
+            assert_eq!(p.values().to_vec(), want);
+            assert_eq!(gyro_estimator_params_f64::from_params(&p), c);
+            let c32 = gyro_estimator_params_f32::from_params(&p.map(|x| x as f32));
+            assert_eq!([$(f64::from(c32.$flat)),*].to_vec(), want);
+        }};
+    }
+    gyrostat::estimator_parameters!(check);
+}

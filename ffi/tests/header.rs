@@ -1,5 +1,7 @@
-//! The committed header `include/gyrostat.h` is what cbindgen generates from `src/lib.rs` now.
-//! `GYROSTAT_BLESS=1` rewrites it instead of comparing.
+//! The committed header `include/gyrostat.h` is what cbindgen generates from `src/lib.rs` now,
+//! with the items `src/lib.rs` makes by macro (the estimator's parameter structs, from the
+//! library's parameter table) given to cbindgen as their source text (cbindgen does not expand
+//! macros). `GYROSTAT_BLESS=1` rewrites it instead of comparing.
 
 use std::path::Path;
 
@@ -7,8 +9,15 @@ use std::path::Path;
 fn committed_header_matches_the_code() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
     let config = cbindgen::Config::from_file(dir.join("cbindgen.toml")).expect("cbindgen.toml");
+    let expanded = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gyrostat_ffi_macro_items.rs");
+    let items = [
+        gyrostat_ffi::ESTIMATOR_PARAMS_F32_SOURCE,
+        gyrostat_ffi::ESTIMATOR_PARAMS_F64_SOURCE,
+    ];
+    std::fs::write(&expanded, items.join("\n")).expect("write the macro items' source");
     let mut generated = Vec::new();
     cbindgen::Builder::new()
+        .with_src(&expanded)
         .with_crate(dir)
         .with_config(config)
         .generate()

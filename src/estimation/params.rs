@@ -355,17 +355,17 @@ macro_rules! params_structs {
     // A field of the disturbance monitor.
     (@sort $top:tt [$($field:tt)*] $rest:tt [$($all:ident)*]
         $(#[$m:meta])* $flat:ident @ field . $f:ident : $d:expr, $dom:ident; $($tail:tt)*) => {
-        params_structs!(@sort $top [$($field)* { $(#[$m])* $f $flat }] $rest [$($all)* $flat] $($tail)*);
+        params_structs!(@sort $top [$($field)* { $(#[$m])* #[doc = ""] #[doc = concat!("Default: `", stringify!($d), "`.")] $f $flat }] $rest [$($all)* $flat] $($tail)*);
     };
     // A field of the rest detector.
     (@sort $top:tt $field:tt [$($rest:tt)*] [$($all:ident)*]
         $(#[$m:meta])* $flat:ident @ rest . $f:ident : $d:expr, $dom:ident; $($tail:tt)*) => {
-        params_structs!(@sort $top $field [$($rest)* { $(#[$m])* $f $flat }] [$($all)* $flat] $($tail)*);
+        params_structs!(@sort $top $field [$($rest)* { $(#[$m])* #[doc = ""] #[doc = concat!("Default: `", stringify!($d), "`.")] $f $flat }] [$($all)* $flat] $($tail)*);
     };
     // A field of `Params`.
     (@sort [$($top:tt)*] $field:tt $rest:tt [$($all:ident)*]
         $(#[$m:meta])* $flat:ident : $d:expr, $dom:ident; $($tail:tt)*) => {
-        params_structs!(@sort [$($top)* { $(#[$m])* $flat }] $field $rest [$($all)* $flat] $($tail)*);
+        params_structs!(@sort [$($top)* { $(#[$m])* #[doc = ""] #[doc = concat!("Default: `", stringify!($d), "`.")] $flat }] $field $rest [$($all)* $flat] $($tail)*);
     };
     (@sort [$({ $(#[$tm:meta])* $t:ident })*]
         [$({ $(#[$fm:meta])* $f:ident $ff:ident })*]
@@ -422,8 +422,9 @@ macro_rules! params_structs {
         }
 
         impl<T> Params<T> {
-            /// The parameters of these choices and numeric values ([`Params::values`]' order).
-            fn from_values(
+            /// The parameters of these choices and numeric values (in the order of
+            /// [`Params::NAMES`], as [`Params::values`] gives them).
+            pub fn from_values(
                 frame: EarthFrame,
                 gains: Gains<T>,
                 mode: Mode<T>,
