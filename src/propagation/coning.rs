@@ -73,6 +73,38 @@ impl ConingRule {
             ConingRule::FourSample => 4,
         }
     }
+
+    /// The rule's name in the tools, Python and the benchmarks: `exp`, `coning1` (one plus
+    /// previous), `coning2`, `coning3`, `coning4` (the samples per update).
+    pub const fn name(self) -> &'static str {
+        match self {
+            ConingRule::Exp => "exp",
+            ConingRule::OnePlusPrevious => "coning1",
+            ConingRule::TwoSample => "coning2",
+            ConingRule::ThreeSample => "coning3",
+            ConingRule::FourSample => "coning4",
+        }
+    }
+}
+
+impl core::str::FromStr for ConingRule {
+    type Err = Error;
+    /// The rule of [`ConingRule::name`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for any other text.
+    fn from_str(s: &str) -> Result<Self, Error> {
+        Self::ALL
+            .into_iter()
+            .find(|r| r.name() == s)
+            .ok_or(Error::InvalidArgument)
+    }
+}
+
+impl core::fmt::Display for ConingRule {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// A rule's rotation vector in the form every rule shares, `φ = sum + lever × last`: the sum of

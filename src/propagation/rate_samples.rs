@@ -203,3 +203,37 @@ pub enum RateMethod {
     /// [`rk4_step`] followed by the normalisation policy.
     Rk4,
 }
+
+impl RateMethod {
+    /// Every method, in the order above.
+    pub const ALL: [RateMethod; 3] = [RateMethod::Magnus4, RateMethod::Cf4, RateMethod::Rk4];
+
+    /// The method's name in the tools and Python: `magnus4`, `cf4`, `rk4`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            RateMethod::Magnus4 => "magnus4",
+            RateMethod::Cf4 => "cf4",
+            RateMethod::Rk4 => "rk4",
+        }
+    }
+}
+
+impl core::str::FromStr for RateMethod {
+    type Err = crate::Error;
+    /// The method of [`RateMethod::name`].
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidArgument`] for any other text.
+    fn from_str(s: &str) -> Result<Self, crate::Error> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or(crate::Error::InvalidArgument)
+    }
+}
+
+impl core::fmt::Display for RateMethod {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}

@@ -318,3 +318,24 @@ fn energy_bounded_for_gyro_and_quartic_models() {
         assert!(level > 0.0 && growth.abs() < 0.1 * level);
     }
 }
+
+/// The methods' names as the `simulate` tool (`--integrator`) and Python (`integrator=`) spell
+/// them.
+#[test]
+fn integrator_names() {
+    for (method, name) in Integrator::ALL
+        .into_iter()
+        .zip(["rk4", "strang", "yoshida4", "suzuki4"])
+    {
+        assert_eq!(method.name(), name);
+        assert_eq!(method.to_string(), name);
+        assert_eq!(name.parse::<Integrator>(), Ok(method));
+    }
+    for bad in ["", "RK4", "exact", "yoshida"] {
+        assert_eq!(
+            bad.parse::<Integrator>(),
+            Err(gyrostat::Error::InvalidArgument),
+            "{bad:?}"
+        );
+    }
+}

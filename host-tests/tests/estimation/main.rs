@@ -8,8 +8,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use gyrostat::estimation::{
-    Covariance, Estimator, FieldMonitor, Gains, Mode as FilterMode, Params, RestDetector,
-    SensorUse, attitude_from_gravity, attitude_from_gravity_and_field,
+    Covariance, EarthFrame, Estimator, FieldMonitor, Gains, Mode as FilterMode, Params,
+    RestDetector, SensorUse, attitude_from_gravity, attitude_from_gravity_and_field,
 };
 use gyrostat::{Error, Mat3, Vec3};
 use host_tests::broad::{self, Mode, Units};
@@ -951,5 +951,150 @@ fn parameter_file() {
         let e = Params::<f64>::default().set_from_text(bad).unwrap_err();
         assert_eq!((e.line, e.kind), (line, kind), "{bad:?}");
         assert!(e.to_string().starts_with(&format!("line {line}: ")), "{e}");
+    }
+}
+
+/// The parameter table (`gyrostat::estimator_parameters!`) keeps the defaults the estimator had
+/// when `Params::default` was written field by field: each value below is that expression
+/// (`deg` is degrees to rad, as there), in the order of the parameter file, bit for bit in f64
+/// and f32.
+#[test]
+fn default_parameters_are_the_datasheet_values() {
+    let deg = |x: f64| x.to_radians();
+    let want: [(&str, f64); 31] = [
+        ("gyro_noise_density", deg(0.01)),
+        ("gyro_scale_noise", 0.002),
+        ("gyro_bias_initial", deg(0.5)),
+        ("gyro_bias_stability", deg(0.1)),
+        ("gyro_bias_time", 100.0),
+        ("gyro_bias_max", deg(2.0)),
+        ("gyro_range", deg(2000.0)),
+        ("gyro_delay", 0.0029),
+        ("accel_range", 16.0 * 9.806_65),
+        ("accel_time_constant", 3.0),
+        ("accel_tilt_noise", deg(0.3)),
+        ("accel_correlation_time", 1.0),
+        ("accel_reject", 0.2),
+        ("mag_heading_noise", deg(2.0)),
+        ("mag_correlation_time", 5.0),
+        ("mag_delay", 0.0),
+        ("mag_delay_estimation_time", 10.0),
+        ("mag_hard_iron_time", 10.0),
+        ("mag_disturbance_weight", 0.3),
+        ("field.norm", 0.1),
+        ("field.dip", deg(10.0)),
+        ("field.reference_time_constant", 20.0),
+        ("field.min_undisturbed", 0.5),
+        ("field.new_field_time", 20.0),
+        ("field.new_field_min_rate", deg(20.0)),
+        ("rest.time_constant", 0.5),
+        ("rest.gyro", deg(2.0)),
+        ("rest.accel", 0.5),
+        ("rest.max_bias", deg(2.0)),
+        ("rest.min_duration", 1.5),
+        ("rest_bias_noise", deg(0.03)),
+    ];
+    let p64 = Params::<f64>::default();
+    let p32 = Params::<f32>::default();
+    assert_eq!(Params::<f64>::NAMES.to_vec(), want.map(|(n, _)| n).to_vec());
+    for ((name, v), (a, b)) in want.iter().zip(p64.values().into_iter().zip(p32.values())) {
+        assert_eq!(a.to_bits(), v.to_bits(), "{name}");
+        assert_eq!(b.to_bits(), (*v as f32).to_bits(), "{name}");
+    }
+    assert_eq!(
+        (p64.frame, p64.gains, p64.mode),
+        (EarthFrame::Enu, Gains::Kalman, FilterMode::Full)
+    );
+    // The flat names are the file's names with the group's dot as an underscore.
+    for (name, flat) in Params::<f64>::NAMES.iter().zip(Params::<f64>::FLAT_NAMES) {
+        assert_eq!(name.replacen('.', "_", 1), flat);
+    }
+}
+
+/// Each parameter's domain, one parameter at a time from the defaults, against the rules the
+/// estimator documents: NaN is non-finite everywhere; `+∞` is allowed for the two ranges only;
+/// a negative value is invalid everywhere; zero is invalid for the four noises and times that
+/// divide (`gyro_bias_time`, `accel_tilt_noise`, `mag_heading_noise`, `rest_bias_noise`).
+#[test]
+fn every_parameter_is_checked_against_its_domain() {
+    let ranges = ["gyro_range", "accel_range"];
+    let positive = [
+        "gyro_bias_time",
+        "accel_tilt_noise",
+        "mag_heading_noise",
+        "rest_bias_noise",
+    ];
+    for name in Params::<f64>::NAMES {
+        let with = |v: f64| {
+            let mut p = Params::<f64>::default();
+            *p.parameter_mut(name).unwrap() = v;
+            (p.validate().err(), Estimator::try_new(p).err())
+        };
+        let check = |v: f64, want: Option<Error>| {
+            let (validated, started) = with(v);
+            assert_eq!(validated, want, "{name} = {v}");
+            assert_eq!(started, want, "{name} = {v} (try_new)");
+        };
+        check(f64::NAN, Some(Error::NonFinite));
+        check(-1.0, Some(Error::InvalidArgument));
+        check(
+            f64::NEG_INFINITY,
+            Some(if ranges.contains(&name) {
+                Error::InvalidArgument
+            } else {
+                Error::NonFinite
+            }),
+        );
+        check(
+            f64::INFINITY,
+            if ranges.contains(&name) {
+                None
+            } else {
+                Some(Error::NonFinite)
+            },
+        );
+        check(
+            0.0,
+            positive.contains(&name).then_some(Error::InvalidArgument),
+        );
+        check(1.0, None);
+    }
+}
+
+/// The names of the estimator's choices, as the tools and Python spell them.
+#[test]
+fn frame_and_mode_names() {
+    for (frame, name) in [(EarthFrame::Enu, "enu"), (EarthFrame::Ned, "ned")] {
+        assert_eq!(frame.name(), name);
+        assert_eq!(frame.to_string(), name);
+        assert_eq!(name.parse::<EarthFrame>(), Ok(frame));
+    }
+    assert_eq!(EarthFrame::ALL.to_vec(), [EarthFrame::Enu, EarthFrame::Ned]);
+    assert_eq!("full".parse::<FilterMode<f32>>(), Ok(FilterMode::Full));
+    assert_eq!(
+        "light".parse::<FilterMode<f64>>(),
+        Ok(FilterMode::Light {
+            correction_period: 0.025
+        })
+    );
+    assert_eq!(
+        FilterMode::<f64>::Light {
+            correction_period: 0.1
+        }
+        .name(),
+        "light"
+    );
+    assert_eq!(FilterMode::<f64>::Full.to_string(), "full");
+    for bad in ["", "ENU", " enu", "north", "Light"] {
+        assert_eq!(
+            bad.parse::<EarthFrame>(),
+            Err(Error::InvalidArgument),
+            "{bad:?}"
+        );
+        assert_eq!(
+            bad.parse::<FilterMode<f64>>(),
+            Err(Error::InvalidArgument),
+            "{bad:?}"
+        );
     }
 }

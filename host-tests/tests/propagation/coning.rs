@@ -298,3 +298,21 @@ fn non_finite_increment_is_rejected() {
     );
     assert_eq!(acc.count(), 0);
 }
+
+/// The rules' names as the `propagate` tool (`--algo`) and Python (`rule=`) spell them.
+#[test]
+fn rule_names() {
+    let names = ["exp", "coning1", "coning2", "coning3", "coning4"];
+    for (rule, name) in ConingRule::ALL.into_iter().zip(names) {
+        assert_eq!(rule.name(), name);
+        assert_eq!(rule.to_string(), name);
+        assert_eq!(name.parse::<ConingRule>(), Ok(rule));
+    }
+    for bad in ["", "Exp", "coning5", "coning2 "] {
+        assert_eq!(
+            bad.parse::<ConingRule>(),
+            Err(gyrostat::Error::InvalidArgument),
+            "{bad:?}"
+        );
+    }
+}

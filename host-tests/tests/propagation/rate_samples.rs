@@ -247,3 +247,22 @@ fn bad_input_is_rejected() {
     );
     assert_eq!(integ.push(Vec3::new(0.1, 0.0, 0.0)).unwrap().len(), 1); // still sample 0
 }
+
+/// The methods' names as the `propagate` tool (`--algo`) and Python (`method=`) spell them.
+#[test]
+fn method_names() {
+    let all = [RateMethod::Magnus4, RateMethod::Cf4, RateMethod::Rk4];
+    assert_eq!(RateMethod::ALL, all);
+    for (method, name) in all.into_iter().zip(["magnus4", "cf4", "rk4"]) {
+        assert_eq!(method.name(), name);
+        assert_eq!(method.to_string(), name);
+        assert_eq!(name.parse::<RateMethod>(), Ok(method));
+    }
+    for bad in ["", "Magnus4", "rk45", "exp"] {
+        assert_eq!(
+            bad.parse::<RateMethod>(),
+            Err(gyrostat::Error::InvalidArgument),
+            "{bad:?}"
+        );
+    }
+}

@@ -140,9 +140,39 @@ impl Integrator {
         Integrator::Suzuki4,
     ];
 
+    /// The method's name in the tools and Python: `rk4`, `strang`, `yoshida4`, `suzuki4`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Integrator::Rk4 => "rk4",
+            Integrator::Strang => "strang",
+            Integrator::Yoshida4 => "yoshida4",
+            Integrator::Suzuki4 => "suzuki4",
+        }
+    }
+
     /// `true` for the Lie–Poisson splitting methods (exact `|J|`, bounded energy error).
     #[inline]
     pub fn is_splitting(self) -> bool {
         !matches!(self, Integrator::Rk4)
+    }
+}
+
+impl core::str::FromStr for Integrator {
+    type Err = crate::Error;
+    /// The method of [`Integrator::name`].
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidArgument`] for any other text.
+    fn from_str(s: &str) -> Result<Self, crate::Error> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or(crate::Error::InvalidArgument)
+    }
+}
+
+impl core::fmt::Display for Integrator {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
     }
 }
