@@ -605,49 +605,6 @@ typedef struct {
 } gyro_gyrostat_state_f64;
 
 /**
- * The attitude and gyro-bias estimator, f32 (`Estimator`, the library's default parameters).
- * Contents private.
- */
-typedef struct {
-  uint32_t _tag;
-  uint64_t _storage[GYRO_ESTIMATOR_F32_WORDS];
-} gyro_estimator_f32;
-
-/**
- * The attitude and gyro-bias estimator, f64 (see `gyro_estimator_f32`).
- */
-typedef struct {
-  uint32_t _tag;
-  uint64_t _storage[GYRO_ESTIMATOR_F64_WORDS];
-} gyro_estimator_f64;
-
-/**
- * What became of each sensor's sample in one estimator update.
- */
-typedef struct {
-  /**
-   * 1 when a gyroscope component was at or beyond its range (propagated clipped).
-   */
-  uint32_t gyro_saturated;
-  /**
-   * The accelerometer sample: a `GYRO_SENSOR_*` value.
-   */
-  uint32_t accel;
-  /**
-   * The magnetometer sample: a `GYRO_SENSOR_*` value.
-   */
-  uint32_t mag;
-  /**
-   * 1 when the sensor was at rest.
-   */
-  uint32_t at_rest;
-  /**
-   * 1 when this update initialised the attitude.
-   */
-  uint32_t initialized;
-} gyro_estimator_outcome;
-
-/**
  * The estimator's parameters, f32 (SI units, angles in rad): the library's
  * `Params` field for field, generated from its parameter table
  * (`gyrostat::estimator_parameters!`; group fields flattened, `field.norm` is
@@ -1071,6 +1028,49 @@ typedef struct {
    */
   double rest_bias_noise;
 } gyro_estimator_params_f64;
+
+/**
+ * The attitude and gyro-bias estimator, f32 (`Estimator`, the library's default parameters).
+ * Contents private.
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_ESTIMATOR_F32_WORDS];
+} gyro_estimator_f32;
+
+/**
+ * The attitude and gyro-bias estimator, f64 (see `gyro_estimator_f32`).
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_ESTIMATOR_F64_WORDS];
+} gyro_estimator_f64;
+
+/**
+ * What became of each sensor's sample in one estimator update.
+ */
+typedef struct {
+  /**
+   * 1 when a gyroscope component was at or beyond its range (propagated clipped).
+   */
+  uint32_t gyro_saturated;
+  /**
+   * The accelerometer sample: a `GYRO_SENSOR_*` value.
+   */
+  uint32_t accel;
+  /**
+   * The magnetometer sample: a `GYRO_SENSOR_*` value.
+   */
+  uint32_t mag;
+  /**
+   * 1 when the sensor was at rest.
+   */
+  uint32_t at_rest;
+  /**
+   * 1 when this update initialised the attitude.
+   */
+  uint32_t initialized;
+} gyro_estimator_outcome;
 
 #ifdef __cplusplus
 extern "C" {
@@ -1607,6 +1607,32 @@ gyro_status gyro_gyrostat_f64_step(const gyro_gyrostat_f64 *s,
                                    const gyro_vec3_f64 *torque,
                                    const double (*wheel_torques)[GYRO_MAX_WHEELS],
                                    gyro_gyrostat_state_f64 *out);
+
+/**
+ * Sets the numeric parameter `name` of `params` to `value`: `name` is its name in the
+ * parameter file (`"gyro_noise_density"`, `"field.norm"`, ...; the library's `Params::NAMES`),
+ * the same field as the struct's flat name (`field_norm`). Nothing is checked but the name:
+ * `gyro_estimator_f32_init_params` checks the values.
+ *
+ * Errors: `GYRO_INVALID_ARGUMENT` for an unknown name (or one longer than 63 bytes).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type; `name` is NUL-terminated.
+ */
+gyro_status gyro_estimator_params_f32_set(gyro_estimator_params_f32 *params,
+                                          const char *name,
+                                          float value);
+
+/**
+ * Sets the numeric parameter `name` of `params` to `value`, f64 (see
+ * `gyro_estimator_params_f32_set`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type; `name` is NUL-terminated.
+ */
+gyro_status gyro_estimator_params_f64_set(gyro_estimator_params_f64 *params,
+                                          const char *name,
+                                          double value);
 
 /**
  * Starts an estimator in earth frame `frame` (`GYRO_FRAME_ENU` or `GYRO_FRAME_NED`) with the

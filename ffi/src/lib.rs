@@ -2164,6 +2164,11 @@ macro_rules! c_params_struct {
                 Ok(Params::from_values(frame, gains, mode, [$(self.$flat),*]))
             }
 
+            /// The numeric parameter `i` of the table (the order of `Params::NAMES`).
+            fn numeric_mut(&mut self, i: usize) -> Option<&mut $t> {
+                [$(&mut self.$flat),*].into_iter().nth(i)
+            }
+
             /// The C struct of the library's parameters `p`.
             #[doc(hidden)]
             pub fn from_params(p: &Params<$t>) -> Self {
@@ -2225,6 +2230,79 @@ macro_rules! c_params {
 }
 
 gyrostat::estimator_parameters!(c_params);
+
+/// The longest parameter name `gyro_estimator_params_*_set` reads (bytes before the NUL).
+const PARAM_NAME_MAX: usize = 64;
+
+/// Sets the numeric parameter named by the C string `name` (a name of the parameter file).
+fn params_set<P, T>(
+    params: *mut P,
+    name: *const c_char,
+    value: T,
+    slot: fn(&mut P, usize) -> Option<&mut T>,
+) -> gyro_status {
+    status((|| {
+        ok_ptr(name)?;
+        ok_ptr(params.cast_const())?;
+        let p = name.cast::<u8>();
+        let mut buf = [0u8; PARAM_NAME_MAX];
+        let mut len = None;
+        for (i, b) in buf.iter_mut().enumerate() {
+            // SAFETY: the bytes up to the terminating NUL are readable (a C string); the loop
+            // stops at it.
+            let c = unsafe { p.add(i).read() };
+            if c == 0 {
+                len = Some(i);
+                break;
+            }
+            *b = c;
+        }
+        let bytes = buf
+            .get(..len.ok_or(GYRO_INVALID_ARGUMENT)?)
+            .ok_or(GYRO_INVALID_ARGUMENT)?;
+        let text = core::str::from_utf8(bytes).map_err(|_| GYRO_INVALID_ARGUMENT)?;
+        let i = Params::<f64>::NAMES
+            .iter()
+            .position(|n| *n == text)
+            .ok_or(GYRO_INVALID_ARGUMENT)?;
+        // SAFETY: checked non-null and aligned; the caller passes a valid struct.
+        let params = unsafe { &mut *params };
+        *slot(params, i).ok_or(GYRO_INVALID_ARGUMENT)? = value;
+        Ok(())
+    })())
+}
+
+/// Sets the numeric parameter `name` of `params` to `value`: `name` is its name in the
+/// parameter file (`"gyro_noise_density"`, `"field.norm"`, ...; the library's `Params::NAMES`),
+/// the same field as the struct's flat name (`field_norm`). Nothing is checked but the name:
+/// `gyro_estimator_f32_init_params` checks the values.
+///
+/// Errors: `GYRO_INVALID_ARGUMENT` for an unknown name (or one longer than 63 bytes).
+///
+/// # Safety
+/// Every pointer is NULL or points to a valid object of its type; `name` is NUL-terminated.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gyro_estimator_params_f32_set(
+    params: *mut gyro_estimator_params_f32,
+    name: *const c_char,
+    value: f32,
+) -> gyro_status {
+    params_set(params, name, value, gyro_estimator_params_f32::numeric_mut)
+}
+
+/// Sets the numeric parameter `name` of `params` to `value`, f64 (see
+/// `gyro_estimator_params_f32_set`).
+///
+/// # Safety
+/// Every pointer is NULL or points to a valid object of its type; `name` is NUL-terminated.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn gyro_estimator_params_f64_set(
+    params: *mut gyro_estimator_params_f64,
+    name: *const c_char,
+    value: f64,
+) -> gyro_status {
+    params_set(params, name, value, gyro_estimator_params_f64::numeric_mut)
+}
 
 fn est_init<T: CFloat, S: Slot<Inner = Estimator<T>>>(s: *mut S, frame: u32) -> gyro_status {
     status((|| {

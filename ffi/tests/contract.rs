@@ -660,3 +660,68 @@ fn parameter_structs_follow_the_library_table() {
     }
     gyrostat::estimator_parameters!(check);
 }
+
+/// `gyro_estimator_params_*_set` reaches, for every name of the parameter file, the parameter
+/// of that name (the library's `Params::parameter_mut`); an unknown or dotless-group name, a
+/// name without its NUL within 64 bytes and a NULL pointer are errors that change nothing.
+#[test]
+fn parameters_are_set_by_name() {
+    use gyrostat::estimation::Params;
+    use std::ffi::CString;
+    for (k, name) in Params::<f64>::NAMES.iter().enumerate() {
+        let value = k as f64 + 0.25;
+        let mut c = gyro_estimator_params_f64::default();
+        let mut c32 = gyro_estimator_params_f32::default();
+        let cname = CString::new(*name).unwrap();
+        unsafe {
+            assert_eq!(gyro_estimator_f64_default_params(&mut c), GYRO_OK);
+            assert_eq!(gyro_estimator_f32_default_params(&mut c32), GYRO_OK);
+            assert_eq!(
+                gyro_estimator_params_f64_set(&mut c, cname.as_ptr(), value),
+                GYRO_OK
+            );
+            assert_eq!(
+                gyro_estimator_params_f32_set(&mut c32, cname.as_ptr(), value as f32),
+                GYRO_OK
+            );
+        }
+        let mut want = Params::<f64>::default();
+        *want.parameter_mut(name).unwrap() = value;
+        assert_eq!(c.to_params().unwrap(), want, "{name}");
+        assert_eq!(c32.to_params().unwrap(), want.map(|x| x as f32), "{name}");
+    }
+    let mut c = gyro_estimator_params_f64::default();
+    unsafe {
+        assert_eq!(gyro_estimator_f64_default_params(&mut c), GYRO_OK);
+    }
+    let before = c;
+    let long = "x".repeat(100);
+    for bad in [
+        "field_norm",
+        "heading_time_constant",
+        "",
+        "gyro_noise_density ",
+        long.as_str(),
+    ] {
+        let cname = CString::new(bad).unwrap();
+        unsafe {
+            assert_eq!(
+                gyro_estimator_params_f64_set(&mut c, cname.as_ptr(), 1.0),
+                GYRO_INVALID_ARGUMENT,
+                "{bad:?}"
+            );
+        }
+    }
+    let cname = CString::new("rest.gyro").unwrap();
+    unsafe {
+        assert_eq!(
+            gyro_estimator_params_f64_set(&mut c, null(), 1.0),
+            GYRO_BAD_POINTER
+        );
+        assert_eq!(
+            gyro_estimator_params_f64_set(null_mut(), cname.as_ptr(), 1.0),
+            GYRO_BAD_POINTER
+        );
+    }
+    assert_eq!(c, before);
+}

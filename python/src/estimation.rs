@@ -22,27 +22,20 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The Python name of a parameter of [`Params::NAMES`]: `field.norm` is `field_norm`,
-/// `rest.gyro` is `rest_gyro` (keyword-argument names have no dots).
-fn python_name(name: &str) -> String {
-    name.replacen('.', "_", 1)
-}
-
-/// The parameter of `p` with the Python name `name`.
-fn slot<'a, T: Copy>(p: &'a mut Params<T>, name: &str) -> Option<&'a mut T> {
-    let library = Params::<T>::NAMES.iter().find(|n| python_name(n) == name)?;
-    p.parameter_mut(library)
+/// The parameter of `p` with the Python name `name`: one of [`Params::FLAT_NAMES`]
+/// (`field.norm` is `field_norm`: keyword-argument names have no dots).
+fn slot<'a, T>(p: &'a mut Params<T>, name: &str) -> Option<&'a mut T> {
+    let i = Params::<T>::FLAT_NAMES.iter().position(|n| *n == name)?;
+    p.values_mut().into_iter().nth(i)
 }
 
 /// The estimator's default parameters (SI units, angles in rad) by name.
 #[pyfunction]
 fn estimator_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
-    let mut p = Params::<f64>::default();
+    let p = Params::<f64>::default();
     let d = PyDict::new(py);
-    for name in Params::<f64>::NAMES {
-        if let Some(v) = p.parameter_mut(name) {
-            d.set_item(python_name(name), *v)?;
-        }
+    for (name, v) in Params::<f64>::FLAT_NAMES.iter().zip(p.values()) {
+        d.set_item(name, v)?;
     }
     Ok(d)
 }
@@ -193,18 +186,13 @@ fn estimate<'py>(
             );
         }
     }
-    let frame = match frame {
-        "enu" => EarthFrame::Enu,
-        "ned" => EarthFrame::Ned,
-        other => {
-            return Err(RowError::call(format!("frame: unknown {other:?} (enu, ned)")).into());
-        }
-    };
-    let light = match mode {
-        "full" => false,
-        "light" => true,
-        other => {
-            return Err(RowError::call(format!("mode: unknown {other:?} (full, light)")).into());
+    let frame: EarthFrame = frame
+        .parse()
+        .map_err(|_| RowError::call(format!("frame: unknown {frame:?} (enu, ned)")))?;
+    let light = match mode.parse::<Mode<f64>>() {
+        Ok(m) => m != Mode::Full,
+        Err(_) => {
+            return Err(RowError::call(format!("mode: unknown {mode:?} (full, light)")).into());
         }
     };
     let tr = match precision {

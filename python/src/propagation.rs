@@ -26,33 +26,19 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The coning rule of a name (the `propagate` tool's `--algo`).
+/// The coning rule of a name (the library's `ConingRule::name`, the `propagate` tool's `--algo`).
 fn rule(name: &str) -> Result<ConingRule, RowError> {
-    Ok(match name {
-        "exp" => ConingRule::Exp,
-        "coning1" => ConingRule::OnePlusPrevious,
-        "coning2" => ConingRule::TwoSample,
-        "coning3" => ConingRule::ThreeSample,
-        "coning4" => ConingRule::FourSample,
-        other => {
-            return Err(RowError::call(format!(
-                "rule: unknown {other:?} (exp, coning1, coning2, coning3, coning4)"
-            )));
-        }
+    name.parse().map_err(|_| {
+        let names = ConingRule::ALL.map(ConingRule::name).join(", ");
+        RowError::call(format!("rule: unknown {name:?} ({names})"))
     })
 }
 
-/// The rate method of a name.
+/// The rate method of a name (the library's `RateMethod::name`).
 fn method(name: &str) -> Result<RateMethod, RowError> {
-    Ok(match name {
-        "magnus4" => RateMethod::Magnus4,
-        "cf4" => RateMethod::Cf4,
-        "rk4" => RateMethod::Rk4,
-        other => {
-            return Err(RowError::call(format!(
-                "method: unknown {other:?} (magnus4, cf4, rk4)"
-            )));
-        }
+    name.parse().map_err(|_| {
+        let names = RateMethod::ALL.map(RateMethod::name).join(", ");
+        RowError::call(format!("method: unknown {name:?} ({names})"))
     })
 }
 

@@ -232,8 +232,8 @@ fn simulate<'py>(
     d.set_item("wheel_speeds", wheel_rows)?;
     d.set_item("error", r.error.map(|m| keywords(&m)))?;
     let integ = match cfg.method {
-        Method::Step(i) => format!("{i:?}").to_lowercase(),
-        Method::Exact => "exact".into(),
+        Method::Step(i) => i.name(),
+        Method::Exact => "exact",
     };
     d.set_item("integrator", integ)?;
     if let Some(o) = r.outcome {

@@ -150,8 +150,9 @@ impl<T: Real> Estimator<T> {
     /// An estimator with these parameters, waiting for its first sample.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] when a noise, time or threshold is NaN (infinite ranges are allowed);
-    /// [`Error::InvalidArgument`] when one is negative or a time constant that divides is zero.
+    /// Those of [`Params::validate`]: [`Error::NonFinite`] when a noise, time or threshold is
+    /// NaN or infinite (infinite ranges are allowed); [`Error::InvalidArgument`] when one is
+    /// negative or a time constant that divides is zero.
     pub fn try_new(params: Params<T>) -> Result<Self, Error> {
         params.validate()?;
         let b0 = params.gyro_bias_initial;

@@ -169,18 +169,13 @@ pub fn quartic(flag: &str, kind: &str, t: f64) -> Result<(bool, f64), String> {
 /// # Errors
 /// A message starting with `flag` for any other name.
 pub fn integrator(flag: &str, value: &str) -> Result<Method, String> {
-    Ok(match value.trim() {
-        "rk4" => Method::Step(Integrator::Rk4),
-        "strang" => Method::Step(Integrator::Strang),
-        "yoshida4" => Method::Step(Integrator::Yoshida4),
-        "suzuki4" => Method::Step(Integrator::Suzuki4),
-        "exact" => Method::Exact,
-        other => {
-            return Err(format!(
-                "{flag}: unknown {other:?} (rk4, strang, yoshida4, suzuki4, exact)"
-            ));
-        }
-    })
+    match value.trim() {
+        "exact" => Ok(Method::Exact),
+        other => other.parse().map(Method::Step).map_err(|_| {
+            let names = Integrator::ALL.map(Integrator::name).join(", ");
+            format!("{flag}: unknown {other:?} ({names}, exact)")
+        }),
+    }
 }
 
 /// The values of `simulate`'s flags for a run, each as given (`None`: not given); checked

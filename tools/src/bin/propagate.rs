@@ -419,26 +419,16 @@ fn arguments(f: &Flags) -> Result<Args, String> {
     if timed.is_none() && dt.is_none() {
         return Err("--dt is required".into());
     }
-    let algo = match (input, algo_name) {
-        ("increments", "exp") => Algo::Increments(ConingRule::Exp),
-        ("increments", "coning1") => Algo::Increments(ConingRule::OnePlusPrevious),
-        ("increments", "coning2") => Algo::Increments(ConingRule::TwoSample),
-        ("increments", "coning3") => Algo::Increments(ConingRule::ThreeSample),
-        ("increments", "coning4") => Algo::Increments(ConingRule::FourSample),
-        ("rates", "magnus4") => Algo::Rates(RateMethod::Magnus4),
-        ("rates", "cf4") => Algo::Rates(RateMethod::Cf4),
-        ("rates", "rk4") => Algo::Rates(RateMethod::Rk4),
-        ("increments", a) => {
-            return Err(format!(
-                "--algo '{a}' is not an increments algorithm (exp, coning1, coning2, coning3, coning4)"
-            ));
-        }
-        ("rates", a) => {
-            return Err(format!(
-                "--algo '{a}' is not a rates algorithm (magnus4, cf4, rk4)"
-            ));
-        }
-        (i, _) => return Err(format!("--input must be increments or rates, got '{i}'")),
+    let algo = match input {
+        "increments" => Algo::Increments(algo_name.parse().map_err(|_| {
+            let names = ConingRule::ALL.map(ConingRule::name).join(", ");
+            format!("--algo '{algo_name}' is not an increments algorithm ({names})")
+        })?),
+        "rates" => Algo::Rates(algo_name.parse().map_err(|_| {
+            let names = RateMethod::ALL.map(RateMethod::name).join(", ");
+            format!("--algo '{algo_name}' is not a rates algorithm ({names})")
+        })?),
+        i => return Err(format!("--input must be increments or rates, got '{i}'")),
     };
     if timed.is_some() {
         if compensated {

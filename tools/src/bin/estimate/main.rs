@@ -213,14 +213,16 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         (false, false) => Sensors::Auto,
     };
     let frame = match f.value("--frame").map(str::trim) {
-        None | Some("enu") => EarthFrame::Enu,
-        Some("ned") => EarthFrame::Ned,
-        Some(other) => return Err(format!("--frame must be enu or ned, got '{other}'")),
+        None => EarthFrame::Enu,
+        Some(name) => name
+            .parse()
+            .map_err(|_| format!("--frame must be enu or ned, got '{name}'"))?,
     };
     let mode = match f.value("--mode").map(str::trim) {
-        None | Some("full") => Mode::Full,
-        Some("light") => Mode::light(),
-        Some(other) => return Err(format!("--mode must be full or light, got '{other}'")),
+        None => Mode::Full,
+        Some(name) => name
+            .parse()
+            .map_err(|_| format!("--mode must be full or light, got '{name}'"))?,
     };
     let mut params = Params::<f64> {
         frame,

@@ -529,8 +529,8 @@ fn fmt3(v: [f64; 3]) -> String {
 fn summary<const N: usize>(cfg: &Config, o: &Outcome) -> String {
     let mut s = String::new();
     let integ = match cfg.method {
-        Method::Step(i) => format!("{i:?}").to_lowercase(),
-        Method::Exact => "exact".into(),
+        Method::Step(i) => i.name(),
+        Method::Exact => "exact",
     };
     let what = match (N, cfg.torque.is_some()) {
         (0, _) => format!("external torque from {}", cfg.torque_source),
@@ -682,8 +682,8 @@ fn csv_figure<const N: usize>(cfg: &Config, tr: &Trajectory) -> Result<Figure, S
     let m = inertia.principal_moments();
     let precision = cfg.precision();
     let integ = match cfg.method {
-        Method::Step(i) => format!("{i:?}").to_lowercase(),
-        Method::Exact => "exact".into(),
+        Method::Step(i) => i.name(),
+        Method::Exact => "exact",
     };
     Ok(Figure {
         title: format!(
