@@ -349,27 +349,28 @@ macro_rules! param_place {
     };
 }
 
-/// Sorts the table's rows into [`Params`]' own fields and its two groups, then defines the
-/// three structs and the constructor from the values in table order.
+/// Sorts the table's rows into [`Params`]' own fields and its two groups (each entry its
+/// documentation, field, flat name and default), then defines the three structs (each field's
+/// documentation ending with its default) and the constructor from the values in table order.
 macro_rules! params_structs {
     // A field of the disturbance monitor.
     (@sort $top:tt [$($field:tt)*] $rest:tt [$($all:ident)*]
         $(#[$m:meta])* $flat:ident @ field . $f:ident : $d:expr, $dom:ident; $($tail:tt)*) => {
-        params_structs!(@sort $top [$($field)* { $(#[$m])* #[doc = ""] #[doc = concat!("Default: `", stringify!($d), "`.")] $f $flat }] $rest [$($all)* $flat] $($tail)*);
+        params_structs!(@sort $top [$($field)* { $(#[$m])* $f $flat = $d }] $rest [$($all)* $flat] $($tail)*);
     };
     // A field of the rest detector.
     (@sort $top:tt $field:tt [$($rest:tt)*] [$($all:ident)*]
         $(#[$m:meta])* $flat:ident @ rest . $f:ident : $d:expr, $dom:ident; $($tail:tt)*) => {
-        params_structs!(@sort $top $field [$($rest)* { $(#[$m])* #[doc = ""] #[doc = concat!("Default: `", stringify!($d), "`.")] $f $flat }] [$($all)* $flat] $($tail)*);
+        params_structs!(@sort $top $field [$($rest)* { $(#[$m])* $f $flat = $d }] [$($all)* $flat] $($tail)*);
     };
     // A field of `Params`.
     (@sort [$($top:tt)*] $field:tt $rest:tt [$($all:ident)*]
         $(#[$m:meta])* $flat:ident : $d:expr, $dom:ident; $($tail:tt)*) => {
-        params_structs!(@sort [$($top)* { $(#[$m])* #[doc = ""] #[doc = concat!("Default: `", stringify!($d), "`.")] $flat }] $field $rest [$($all)* $flat] $($tail)*);
+        params_structs!(@sort [$($top)* { $(#[$m])* $flat = $d }] $field $rest [$($all)* $flat] $($tail)*);
     };
-    (@sort [$({ $(#[$tm:meta])* $t:ident })*]
-        [$({ $(#[$fm:meta])* $f:ident $ff:ident })*]
-        [$({ $(#[$rm:meta])* $r:ident $rf:ident })*]
+    (@sort [$({ $(#[$tm:meta])* $t:ident = $td:expr })*]
+        [$({ $(#[$fm:meta])* $f:ident $ff:ident = $fd:expr })*]
+        [$({ $(#[$rm:meta])* $r:ident $rf:ident = $rd:expr })*]
         [$($all:ident)*]) => {
         /// The estimator's parameters, in SI units (angles in rad), every time in seconds
         /// (none in samples: the same parameters describe the same filter at any rate).
@@ -380,7 +381,8 @@ macro_rules! params_structs {
         /// them), and the filter's own design choices (the low-pass and correlation times,
         /// the gates, the online estimates' times; see the module docs of
         /// [`estimation`](super) for how they were chosen). Each field says where its default
-        /// comes from. The numeric fields are declared once, in
+        /// comes from and ends with its value (`deg(x)`: `x` degrees in rad;
+        /// `STANDARD_GRAVITY`: 9.806 65 m/s²). The numeric fields are declared once, in
         /// [`estimator_parameters!`](crate::estimator_parameters) ([`super::params`]); the
         /// parameter file ([`super::params_text`]) sets any of them by name.
         #[derive(Clone, Copy, Debug, PartialEq)]
@@ -393,6 +395,8 @@ macro_rules! params_structs {
             pub mode: Mode<T>,
             $(
                 $(#[$tm])*
+                #[doc = ""]
+                #[doc = concat!("Default value: `", stringify!($td), "`.")]
                 pub $t: T,
             )*
             /// The magnetic disturbance monitor.
@@ -407,6 +411,8 @@ macro_rules! params_structs {
         pub struct FieldThresholds<T> {
             $(
                 $(#[$fm])*
+                #[doc = ""]
+                #[doc = concat!("Default value: `", stringify!($fd), "`.")]
                 pub $f: T,
             )*
         }
@@ -417,6 +423,8 @@ macro_rules! params_structs {
         pub struct RestThresholds<T> {
             $(
                 $(#[$rm])*
+                #[doc = ""]
+                #[doc = concat!("Default value: `", stringify!($rd), "`.")]
                 pub $r: T,
             )*
         }
