@@ -24,7 +24,6 @@ pub mod allan;
 pub mod calibration;
 pub mod characterization;
 pub mod flags;
-pub mod imu_log;
 pub mod key_values;
 pub mod motion;
 pub mod noise;
@@ -34,4 +33,6 @@ pub mod simulation;
 pub mod stream;
 pub mod synthesis;
 pub mod torque;
-pub mod units;
+
+/// The IMU log's columns and units live in `gyrostat-pipeline` (below the tools and host-tests).
+pub use gyrostat_pipeline::{imu_log, units};
