@@ -48,6 +48,7 @@ use gyrostat::propagation::{
 use gyrostat::rotation::{Euler, EulerSequence, EulerSolution, GimbalPolicy, Pole};
 use gyrostat::{Dcm, Error, Mat3, Quat, Real, RotationVector, UnitQuat, Vec3};
 
+
 #[cfg(all(target_os = "none", not(test)))]
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
@@ -663,6 +664,11 @@ macro_rules! slot {
         }
     };
 }
+
+// The sensor front end (clocks, clip guard, raw scale, calibration, axis remap), after the
+// `slot!` macro it uses.
+mod sensor;
+pub use sensor::*;
 
 fn init<S: Slot>(s: *mut S, v: S::Inner) -> Result<(), gyro_status> {
     const {

@@ -9,7 +9,7 @@
 //! clock (`gyro_sample_clock_*_interval`: the step, or the first sample with none) → raw scale
 //! and clip guard (register readings) → calibration → axis remap → estimator or integrator.
 
-use gyrostat::linalg::Axis;
+use gyrostat::Axis;
 use gyrostat::sensor::{
     AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, Interval,
     MagnetometerCalibration, MicrosClock, RawScale, SampleClock,
@@ -209,7 +209,7 @@ fn clock_interval<T: CFloat, S: Slot<Inner = SampleClock<T>>>(
         ok_ptr(kind)?;
         ok_ptr(dt)?;
         let i = state(s)?.interval(t)?;
-        let (k, d) = interval_out(i, T::ZERO, T::NAN);
+        let (k, d) = interval_out(i, T::ZERO, T::from_f64(f64::NAN));
         write(kind, k);
         write(dt, d);
         Ok(())
