@@ -671,8 +671,8 @@ pub unsafe extern "C" fn gyro_mag_calibration_f64_apply(
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn gyro_axis_remap_init(
     s: *mut gyro_axis_remap,
-    source: *const [u32; 3],
-    negate: *const [u32; 3],
+    source: *const u32,
+    negate: *const u32,
 ) -> gyro_status {
     status((|| {
         let axis = |i: u32| match i {
@@ -681,8 +681,9 @@ pub unsafe extern "C" fn gyro_axis_remap_init(
             2 => Ok(Axis::Z),
             _ => Err(GYRO_INVALID_ARGUMENT),
         };
-        let [a, b, c] = read(source)?;
-        let [na, nb, nc] = read(negate)?;
+        // Three values each: read as arrays (the alignment of one value).
+        let [a, b, c] = read(source.cast::<[u32; 3]>())?;
+        let [na, nb, nc] = read(negate.cast::<[u32; 3]>())?;
         let source = [axis(a)?, axis(b)?, axis(c)?];
         let negate = [flag(na)?, flag(nb)?, flag(nc)?];
         init(s, AxisRemap::try_new(source, negate)?)
