@@ -2052,8 +2052,8 @@ gyro_status gyro_mag_calibration_f64_apply(const gyro_mag_calibration_f64 *s,
  * to three values each.
  */
 gyro_status gyro_axis_remap_init(gyro_axis_remap *s,
-                                 const uint32_t (*source)[3],
-                                 const uint32_t (*negate)[3]);
+                                 const uint32_t *source,
+                                 const uint32_t *negate);
 
 /**
  * A sensor-frame vector in the body frame: `body[i] = ±sensor[source[i]]` (exact: no

@@ -48,7 +48,6 @@ use gyrostat::propagation::{
 use gyrostat::rotation::{Euler, EulerSequence, EulerSolution, GimbalPolicy, Pole};
 use gyrostat::{Dcm, Error, Mat3, Quat, Real, RotationVector, UnitQuat, Vec3};
 
-
 #[cfg(all(target_os = "none", not(test)))]
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {

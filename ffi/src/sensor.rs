@@ -196,7 +196,9 @@ fn clock_init<T: CFloat, S: Slot<Inner = SampleClock<T>>>(
     nominal: T,
     gap_factor: T,
 ) -> gyro_status {
-    status((|| init(s, SampleClock::try_with_gap_factor(nominal, gap_factor)?))())
+    status((|| {
+        init(s, SampleClock::try_with_gap_factor(nominal, gap_factor)?)
+    })())
 }
 
 fn clock_interval<T: CFloat, S: Slot<Inner = SampleClock<T>>>(
@@ -441,7 +443,10 @@ pub unsafe extern "C" fn gyro_clip_guard_filter(
         let [x, y, z] = o;
         write(out, gyro_vec3_i16 { x, y, z });
         let [cx, cy, cz] = c.axes;
-        write(clipped, u32::from(cx) | u32::from(cy) << 1 | u32::from(cz) << 2);
+        write(
+            clipped,
+            u32::from(cx) | u32::from(cy) << 1 | u32::from(cz) << 2,
+        );
         Ok(())
     })())
 }
@@ -450,7 +455,10 @@ fn raw_scale<T: CFloat>(raw: *const gyro_vec3_i16, lsb: T, out: *mut T::V) -> gy
     status((|| {
         let r = read(raw)?;
         ok_ptr(out)?;
-        write(out, T::v_out(RawScale::try_new(lsb)?.apply([r.x, r.y, r.z])));
+        write(
+            out,
+            T::v_out(RawScale::try_new(lsb)?.apply([r.x, r.y, r.z])),
+        );
         Ok(())
     })())
 }

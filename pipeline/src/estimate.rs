@@ -153,7 +153,12 @@ pub struct Fault {
 
 impl fmt::Display for Fault {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "sample {}: {}", self.index, self.error.message("its time"))
+        write!(
+            f,
+            "sample {}: {}",
+            self.index,
+            self.error.message("its time")
+        )
     }
 }
 
@@ -297,11 +302,7 @@ impl<T: Real + Debug> Run<T> {
             }
         };
         let v = |a: [f64; 3]| Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]));
-        let mag = if self.options.six_d {
-            None
-        } else {
-            mag.map(v)
-        };
+        let mag = if self.options.six_d { None } else { mag.map(v) };
         match self.filter.update(v(gyro), v(accel), mag, T::from_f64(dt)) {
             Ok(o) => Ok(Step::Updated(o)),
             Err(e) => {
