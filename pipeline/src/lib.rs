@@ -8,6 +8,9 @@
 //! - [`estimate`]: the estimator's loop over samples: the first-sample rule, the step and
 //!   order checks (through the library's [`gyrostat::sensor::SampleClock`]), the calibration,
 //!   the bad-row policy (`--skip-bad-rows`) and the output row of the `estimate` tool;
+//! - [`propagate`]: the propagation loops (increments with a coning rule, rates with a method,
+//!   the Q1.30 increment path) with the checks of every sample and attitude, for the
+//!   `propagate` tool and Python's `propagate_increments` / `propagate_rates`;
 //! - [`broad`]: a log read whole (BROAD's trials and the short-named logs) and BROAD's metric
 //!   (the computation of the dataset's `score.py`).
 //!
@@ -18,4 +21,5 @@
 pub mod broad;
 pub mod estimate;
 pub mod imu_log;
+pub mod propagate;
 pub mod units;
