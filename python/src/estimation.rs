@@ -125,9 +125,9 @@ fn run<T: Real + std::fmt::Debug>(
         initialized: Vec::with_capacity(n),
         skipped: Vec::with_capacity(n),
     };
-    for k in 0..n {
+    for (k, &tk) in t.iter().enumerate() {
         let sample = Sample {
-            t: t[k],
+            t: tk,
             gyro: v(gyro, k),
             accel: v(accel, k),
             mag: mag.map(|m| v(m, k)),
@@ -166,7 +166,7 @@ fn run<T: Real + std::fmt::Debug>(
                 ));
             }
             Err(e) => {
-                return Err(RowError::at(k, e.message(&format!("{:e}", t[k]))));
+                return Err(RowError::at(k, e.message(&format!("{tk:e}"))));
             }
         }
         let f = run.estimator();
