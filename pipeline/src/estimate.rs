@@ -347,3 +347,127 @@ impl<T: Real + Debug> Run<T> {
 
 /// The header of [`Run::row_text`]'s rows.
 pub const HEADER: &str = "t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag,heading";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A level sensor turning about z at `rate`, sampled at `dt` with a jitter that does not
+    /// repeat; the field turns with it.
+    fn log(n: usize, dt: f64, rate: f64) -> Vec<Sample> {
+        let mut t = 0.0;
+        (0..n)
+            .map(|k| {
+                let a = rate * t;
+                let s = Sample {
+                    t,
+                    gyro: [1e-3 * (k as f64 * 0.7).sin(), 0.0, rate],
+                    accel: [0.01 * (k as f64 * 1.3).cos(), 0.0, 9.81],
+                    mag: Some([15.8 * a.sin(), 15.8 * a.cos(), -40.7]),
+                };
+                t += dt * (1.0 + 0.1 * (k as f64 * 0.37).sin());
+                s
+            })
+            .collect()
+    }
+
+    fn run<T: Real + Debug>(samples: &[Sample], options: Options) -> Vec<Result<Step, RowError>> {
+        let mut r = Run::<T>::try_new(Params::default(), options).unwrap();
+        samples.iter().map(|s| r.push(s)).collect()
+    }
+
+    fn attitudes(samples: &[Sample], options: Options) -> Vec<[f64; 4]> {
+        let mut r = Run::<f64>::try_new(Params::default(), options).unwrap();
+        samples
+            .iter()
+            .map(|s| {
+                r.push(s).unwrap();
+                r.estimator().attitude().to_array()
+            })
+            .collect()
+    }
+
+    /// The first-sample rule: a log that starts while the sensor turns at 5 rad/s, at 1 Hz
+    /// (the first step, had it one, would be 5 rad: beyond half a turn) is accepted.
+    #[test]
+    fn a_log_may_start_in_motion() {
+        let mut s = log(10, 1.0, 0.0);
+        s[0].gyro = [0.0, 0.0, 5.0];
+        for r in run::<f64>(&s, Options::default()) {
+            assert!(matches!(r, Ok(Step::Updated(_))), "{r:?}");
+        }
+        for r in run::<f32>(&s, Options::default()) {
+            assert!(matches!(r, Ok(Step::Updated(_))), "{r:?}");
+        }
+    }
+
+    /// A skipped bad row is a gap: the run with it skipped equals, bit for bit, the run of the
+    /// same log without that row (the next good sample propagates over the whole interval).
+    #[test]
+    fn a_skipped_row_is_a_gap() {
+        let good = log(400, 0.01, 0.3);
+        let skip = Options {
+            skip_bad_rows: true,
+            ..Options::default()
+        };
+        for bad in [
+            Sample {
+                gyro: [f64::NAN, 0.0, 0.0],
+                ..good[200]
+            },
+            Sample {
+                t: f64::INFINITY,
+                ..good[200]
+            },
+        ] {
+            let mut with = good.clone();
+            with.insert(201, bad);
+            let a = attitudes(&with, skip);
+            let b = attitudes(&good, skip);
+            assert_eq!(a[..201], b[..201]);
+            assert_eq!(a[201], a[200], "the skipped row repeats the state");
+            assert_eq!(a[202..], b[201..]);
+            let stopped = run::<f64>(&with, Options::default());
+            assert_eq!(stopped[201], Err(RowError::NonFinite));
+        }
+        // f32: a rate finite in f64 but not in f32 is a bad row in f32 only.
+        let mut big = good.clone();
+        big[300].gyro[2] = 1e39;
+        let r = run::<f32>(&big, skip);
+        assert_eq!(r[300], Ok(Step::Skipped));
+        assert!(matches!(run::<f64>(&big, skip)[300], Ok(Step::Updated(o)) if o.gyro_saturated));
+    }
+
+    /// Order and length of the steps: a repeated or earlier time stamp, before and after the
+    /// attitude is initialised, and a step over MAX_STEP end the run; a step of MAX_STEP does
+    /// not; the time scale applies to the difference.
+    #[test]
+    fn steps_are_checked() {
+        let mut s = log(5, 0.01, 0.0);
+        s[1].t = s[0].t;
+        assert_eq!(
+            run::<f64>(&s, Options::default())[1],
+            Err(RowError::NotAfter { previous: s[0].t })
+        );
+        let mut s = log(5, 0.01, 0.0);
+        s[3].t = s[1].t;
+        assert!(matches!(
+            run::<f64>(&s, Options::default())[3],
+            Err(RowError::NotAfter { .. })
+        ));
+        let mut s = log(3, 0.01, 0.0);
+        s[1].t = s[0].t + MAX_STEP;
+        s[2].t = s[1].t + MAX_STEP * 1.000_001;
+        let r = run::<f64>(&s, Options::default());
+        assert!(matches!(r[1], Ok(Step::Updated(_))));
+        assert!(matches!(r[2], Err(RowError::TooLong { dt }) if dt > MAX_STEP));
+        // Milliseconds: 1.5e6 ms is 1500 s.
+        let mut s = log(2, 0.01, 0.0);
+        s[1].t = s[0].t + 1.5e6;
+        let ms = Options {
+            time_scale: 1e-3,
+            ..Options::default()
+        };
+        assert!(matches!(run::<f64>(&s, ms)[1], Err(RowError::TooLong { dt }) if dt == 1500.0));
+    }
+}
