@@ -151,14 +151,20 @@ pub struct Fault {
     pub error: RowError,
 }
 
+impl fmt::Display for RowError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RowError::NotAfter { previous } => {
+                write!(f, "a time stamp not after the previous row's ({previous})")
+            }
+            other => write!(f, "{}", other.message("")),
+        }
+    }
+}
+
 impl fmt::Display for Fault {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "sample {}: {}",
-            self.index,
-            self.error.message("its time")
-        )
+        write!(f, "sample {}: {}", self.index, self.error)
     }
 }
 
