@@ -666,6 +666,11 @@ macro_rules! slot {
     };
 }
 
+// The sensor front end (clocks, clip guard, raw scale, calibration, axis remap), after the
+// `slot!` macro it uses.
+mod sensor;
+pub use sensor::*;
+
 fn init<S: Slot>(s: *mut S, v: S::Inner) -> Result<(), gyro_status> {
     const {
         assert!(size_of::<S::Inner>() + 8 <= size_of::<S>());

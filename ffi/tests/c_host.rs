@@ -567,6 +567,176 @@ fn estimators(r: &mut Rng, l: &mut Lines, f64: bool) {
     );
 }
 
+/// The sensor front end (`sensors()` of `scenario.c`): the clocks, the clip guard, the raw
+/// scale, the calibrations and the axis remap, through the library's `sensor` API. `f64`:
+/// whether the scenario runs the f64 calibrations (the Cortex-M0 build leaves them out with
+/// the f64 estimator, for flash; their random inputs are drawn all the same).
+fn sensors(r: &mut Rng, l: &mut Lines, f64: bool) {
+    use gyrostat::Axis;
+    use gyrostat::Mat3;
+    use gyrostat::sensor::{
+        AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, Interval,
+        MagnetometerCalibration, MicrosClock, RawScale, SampleClock,
+    };
+    fn kind<D>(i: &Interval<D>) -> u32 {
+        match i {
+            Interval::First => 0,
+            Interval::Step(_) => 1,
+            Interval::Gap(_) => 2,
+            Interval::Repeated => 3,
+            Interval::Backwards(_) => 4,
+        }
+    }
+    fn line<T: Real + Bits>(l: &mut Lines, label: &str, i: Result<Interval<T>, Error>) {
+        match i {
+            Ok(i) => {
+                let d = match i {
+                    Interval::First => T::from_f64(f64::NAN),
+                    Interval::Repeated => T::ZERO,
+                    Interval::Step(d) | Interval::Gap(d) | Interval::Backwards(d) => d,
+                };
+                l.raw(format!("{label} 00 {:x} {}", kind(&i), d.hex()));
+            }
+            Err(e) => l.raw(format!("{label} {:02x}", code(e))),
+        }
+    }
+    l.status(
+        "clock_bad_nominal",
+        err(SampleClock::try_new(0.0f64).map(|_| ())),
+    );
+    l.status(
+        "clock_bad_factor",
+        err(SampleClock::try_with_gap_factor(0.01f32, 0.5).map(|_| ())),
+    );
+    let mut c64 = SampleClock::try_with_gap_factor(0.01f64, 5.0).unwrap();
+    let mut c32 = SampleClock::try_with_gap_factor(0.01f32, 5.0).unwrap();
+    l.status("clock64_init", Ok(()));
+    l.status("clock32_init", Ok(()));
+    let mut t64 = 100.0 + r.f64();
+    let mut t32 = 100.0f32 + r.f32();
+    for k in 0..8 {
+        let (mut d64, mut d32) = (0.01 + 0.002 * r.f64(), 0.01f32 + 0.002 * r.f32());
+        match k {
+            3 => (d64, d32) = (0.0, 0.0),
+            4 => (d64, d32) = (-0.003, -0.003),
+            6 => (d64, d32) = (0.25, 0.25),
+            _ => {}
+        }
+        line(l, "clock64", c64.interval(t64 + d64));
+        line(l, "clock32", c32.interval(t32 + d32));
+        if k != 3 && k != 4 {
+            t64 += d64;
+            t32 += d32;
+        }
+    }
+    l.status("clock64_nan", err(c64.interval(f64::NAN).map(|_| ())));
+    c64.restart(None);
+    l.status("clock64_restart", Ok(()));
+    line(l, "clock64_first", c64.interval(t64));
+    l.status("us_bad", err(MicrosClock::try_new(0, 5).map(|_| ())));
+    let mut us = MicrosClock::try_new(10_000, 5).unwrap();
+    l.status("us_init", Ok(()));
+    let mut t = u32::MAX - 25_000;
+    for k in 0..6 {
+        let mut d = 9000 + (r.next_u32() >> 20);
+        match k {
+            2 => d = 0,
+            3 => d = u32::MAX - 99,
+            4 => d = 80_000,
+            _ => {}
+        }
+        let i = us.interval(t.wrapping_add(d));
+        let dt = match i {
+            Interval::Step(d) | Interval::Gap(d) | Interval::Backwards(d) => d,
+            Interval::First | Interval::Repeated => 0,
+        };
+        l.raw(format!("us 00 {:x} {dt:08x}", kind(&i)));
+        if k != 2 && k != 3 {
+            t = t.wrapping_add(d);
+        }
+    }
+    l.status("clip_bad", err(ClipLimit::try_new(0).map(|_| ())));
+    let mut guard = ClipGuard::new(ClipLimit::try_new(30_000).unwrap(), ClipPolicy::HoldLast);
+    l.status("clip_init", Ok(()));
+    for k in 0..5 {
+        let mut raw = [r.raw16(), r.raw16(), r.raw16()];
+        if k == 2 {
+            raw[0] = 32767;
+            raw[2] = -32768;
+        }
+        if k == 3 {
+            raw[1] = 30_000;
+        }
+        let (o, c) = guard.filter(raw).unwrap();
+        let mask = c
+            .axes
+            .iter()
+            .enumerate()
+            .fold(0u32, |m, (i, &a)| m | (u32::from(a) << i));
+        l.raw(format!(
+            "clip 00 {:04x} {:04x} {:04x} {mask:x}",
+            o[0] as u16, o[1] as u16, o[2] as u16
+        ));
+        l.put(
+            "raw32",
+            Ok(v(RawScale::try_new(0.00106526f32).unwrap().apply(o))),
+        );
+        l.put(
+            "raw64",
+            Ok(v(RawScale::try_new(0.00106526f64).unwrap().apply(o))),
+        );
+    }
+    let mut reject = ClipGuard::new(ClipLimit::try_new(1000).unwrap(), ClipPolicy::Reject);
+    l.status("clip_reject_init", Ok(()));
+    l.status("clip_reject", err(reject.filter([5, -1000, 7]).map(|_| ())));
+    let (mut m32, mut m64) = (Mat3::<f32>::IDENTITY, Mat3::<f64>::IDENTITY);
+    for i in 0..3 {
+        for j in 0..3 {
+            let (e32, e64) = if i == j { (1.0, 1.0) } else { (0.0, 0.0) };
+            m32.m[i][j] = e32 + 0.01 * r.f32();
+            m64.m[i][j] = e64 + 0.01 * r.f64();
+        }
+    }
+    let (s32, b32) = (r.vec32(0.02, [1.0; 3]), r.vec32(0.01, [0.0; 3]));
+    let (s64, b64) = (r.vec64(0.02, [1.0; 3]), r.vec64(0.01, [0.0; 3]));
+    let cal32 = InertialCalibration::try_new(m32, s32, b32).unwrap();
+    let cal64 = InertialCalibration::try_new(m64, s64, b64).unwrap();
+    let mcal32 = MagnetometerCalibration::try_new(m32, b32).unwrap();
+    let mcal64 = MagnetometerCalibration::try_new(m64, b64).unwrap();
+    l.status("cal32_init", Ok(()));
+    l.status("mcal32_init", Ok(()));
+    if f64 {
+        l.status("cal64_init", Ok(()));
+        l.status("mcal64_init", Ok(()));
+    }
+    l.status(
+        "cal32_bad",
+        err(InertialCalibration::try_new(m32, Vec3::new(1.0, -1.0, 1.0), b32).map(|_| ())),
+    );
+    for _ in 0..3 {
+        let (r32, r64) = (r.vec32(2.0, [0.0; 3]), r.vec64(2.0, [0.0; 3]));
+        l.put("cal32", err(cal32.try_apply(r32).map(v)));
+        l.put("mcal32", err(mcal32.try_apply(r32).map(v)));
+        if f64 {
+            l.put("cal64", err(cal64.try_apply(r64).map(v)));
+            l.put("mcal64", err(mcal64.try_apply(r64).map(v)));
+        }
+    }
+    l.status(
+        "remap_twice",
+        err(AxisRemap::try_new([Axis::X, Axis::X, Axis::Y], [false; 3]).map(|_| ())),
+    );
+    l.status(
+        "remap_reflection",
+        err(AxisRemap::try_new([Axis::X, Axis::Y, Axis::Z], [true, false, false]).map(|_| ())),
+    );
+    let remap = AxisRemap::try_new([Axis::Z, Axis::X, Axis::Y], [false, true, true]).unwrap();
+    l.status("remap_init", Ok(()));
+    let (v32, v64) = (r.vec32(1.0, [0.0; 3]), r.vec64(1.0, [0.0; 3]));
+    l.put("remap32", Ok(v(remap.apply(v32))));
+    l.put("remap64", Ok(v(remap.apply(v64))));
+}
+
 /// The lines `scenario.c` must print, from the Rust API.
 fn expected() -> String {
     expected_with(true)
@@ -581,6 +751,7 @@ fn expected_with(f64_estimator: bool) -> String {
     rates(&mut r, &mut l);
     bodies(&mut r, &mut l);
     estimators(&mut r, &mut l, f64_estimator);
+    sensors(&mut r, &mut l, f64_estimator);
     l.raw("done".to_string());
     l.text
 }

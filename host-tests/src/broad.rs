@@ -1,240 +1,29 @@
 //! IMU logs in, attitude estimates out, and BROAD's metric: the data path of the attitude
-//! estimator on recorded data ([`gyrostat::estimation`]), shared by the research runner
-//! (`broad_estimate`) and the regression test (`tests/estimation.rs`). The `estimate` tool
-//! (`tools/`) has its own reader and the same metric; its tests check its numbers against this
-//! module and `score.py`.
+//! estimator on recorded data ([`gyrostat::estimation`]), for the research runner
+//! (`broad_estimate`) and the regression tests (`tests/estimation.rs`). The reader, the metric
+//! and the estimator's loop are `gyrostat-pipeline`'s, the ones the `estimate` tool and the
+//! Python package run (re-exported here: [`read_log`], [`open_log`], [`score`], ...).
 //!
-//! - [`read_log`] / [`open_log`]: a CSV log with one header line. Columns are found by name:
-//!   BROAD's (`t_s`, `gyr_x_rad_s`…, `acc_x_m_s2`…, `mag_x_uT`…, `opt_qw`…, `movement`) or the
-//!   short ones (`t`, `gx gy gz`, `ax ay az`, `mx my mz`, `qw qx qy qz`); a `.gz` file is
-//!   decompressed. Units: [`Units`] (BROAD's are SI: rad/s, m/s²; the magnetometer's unit does
-//!   not matter, the estimator uses only its direction and relative norm).
-//! - [`estimate`]: runs the estimator over a log in f64 or f32 and returns one row per input
-//!   row; [`write_estimate`] prints them as `t,qw,qx,qy,qz,bx,by,bz` (`t` as in the input).
-//! - [`score`]: BROAD's official metric, computed exactly as the dataset's `score.py` (the same
-//!   operations in the same order): the error `q_err = q_est ⊗ q_opt⁻¹` (earth frame), total
-//!   `2·acos|w|`, heading `2·atan|z/w|`, inclination `2·acos√(w² + z²)`, RMS in degrees over the
-//!   rows with `movement == 1` that have an optical attitude.
+//! - [`read_log`] / [`open_log`]: a CSV log by the column names of
+//!   `gyrostat_pipeline::imu_log` (BROAD's `t_s`, `gyr_x_rad_s`…, `acc_x_m_s2`…, `mag_x_uT`…,
+//!   `opt_qw`…, `movement`, the short ones `t`, `gx gy gz`, …); gzip is recognised by its
+//!   first bytes. Units: [`Units`].
+//! - [`estimate`]: runs the estimator over a log in f64 or f32 through
+//!   `gyrostat_pipeline::estimate::Run` and returns one row per input row; [`write_estimate`]
+//!   prints them as `t,qw,qx,qy,qz,bx,by,bz` (`t` as in the input).
+//! - [`score`]: BROAD's official metric, computed exactly as the dataset's `score.py`
+//!   (`gyrostat_pipeline::broad`).
 
-use std::collections::HashMap;
-use std::fmt;
-use std::io::{self, BufRead, BufReader, Write};
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
 use gyrostat::estimation::{Estimator, Outcome, Params, SensorUse};
 use gyrostat::{Real, Vec3};
+use gyrostat_pipeline::estimate::{Fault, Options, Run, Sample, Step};
 
-/// One input row.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Row {
-    /// The time stamp as written in the input (the output repeats it).
-    pub t_text: String,
-    /// The time stamp, s.
-    pub t: f64,
-    /// Body rate, rad/s, sensor frame.
-    pub gyro: [f64; 3],
-    /// Specific force, m/s², sensor frame.
-    pub accel: [f64; 3],
-    /// Magnetic field (input unit), sensor frame, when the log has it.
-    pub mag: Option<[f64; 3]>,
-    /// The reference attitude `(w, x, y, z)`, sensor → earth, when the row has one.
-    pub truth: Option<[f64; 4]>,
-    /// BROAD's `movement` flag: `Some(true)` on the scored phase.
-    pub movement: Option<bool>,
-}
-
-/// A log: its rows and which optional columns it has.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Log {
-    /// The rows, in file order.
-    pub rows: Vec<Row>,
-    /// Whether the magnetometer columns are present.
-    pub has_mag: bool,
-    /// Whether the reference quaternion columns are present.
-    pub has_truth: bool,
-}
-
-/// Multipliers from the input's units to SI.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Units {
-    /// Input gyroscope unit in rad/s (1 for rad/s, π/180 for °/s).
-    pub gyro: f64,
-    /// Input accelerometer unit in m/s² (1 for m/s², 9.80665 for g).
-    pub accel: f64,
-}
-
-impl Units {
-    /// rad/s and m/s² (BROAD's units).
-    pub const SI: Units = Units {
-        gyro: 1.0,
-        accel: 1.0,
-    };
-    /// °/s and g (standard gravity, 9.80665 m/s²).
-    pub const DEG_G: Units = Units {
-        gyro: core::f64::consts::PI / 180.0,
-        accel: 9.80665,
-    };
-}
-
-/// A read error: the line (counted from 1, the header is line 1) and why.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ReadError {
-    /// Line number, from 1; 0 when the file could not be opened or read.
-    pub line: usize,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl fmt::Display for ReadError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.line == 0 {
-            write!(f, "{}", self.message)
-        } else {
-            write!(f, "line {}: {}", self.line, self.message)
-        }
-    }
-}
-
-impl std::error::Error for ReadError {}
-
-/// Column names: BROAD's first, then the short form.
-const TIME: [&str; 2] = ["t_s", "t"];
-const GYRO: [[&str; 3]; 2] = [
-    ["gyr_x_rad_s", "gyr_y_rad_s", "gyr_z_rad_s"],
-    ["gx", "gy", "gz"],
-];
-const ACCEL: [[&str; 3]; 2] = [
-    ["acc_x_m_s2", "acc_y_m_s2", "acc_z_m_s2"],
-    ["ax", "ay", "az"],
-];
-const MAG: [[&str; 3]; 2] = [["mag_x_uT", "mag_y_uT", "mag_z_uT"], ["mx", "my", "mz"]];
-const TRUTH: [[&str; 4]; 2] = [
-    ["opt_qw", "opt_qx", "opt_qy", "opt_qz"],
-    ["qw", "qx", "qy", "qz"],
-];
-
-fn find<const N: usize>(head: &[&str], options: &[[&str; N]]) -> Option<[usize; N]> {
-    options.iter().find_map(|names| {
-        let mut idx = [0; N];
-        for (slot, name) in idx.iter_mut().zip(names) {
-            *slot = head.iter().position(|h| h == name)?;
-        }
-        Some(idx)
-    })
-}
-
-/// Reads a CSV log (see the module docs) in the given units.
-///
-/// # Errors
-/// A [`ReadError`] naming the line: a header without the time, gyroscope or accelerometer
-/// columns, a row with too few fields or a field that is not a number (empty fields are
-/// allowed only in the reference columns, where they mean "no reference").
-pub fn read_log(reader: impl BufRead, units: Units) -> Result<Log, ReadError> {
-    let mut lines = reader.lines();
-    let io_err = |line: usize, e: io::Error| ReadError {
-        line,
-        message: e.to_string(),
-    };
-    let header = match lines.next() {
-        Some(h) => h.map_err(|e| io_err(1, e))?,
-        None => {
-            return Err(ReadError {
-                line: 1,
-                message: "empty input: no header".into(),
-            });
-        }
-    };
-    let head: Vec<&str> = header.split(',').map(str::trim).collect();
-    let missing = |what: &str| ReadError {
-        line: 1,
-        message: format!("header has no {what} columns"),
-    };
-    let it = find(&head, &[[TIME[0]], [TIME[1]]]).ok_or_else(|| missing("time (t_s or t)"))?[0];
-    let ig = find(&head, &GYRO).ok_or_else(|| missing("gyroscope"))?;
-    let ia = find(&head, &ACCEL).ok_or_else(|| missing("accelerometer"))?;
-    let im = find(&head, &MAG);
-    let iq = find(&head, &TRUTH);
-    let imv = head.iter().position(|h| *h == "movement");
-    let mut log = Log {
-        rows: Vec::new(),
-        has_mag: im.is_some(),
-        has_truth: iq.is_some(),
-    };
-    for (n, line) in lines.enumerate() {
-        let line_no = n + 2;
-        let line = line.map_err(|e| io_err(line_no, e))?;
-        if line.trim().is_empty() {
-            continue;
-        }
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        let err = |message: String| ReadError {
-            line: line_no,
-            message,
-        };
-        let get = |i: usize| -> Result<&str, ReadError> {
-            fields
-                .get(i)
-                .copied()
-                .ok_or_else(|| err(format!("{} fields, column {} missing", fields.len(), i + 1)))
-        };
-        let num = |i: usize| -> Result<f64, ReadError> {
-            let s = get(i)?;
-            s.parse::<f64>().map_err(|_| {
-                err(format!(
-                    "column {} ({}): not a number: {s:?}",
-                    i + 1,
-                    head[i]
-                ))
-            })
-        };
-        let vec3 = |idx: [usize; 3], scale: f64| -> Result<[f64; 3], ReadError> {
-            Ok([
-                num(idx[0])? * scale,
-                num(idx[1])? * scale,
-                num(idx[2])? * scale,
-            ])
-        };
-        let truth = match iq {
-            Some(iq) if !get(iq[0])?.is_empty() => {
-                Some([num(iq[0])?, num(iq[1])?, num(iq[2])?, num(iq[3])?])
-            }
-            _ => None,
-        };
-        let movement = match imv {
-            Some(i) => Some(get(i)? == "1"),
-            None => None,
-        };
-        log.rows.push(Row {
-            t_text: get(it)?.to_string(),
-            t: num(it)?,
-            gyro: vec3(ig, units.gyro)?,
-            accel: vec3(ia, units.accel)?,
-            mag: im.map(|im| vec3(im, 1.0)).transpose()?,
-            truth,
-            movement,
-        });
-    }
-    Ok(log)
-}
-
-/// Opens and reads a log file (gzip-compressed when its name ends in `.gz`).
-///
-/// # Errors
-/// A [`ReadError`] with line 0 when the file cannot be opened, else as [`read_log`].
-pub fn open_log(path: &Path, units: Units) -> Result<Log, ReadError> {
-    let file = std::fs::File::open(path).map_err(|e| ReadError {
-        line: 0,
-        message: format!("{}: {e}", path.display()),
-    })?;
-    if path.extension().is_some_and(|e| e == "gz") {
-        read_log(
-            BufReader::new(flate2::read::MultiGzDecoder::new(file)),
-            units,
-        )
-    } else {
-        read_log(BufReader::new(file), units)
-    }
-}
+pub use gyrostat_pipeline::broad::{
+    Log, Metric, ReadError, Row, Score, Units, errors, open_log, read_log, score,
+};
 
 /// One output row of [`estimate`].
 #[derive(Clone, Debug, PartialEq)]
@@ -253,10 +42,9 @@ pub struct EstimateRow {
     /// the standard deviations of its x and y components and its consistency (mean
     /// normalised innovation squared) ([`Estimator::hard_iron`]).
     pub hard_iron: [[f64; 3]; 3],
-    /// What the update did; `None` when the filter rejected the row (see `error`).
+    /// What the update did; `None` for a row skipped as bad
+    /// (`gyrostat_pipeline::estimate::Options::skip_bad_rows`).
     pub outcome: Option<Outcome>,
-    /// The filter's error for a rejected row (the previous attitude is repeated).
-    pub error: Option<gyrostat::Error>,
 }
 
 /// Which sensors [`estimate`] uses and in which scalar type.
@@ -268,15 +56,38 @@ pub struct Mode {
     pub f32: bool,
 }
 
-/// Runs the estimator over `log` and returns one row per input row. The step `dt` of each row
-/// is the difference of its time stamp and the previous row's; the first row has none and is
-/// given NaN (the library's first-sample rule, [`gyrostat::estimation::Estimator::update`]:
-/// until the attitude is initialised `dt` is neither used nor checked).
+/// Why [`estimate`] stopped: bad parameters, or a row the estimator's loop rejects.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum EstimateError {
+    /// The parameters are out of their domain.
+    Params(gyrostat::Error),
+    /// A row ends the run (`gyrostat_pipeline::estimate`'s policies, as the `estimate` tool).
+    Row(Fault),
+}
+
+impl std::fmt::Display for EstimateError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            EstimateError::Params(e) => write!(f, "the parameters are invalid: {e}"),
+            EstimateError::Row(fault) => write!(f, "{fault}"),
+        }
+    }
+}
+
+impl std::error::Error for EstimateError {}
+
+/// Runs the estimator over `log` and returns one row per input row, through the loop the
+/// `estimate` tool and the Python package run (`gyrostat_pipeline::estimate::Run`: the first
+/// row has no step, NaN, which the estimator neither uses nor checks until its attitude is
+/// initialised; later steps are the differences of the time stamps, checked).
+///
+/// # Errors
+/// [`EstimateError`]: invalid parameters, or the first row the loop rejects.
 pub fn estimate(
     log: &Log,
     params: &Params<f64>,
     mode: Mode,
-) -> Result<Vec<EstimateRow>, gyrostat::Error> {
+) -> Result<Vec<EstimateRow>, EstimateError> {
     if mode.f32 {
         run::<f32>(log, &params.map(|x| x as f32), mode)
     } else {
@@ -284,31 +95,33 @@ pub fn estimate(
     }
 }
 
-fn run<T: Real>(
+fn run<T: Real + std::fmt::Debug>(
     log: &Log,
     params: &Params<T>,
     mode: Mode,
-) -> Result<Vec<EstimateRow>, gyrostat::Error> {
-    let mut f = Estimator::try_new(*params)?;
-    let v = |a: [f64; 3]| Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]));
+) -> Result<Vec<EstimateRow>, EstimateError> {
+    let options = Options {
+        six_d: mode.six_d,
+        ..Options::default()
+    };
+    let mut run = Run::try_new(*params, options).map_err(EstimateError::Params)?;
     let mut out = Vec::with_capacity(log.rows.len());
-    let mut prev_t: Option<f64> = None;
-    for row in &log.rows {
-        let dt = prev_t.map_or(f64::NAN, |p| row.t - p);
-        prev_t = Some(row.t);
-        let mag = if mode.six_d { None } else { row.mag.map(v) };
-        let r = f.update(v(row.gyro), v(row.accel), mag, T::from_f64(dt));
-        let q = f.attitude().to_array().map(Real::to_f64);
-        let b = f.bias().to_array().map(Real::to_f64);
-        let (outcome, error) = match r {
-            Ok(o) => (Some(o), None),
-            Err(e) => (None, Some(e)),
+    for (index, row) in log.rows.iter().enumerate() {
+        let sample = Sample {
+            t: row.t,
+            gyro: row.gyro,
+            accel: row.accel,
+            mag: row.mag,
         };
+        let step = run
+            .push(&sample)
+            .map_err(|error| EstimateError::Row(Fault { index, error }))?;
+        let f: &Estimator<T> = run.estimator();
         out.push(EstimateRow {
             t_text: row.t_text.clone(),
             t: row.t,
-            q,
-            bias: b,
+            q: f.attitude().to_array().map(Real::to_f64),
+            bias: f.bias().to_array().map(Real::to_f64),
             mag_delay: f.mag_delay().to_f64(),
             hard_iron: {
                 let (applied, fit) = f.hard_iron();
@@ -316,8 +129,10 @@ fn run<T: Real>(
                 let sd = Vec3::new(sd.x, sd.y, fit.consistency());
                 [applied, h, sd].map(|v| v.to_array().map(Real::to_f64))
             },
-            outcome,
-            error,
+            outcome: match step {
+                Step::Updated(o) => Some(o),
+                Step::Skipped => None,
+            },
         });
     }
     Ok(out)
@@ -337,78 +152,6 @@ pub fn write_estimate(mut w: impl Write, rows: &[EstimateRow]) -> io::Result<()>
         )?;
     }
     Ok(())
-}
-
-/// BROAD's metric over one trial (degrees).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Score {
-    /// RMS of the total error angle.
-    pub total: f64,
-    /// RMS of the heading error (about the earth vertical).
-    pub heading: f64,
-    /// RMS of the inclination error.
-    pub inclination: f64,
-    /// Rows scored.
-    pub n: usize,
-    /// Scored rows without a finite, non-zero estimate.
-    pub missing: usize,
-}
-
-/// The metric of `score.py` over the rows of `log` with `movement == 1` and a reference, the
-/// estimate matched to them by the time stamp rounded to the microsecond (see the module docs).
-pub fn score(log: &Log, estimate: &[(f64, [f64; 4])]) -> Score {
-    // Python's round() rounds half to even, as round_ties_even.
-    let key = |t: f64| (t * 1e6).round_ties_even() as i64;
-    let est: HashMap<i64, [f64; 4]> = estimate.iter().map(|(t, q)| (key(*t), *q)).collect();
-    let (mut se, mut sh, mut si) = (0.0f64, 0.0f64, 0.0f64);
-    let (mut n, mut missing) = (0usize, 0usize);
-    for row in &log.rows {
-        let (Some(true), Some(qo)) = (row.movement, row.truth) else {
-            continue;
-        };
-        let qe = match est.get(&key(row.t)) {
-            Some(q)
-                if q.iter().all(|v| v.is_finite())
-                    && q.iter().map(|v| v * v).sum::<f64>() != 0.0 =>
-            {
-                *q
-            }
-            _ => {
-                missing += 1;
-                continue;
-            }
-        };
-        // sum(v * v for v in q) in Python adds from 0 left to right.
-        let sumsq = |q: &[f64; 4]| q.iter().fold(0.0, |s, v| s + v * v);
-        let (ne, no) = (sumsq(&qe).sqrt(), sumsq(&qo).sqrt());
-        let [w1, x1, y1, z1] = qe.map(|v| v / ne);
-        let (w2, x2, y2, z2) = (qo[0] / no, -qo[1] / no, -qo[2] / no, -qo[3] / no);
-        let w = w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2;
-        let z = w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2;
-        se += (2.0 * w.abs().min(1.0).acos()).powi(2);
-        sh += (if w != 0.0 {
-            2.0 * (z / w).abs().atan()
-        } else {
-            core::f64::consts::PI
-        })
-        .powi(2);
-        si += (2.0 * (w * w + z * z).sqrt().min(1.0).acos()).powi(2);
-        n += 1;
-    }
-    let d = |s: f64| {
-        if n > 0 {
-            (s / n as f64).sqrt().to_degrees()
-        } else {
-            f64::NAN
-        }
-    };
-    Score {
-        total: d(se),
-        heading: d(sh),
-        inclination: d(si),
-        n,
-        missing,
-    }
 }
 
 /// [`score`] of an [`estimate`] result.
@@ -491,8 +234,8 @@ pub struct UseCounts {
     pub accel_disturbed: usize,
     /// Magnetometer samples rejected as disturbed.
     pub mag_disturbed: usize,
-    /// Rows the filter rejected.
-    pub errors: usize,
+    /// Rows skipped as bad.
+    pub skipped: usize,
 }
 
 /// Counts what the updates of a run did.
@@ -505,7 +248,7 @@ pub fn use_counts(rows: &[EstimateRow]) -> UseCounts {
                 c.accel_disturbed += usize::from(o.accel == SensorUse::Disturbed);
                 c.mag_disturbed += usize::from(o.mag == SensorUse::Disturbed);
             }
-            None => c.errors += 1,
+            None => c.skipped += 1,
         }
     }
     c

@@ -400,7 +400,9 @@ class Estimate:
     """The estimator's output per sample: ``q`` (N, 4; ``w, x, y, z``, sensor -> earth),
     ``bias`` (N, 3; gyroscope bias, rad/s), ``accel_used``/``mag_used`` (whether the sample
     corrected the estimate), ``at_rest``, ``attitude_std`` (N, 2; heading and inclination
-    standard deviation, rad)."""
+    standard deviation, rad), ``initialized`` (the attitude is initialised after the sample;
+    before, ``q`` is the identity, where the ``estimate`` tool prints ``nan``), ``skipped``
+    (a bad sample turned into a gap with ``skip_errors``)."""
 
     q: Array
     bias: Array
@@ -408,6 +410,8 @@ class Estimate:
     mag_used: npt.NDArray[np.bool_]
     at_rest: npt.NDArray[np.bool_]
     attitude_std: Array
+    initialized: npt.NDArray[np.bool_]
+    skipped: npt.NDArray[np.bool_]
 
 
 def estimator_defaults() -> Dict[str, float]:
@@ -443,10 +447,14 @@ def estimate(
     line, the library's names such as ``field.norm``, SI units; the format of
     ``gyrostat::estimation::params_text``, read by the library's one parser; a bad line raises
     naming it), applied to the defaults before the keywords. Any other keyword overrides a
-    parameter of :func:`estimator_defaults`. A bad gyroscope sample or time step raises naming the row, or
-    with ``skip_errors`` is skipped (the state unchanged, its row repeats the attitude); a bad
-    accelerometer or magnetometer sample is never an error (``accel_used``/``mag_used`` say
-    so)."""
+    parameter of :func:`estimator_defaults`. The loop is the ``estimate`` tool's (one code
+    path, ``gyrostat_pipeline::estimate``): a time stamp not after the previous one, a step
+    over 1000 s, a rate turning more than half a turn in its step or a non-finite time stamp or
+    gyroscope value raises naming the row; with ``skip_errors`` (the tool's
+    ``--skip-bad-rows``) a non-finite time stamp or gyroscope value is skipped instead (the
+    state unchanged, its row repeats the attitude, ``skipped`` is set) and the next good sample
+    propagates over the whole interval since the last good one. A bad accelerometer or
+    magnetometer sample is never an error (``accel_used``/``mag_used`` say so)."""
     tt = np.ascontiguousarray(np.asarray(t, dtype=np.float64).reshape(-1))
     g, _ = _rows(gyro, 3, "gyro")
     a, _ = _rows(accel, 3, "accel")
@@ -475,6 +483,8 @@ def estimate(
         mag_used=d["mag_used"],
         at_rest=d["at_rest"],
         attitude_std=d["attitude_std"],
+        initialized=d["initialized"],
+        skipped=d["skipped"],
     )
 
 

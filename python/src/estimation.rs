@@ -1,18 +1,22 @@
 //! The attitude-and-bias estimator (`gyrostat::estimation::Estimator`) over arrays of samples
 //! with their time stamps.
 //!
-//! Sample `k` is propagated over `t[k] − t[k−1]`. The first sample has no step and is given
-//! NaN: the library's first-sample rule (`Estimator::update`) is that until the attitude is
-//! initialised no sample propagates and `dt` is neither used nor checked, so a record that
-//! starts while the sensor turns fast is accepted. The estimate tool and the BROAD runner of
-//! host-tests follow the same rule.
+//! The loop is `gyrostat_pipeline::estimate::Run`, the one the `estimate` tool and the BROAD
+//! runner of host-tests run: sample `k` is propagated over `t[k] − t[k−1]` (the previous good
+//! sample's time stamp); the first sample has no step and is given NaN (the library's
+//! first-sample rule, `Estimator::update`: until the attitude is initialised no sample
+//! propagates and `dt` is neither used nor checked, so a record that starts while the sensor
+//! turns fast is accepted); a time stamp not after the previous one or a step over 1000 s is an
+//! error; `skip_errors` is the tool's `--skip-bad-rows` (a non-finite time stamp or gyroscope
+//! value becomes a gap).
 
 use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use gyrostat::estimation::{EarthFrame, Estimator, Gains, Mode, Params, SensorUse};
-use gyrostat::{Real, Vec3};
+use gyrostat::Real;
+use gyrostat::estimation::{EarthFrame, Gains, Mode, Params, SensorUse};
+use gyrostat_pipeline::estimate::{Options, RowError as RowError_, Run, Sample, Step};
 
 use crate::{RowError, array2, rows, values};
 
@@ -81,9 +85,11 @@ struct Track {
     mag_used: Vec<bool>,
     at_rest: Vec<bool>,
     std: Vec<f64>,
+    initialized: Vec<bool>,
+    skipped: Vec<bool>,
 }
 
-fn run<T: Real>(
+fn run<T: Real + std::fmt::Debug>(
     params: Params<T>,
     t: &[f64],
     gyro: &[f64],
@@ -91,19 +97,17 @@ fn run<T: Real>(
     mag: Option<&[f64]>,
     skip_errors: bool,
 ) -> Result<Track, RowError> {
-    let mut f = Estimator::try_new(params).map_err(|e| {
+    let options = Options {
+        skip_bad_rows: skip_errors,
+        ..Options::default()
+    };
+    let mut run = Run::try_new(params, options).map_err(|e| {
         RowError::call(format!(
             "estimator parameters: {e} (a noise, time or threshold is NaN, negative or zero)"
         ))
     })?;
     let n = t.len();
-    let v = |a: &[f64], k: usize| {
-        Vec3::new(
-            T::from_f64(a[3 * k]),
-            T::from_f64(a[3 * k + 1]),
-            T::from_f64(a[3 * k + 2]),
-        )
-    };
+    let v = |a: &[f64], k: usize| [a[3 * k], a[3 * k + 1], a[3 * k + 2]];
     let mut tr = Track {
         q: Vec::with_capacity(4 * n),
         bias: Vec::with_capacity(3 * n),
@@ -111,37 +115,59 @@ fn run<T: Real>(
         mag_used: Vec::with_capacity(n),
         at_rest: Vec::with_capacity(n),
         std: Vec::with_capacity(2 * n),
+        initialized: Vec::with_capacity(n),
+        skipped: Vec::with_capacity(n),
     };
-    for k in 0..n {
-        let dt = if k == 0 { f64::NAN } else { t[k] - t[k - 1] };
-        let m = mag.map(|m| v(m, k));
-        match f.update(v(gyro, k), v(accel, k), m, T::from_f64(dt)) {
-            Ok(o) => {
+    for (k, &tk) in t.iter().enumerate() {
+        let sample = Sample {
+            t: tk,
+            gyro: v(gyro, k),
+            accel: v(accel, k),
+            mag: mag.map(|m| v(m, k)),
+        };
+        match run.push(&sample) {
+            Ok(Step::Updated(o)) => {
                 tr.accel_used.push(o.accel == SensorUse::Used);
                 tr.mag_used.push(o.mag == SensorUse::Used);
                 tr.at_rest.push(o.at_rest);
+                tr.skipped.push(false);
             }
-            Err(e) if skip_errors => {
-                let _ = e;
+            Ok(Step::Skipped) => {
                 tr.accel_used.push(false);
                 tr.mag_used.push(false);
                 tr.at_rest.push(false);
+                tr.skipped.push(true);
             }
-            Err(e) => {
+            Err(RowError_::Rejected { error, dt }) => {
                 return Err(RowError::at(
                     k,
                     format!(
-                        "{e} (time step {dt:e} s from the time stamps; a step must be finite, \
+                        "{error} (time step {dt:e} s from the time stamps; a step must be finite, \
                          > 0 and <= 1000 s, the gyroscope sample finite and turning less than \
                          half a turn in it)"
                     ),
                 ));
             }
+            Err(RowError_::NonFinite) => {
+                return Err(RowError::at(
+                    k,
+                    format!(
+                        "{} (a time stamp or gyroscope value; skip_errors=True makes such a \
+                         sample a gap)",
+                        gyrostat::Error::NonFinite
+                    ),
+                ));
+            }
+            Err(e) => {
+                return Err(RowError::at(k, e.message(&format!("{tk:e}"))));
+            }
         }
+        let f = run.estimator();
         tr.q.extend(f.attitude().to_array().map(Real::to_f64));
         tr.bias.extend(f.bias().to_array().map(Real::to_f64));
         let (h, i) = f.attitude_std();
         tr.std.extend([h.to_f64(), i.to_f64()]);
+        tr.initialized.push(f.is_initialized());
     }
     Ok(tr)
 }
@@ -149,7 +175,8 @@ fn run<T: Real>(
 /// The estimator run over a record: time stamps `t` (s), gyroscope (rad/s), accelerometer
 /// (m/s²) and optionally magnetometer (any unit) rows, sensor frame. Returns a dict of arrays:
 /// `q` (sensor → earth, `w, x, y, z`), `bias` (rad/s), `accel_used`, `mag_used`, `at_rest`,
-/// `attitude_std` (heading, inclination; rad). `mode`: `full` or `light`
+/// `attitude_std` (heading, inclination; rad), `initialized` (the attitude is initialised
+/// after the sample), `skipped` (a bad sample skipped as a gap, `skip_errors`). `mode`: `full` or `light`
 /// (`gyrostat::estimation::Mode`).
 #[pyfunction]
 #[pyo3(signature = (t, gyro, accel, mag, frame, precision, mode, heading_time_constant, params_text, params, skip_errors))]
@@ -227,5 +254,7 @@ fn estimate<'py>(
     d.set_item("mag_used", PyArray1::from_vec(py, tr.mag_used))?;
     d.set_item("at_rest", PyArray1::from_vec(py, tr.at_rest))?;
     d.set_item("attitude_std", array2(py, tr.std, 2)?)?;
+    d.set_item("initialized", PyArray1::from_vec(py, tr.initialized))?;
+    d.set_item("skipped", PyArray1::from_vec(py, tr.skipped))?;
     Ok(d)
 }

@@ -3,20 +3,18 @@
 //! Increments: row `k` is the attitude after increments `0..=k` (time `(k+1)·dt`); a coning
 //! rule of `N` samples updates once per `N` increments, and a row inside a group applies the
 //! pending increments with the highest-order rule that fits them (not fed back). Rates: row
-//! `k` is the attitude at time `k·dt` (row 0 is `q0`). The same library calls as the tool, so
-//! the same numbers, bit for bit.
+//! `k` is the attitude at time `k·dt` (row 0 is `q0`). The loops and their checks are
+//! `gyrostat_pipeline::propagate`'s, the ones the tool runs, so the same numbers, bit for bit.
 
 use std::fmt::Debug;
 
 use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 
-use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
-use gyrostat::propagation::{
-    CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
-    RateIntegrator, RateMethod,
-};
+use gyrostat::fixed::Q30;
+use gyrostat::propagation::{CompensatedAttitude, ConingRule, PropagatedAttitude, RateMethod};
 use gyrostat::{Quat, Real, UnitQuat, Vec3};
+use gyrostat_pipeline::propagate::{self, PropagateError};
 
 use crate::{RowError, array2, rows};
 
@@ -70,45 +68,29 @@ fn initial<T: Real>(q0: [f64; 4]) -> Result<UnitQuat<T>, RowError> {
         .map_err(|e| RowError::call(format!("q0: {e}: its norm must be within 1e-3 of 1")))
 }
 
-/// `q` when it is a finite unit quaternion; otherwise the error of sample `k`.
-fn checked<T: Real>(q: UnitQuat<T>, k: usize) -> Result<UnitQuat<T>, RowError> {
-    let c = q.to_array();
-    let n2 = c.iter().fold(T::ZERO, |acc, &x| acc + x * x);
-    if c.iter().all(|x| x.is_finite()) && (n2 - T::ONE).abs() <= T::from_f64(1e-3) {
-        return Ok(q);
-    }
-    Err(RowError::at(
-        k,
-        "the attitude is not a finite unit quaternion: the samples are too large for this step",
-    ))
+/// A row of three numbers in `T`.
+fn sample<T: Real>(r: &[f64]) -> Vec3<T> {
+    Vec3::new(T::from_f64(r[0]), T::from_f64(r[1]), T::from_f64(r[2]))
 }
 
-/// A row of three numbers in `T`, each finite.
-fn sample<T: Real>(r: &[f64], k: usize) -> Result<Vec3<T>, RowError> {
-    let v = Vec3::new(T::from_f64(r[0]), T::from_f64(r[1]), T::from_f64(r[2]));
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(RowError::at(k, "sample has a NaN or infinite component"))
-    }
-}
-
-/// The largest rounding of one increment's turn the `exp` rule accepts (the tool's limit): an
-/// angle beyond `1e-3/ε` rad is not known to 1e-3 rad in `T`.
-fn resolvable<T: Real>(v: Vec3<T>, k: usize) -> Result<(), RowError> {
-    let [x, y, z] = v.to_array().map(|c| c.to_f64());
-    let turn = x.hypot(y).hypot(z);
-    let limit = 1e-3 / T::EPSILON.to_f64();
-    if turn <= limit {
-        return Ok(());
-    }
-    Err(RowError::at(
+/// The error of sample `k` that stops a propagation (`gyrostat_pipeline::propagate`).
+fn stopped(e: PropagateError, k: usize) -> RowError {
+    RowError::at(
         k,
-        format!(
-            "the increment turns the body {turn:.3e} rad in one sample: beyond {limit:.2e} rad \
-             the angle itself is not known to 1e-3 rad"
-        ),
-    ))
+        match e {
+            PropagateError::NonFinite => "sample has a NaN or infinite component".to_string(),
+            PropagateError::Unresolvable { turn, limit } => format!(
+                "the increment turns the body {turn:.3e} rad in one sample: beyond {limit:.2e} rad \
+                 the angle itself is not known to 1e-3 rad"
+            ),
+            PropagateError::Library(e) => e.to_string(),
+            PropagateError::Quantize(e) => format!("{e} (Q1.30 holds |value| < 2 rad)"),
+            PropagateError::NotUnit(_) => {
+                "the attitude is not a finite unit quaternion: the samples are too large for this step"
+                    .to_string()
+            }
+        },
+    )
 }
 
 fn increments<T: Real + Debug, A: PropagatedAttitude<T> + From<UnitQuat<T>>>(
@@ -117,15 +99,11 @@ fn increments<T: Real + Debug, A: PropagatedAttitude<T> + From<UnitQuat<T>>>(
     rule: ConingRule,
 ) -> Result<Vec<T>, RowError> {
     let q0 = initial::<T>(q0)?;
-    let mut integ = IncrementIntegrator::new(A::from(q0), rule, Normalization::Exact);
+    let mut integ = propagate::Increments::<T, A>::new(q0, rule);
     let mut out = Vec::with_capacity(input.len() / 3 * 4);
     for (k, r) in input.chunks_exact(3).enumerate() {
-        let v = sample::<T>(r, k)?;
-        if rule == ConingRule::Exp {
-            resolvable(v, k)?;
-        }
-        integ.push(v).map_err(|e| RowError::at(k, e.to_string()))?;
-        out.extend(checked(integ.provisional_attitude(), k)?.to_array());
+        let q = integ.push(sample(r)).map_err(|e| stopped(e, k))?;
+        out.extend(q.to_array());
     }
     Ok(out)
 }
@@ -135,15 +113,13 @@ fn increments_q30(input: &[f64], q0: [f64; 4], rule: ConingRule) -> Result<Vec<f
     let q0 = UnitQuat::<Q30>::try_from_f64(q0).map_err(|e| RowError::call(format!("q0: {e}")))?;
     // The tool's `--fixed`: each update carries the low bits its rounding dropped, and each
     // increment's rounding remainder goes into the next one (the firmware's integer code).
-    let mut integ = IncrementIntegrator::new(CarriedAttitude::new(q0), rule, Normalization::Fast);
-    let mut quantizer = IncrementQuantizer::<30>::new();
+    let mut integ = propagate::FixedIncrements::new(q0, rule);
     let mut out = Vec::with_capacity(input.len() / 3 * 4);
     for (k, r) in input.chunks_exact(3).enumerate() {
-        let v = quantizer
-            .try_quantize(Vec3::new(r[0], r[1], r[2]))
-            .map_err(|e| RowError::at(k, format!("{e} (Q1.30 holds |value| < 2 rad)")))?;
-        integ.push(v).map_err(|e| RowError::at(k, e.to_string()))?;
-        out.extend(integ.provisional_attitude().to_f64().to_array());
+        let q = integ
+            .push(Vec3::new(r[0], r[1], r[2]))
+            .map_err(|e| stopped(e, k))?;
+        out.extend(q.to_f64().to_array());
     }
     Ok(out)
 }
@@ -161,24 +137,20 @@ fn rates<T: Real + Debug, A: PropagatedAttitude<T> + From<UnitQuat<T>>>(
             "dt: {dt:?} is not a positive finite number of this precision"
         )));
     }
-    // The step's rounding remainder in T (zero when dt is exact in T).
-    let dt_lo = T::from_f64(dt - step.to_f64());
-    let mut integ = RateIntegrator::try_new(A::from(q0), method, Normalization::Exact, step)
-        .and_then(|i| i.try_with_step_remainder(dt_lo))
+    let mut integ = propagate::Rates::<T, A>::try_new(q0, method, dt)
         .map_err(|e| RowError::call(format!("dt: {e}")))?;
     let n = input.len() / 3;
     let mut out = Vec::with_capacity(n * 4);
     let mut reached = 0;
     for (k, r) in input.chunks_exact(3).enumerate() {
-        let v = sample::<T>(r, k)?;
-        let qs = integ.push(v).map_err(|e| RowError::at(k, e.to_string()))?;
+        let qs = integ.push(sample(r)).map_err(|e| stopped(e, k))?;
         for q in qs {
-            out.extend(checked(q, reached)?.to_array());
+            out.extend(q.map_err(|e| stopped(e, reached))?.to_array());
             reached += 1;
         }
     }
     for q in integ.finish() {
-        out.extend(checked(q, reached)?.to_array());
+        out.extend(q.map_err(|e| stopped(e, reached))?.to_array());
         reached += 1;
     }
     Ok(out)

@@ -10,6 +10,11 @@
 //! spec file and its presets ([`sensor_spec`]) and the sensor model that turns a motion into
 //! measurements ([`synthesis`]).
 //!
+//! What the tools share with the Python package and host-tests' BROAD runner lives one crate
+//! below, in `gyrostat-pipeline`: the IMU log's columns and units ([`imu_log`] and [`units`],
+//! re-exported here), the estimator's loop of `estimate` and the propagation loops of
+//! `propagate` with their policies, BROAD's reader and metric.
+//!
 //! The tools are binaries of this crate (`src/bin/`); install them with
 //! `cargo install --path tools`, or run them from a checkout with the cargo aliases of
 //! `.cargo/config.toml` (`cargo simulate`, `cargo convert ...`, `cargo propagate ...`,
@@ -24,7 +29,6 @@ pub mod allan;
 pub mod calibration;
 pub mod characterization;
 pub mod flags;
-pub mod imu_log;
 pub mod key_values;
 pub mod motion;
 pub mod noise;
@@ -34,4 +38,6 @@ pub mod simulation;
 pub mod stream;
 pub mod synthesis;
 pub mod torque;
-pub mod units;
+
+/// The IMU log's columns and units live in `gyrostat-pipeline` (below the tools and host-tests).
+pub use gyrostat_pipeline::{imu_log, units};

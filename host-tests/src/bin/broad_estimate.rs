@@ -280,10 +280,10 @@ fn main() -> ExitCode {
                         diff.unwrap_or_default()
                     );
                 }
-                if s.missing > 0 || c.errors > 0 {
+                if s.missing > 0 || c.skipped > 0 {
                     eprintln!(
-                        "{}: {} missing, {} rejected rows",
-                        job.name, s.missing, c.errors
+                        "{}: {} missing, {} skipped rows",
+                        job.name, s.missing, c.skipped
                     );
                 }
             }

@@ -23,12 +23,12 @@ use gyrostat::propagation::kernels::{
     apply_rotation_vector, cf4_step_unequal, magnus4_step_unequal, rk4_step_unequal,
 };
 use gyrostat::propagation::{
-    CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
-    RateIntegrator, RateMethod,
+    CompensatedAttitude, ConingRule, Normalization, PropagatedAttitude, RateMethod,
 };
 use gyrostat::sensor::{AxisRemap, InertialCalibration, Interval, MicrosClock, SampleClock};
 use gyrostat::step_limit::MAX_STEP_ANGLE;
 use gyrostat::{Quat, Real, Ring, UnitQuat, Vec3};
+use gyrostat_pipeline::propagate::{self, PropagateError, TURN_RESOLUTION};
 use gyrostat_tools::calibration;
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
 use gyrostat_tools::stream::{self, Csv, Lines};
@@ -560,59 +560,36 @@ fn next_sample<T: Real + FromStr, R: io::Read>(
     })
 }
 
-/// `q` when it is a finite unit quaternion; otherwise the error of the sample on line `n`.
-fn checked<T: Real + Debug>(q: UnitQuat<T>, n: u64, what: &str) -> Result<UnitQuat<T>, Failure> {
-    let c = q.to_array();
-    let n2 = c.iter().fold(T::ZERO, |acc, &x| acc + x * x);
-    // The attitude is renormalised exactly after every update: anything visibly off unit norm
-    // (a collapsed or overflowed norm) is a failed update.
-    if c.iter().all(|x| x.is_finite()) && (n2 - T::ONE).abs() <= T::from_f64(1e-3) {
-        return Ok(q);
-    }
-    Err(Failure::Row(
+/// The error of the sample on line `n` that stops a propagation ([`propagate::Increments`],
+/// [`propagate::Rates`], [`propagate::FixedIncrements`]); `what`: which attitude.
+fn stopped<T: Real>(e: PropagateError, n: u64, what: &str) -> Failure {
+    Failure::Row(
         n,
-        format!(
-            "the attitude {what} is not a finite unit quaternion ({:?}): the {} too large for \
-             this step",
-            c,
-            if what.contains("time") {
-                "rates or --dt are"
-            } else {
-                "increments are"
-            }
-        ),
-    ))
-}
-
-/// The largest rounding of one increment's turn angle the tool accepts (rad). An angle `θ` is
-/// held to `θ·ε` of the run's type, and the attitude of that sample can be no better: beyond
-/// this (`θ > 1e-3/ε`: 4.5e12 rad in f64, 8.4e3 rad in f32) its rows would be noise however
-/// exactly the rule computes. Only `--algo exp` needs the check: the library applies an exact
-/// exponential to an increment of any length, while the coning rules and the rate methods
-/// reject a sample beyond half a turn themselves (`StepTooLong`).
-const TURN_RESOLUTION: f64 = 1e-3;
-
-/// Checks that the increment `v` turns the body by an angle whose rounding in `T` stays within
-/// [`TURN_RESOLUTION`].
-fn resolvable<T: Real>(v: Vec3<T>, n: u64) -> Result<(), Failure> {
-    let [x, y, z] = v.to_array().map(|c| c.to_f64());
-    let turn = x.hypot(y).hypot(z);
-    let limit = TURN_RESOLUTION / T::EPSILON.to_f64();
-    if turn <= limit {
-        return Ok(());
-    }
-    Err(Failure::Row(
-        n,
-        format!(
-            "the increment turns the body {turn:.3e} rad in one sample: beyond {limit:.2e} rad \
-             the angle itself is not known to {TURN_RESOLUTION:e} rad in {}",
-            if T::EPSILON.to_f64() < 1e-10 {
-                "f64"
-            } else {
-                "f32"
-            }
-        ),
-    ))
+        match e {
+            PropagateError::NonFinite => gyrostat::Error::NonFinite.to_string(),
+            PropagateError::Unresolvable { turn, limit } => format!(
+                "the increment turns the body {turn:.3e} rad in one sample: beyond {limit:.2e} rad \
+                 the angle itself is not known to {TURN_RESOLUTION:e} rad in {}",
+                if T::EPSILON.to_f64() < 1e-10 {
+                    "f64"
+                } else {
+                    "f32"
+                }
+            ),
+            PropagateError::Library(e) => e.to_string(),
+            PropagateError::Quantize(e) => format!("{e} (Q1.30 holds |value| < 2 rad)"),
+            PropagateError::NotUnit(c) => format!(
+                "the attitude {what} is not a finite unit quaternion ({:?}): the {} too large for \
+                 this step",
+                c.map(T::from_f64),
+                if what.contains("time") {
+                    "rates or --dt are"
+                } else {
+                    "increments are"
+                }
+            ),
+        },
+    )
 }
 
 /// Integrates increments; the outcome of the input (`Err(Failure::Row)` at a bad line) after the
@@ -630,7 +607,7 @@ where
     A: PropagatedAttitude<T> + From<UnitQuat<T>>,
     R: io::Read,
 {
-    let mut integ = IncrementIntegrator::new(A::from(q0), rule, Normalization::Exact);
+    let mut integ = propagate::Increments::<T, A>::new(q0, rule);
     let mut k: u64 = 0; // samples consumed
     let mut last = q0; // the attitude after sample k - 1
     let mut n = 0; // the line of the latest sample
@@ -645,23 +622,18 @@ where
             Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
             Err(e) => return Err(e),
         };
-        if rule == ConingRule::Exp
-            && let Err(e) = resolvable(v, n)
-        {
-            break Some(e);
-        }
-        let q = integ
-            .push(v)
-            .map_err(|e| Failure::Row(n, e.to_string()))
-            .and_then(|_| checked(integ.provisional_attitude(), n, "after this sample"));
-        let q = match q {
+        let q = match integ.push(v) {
             Ok(q) => q,
+            // An increment the rule cannot resolve leaves the integrator as it was.
+            Err(e @ (PropagateError::Unresolvable { .. } | PropagateError::NonFinite)) => {
+                break Some(stopped::<T>(e, n, "after this sample"));
+            }
             Err(e) => {
                 // The integrator is spoilt: the attitude after the previous sample is the last.
                 if k > 0 {
                     p.print_last(k - 1, last.to_array())?;
                 }
-                return Err(e);
+                return Err(stopped::<T>(e, n, "after this sample"));
             }
         };
         if p.due(k) {
@@ -671,10 +643,10 @@ where
         k += 1;
     };
     if k > 0 {
-        p.print_last(
-            k - 1,
-            checked(integ.flush(), n, "after the last sample")?.to_array(),
-        )?;
+        let q = integ
+            .flush()
+            .map_err(|e| stopped::<T>(e, n, "after the last sample"))?;
+        p.print_last(k - 1, q.to_array())?;
     }
     stop.map_or(Ok(()), Err)
 }
@@ -693,24 +665,22 @@ where
     A: PropagatedAttitude<T> + From<UnitQuat<T>>,
     R: io::Read,
 {
-    let dt = T::from_f64(args_dt);
-    // The step's rounding remainder in T (zero when --dt is exact in T).
-    let dt_lo = T::from_f64(args_dt - dt.to_f64());
-    let mut integ = RateIntegrator::try_new(A::from(q0), method, Normalization::Exact, dt)
-        .and_then(|i| i.try_with_step_remainder(dt_lo))
+    let mut integ = propagate::Rates::<T, A>::try_new(q0, method, args_dt)
         .map_err(|e| Failure::Usage(format!("--dt: {e}")))?;
     let mut reached: u64 = 0; // the next sample index whose attitude is due
     let mut last = q0;
     let mut n = 0; // the line of the latest sample
-    let mut emit = |p: &mut Printer, q: UnitQuat<T>, n: u64| -> Result<(), Failure> {
-        let q = checked(q, n, &format!("at the time of sample {reached}"))?;
-        if p.due(reached) {
-            p.print(reached, q.to_array())?;
-        }
-        last = q;
-        reached += 1;
-        Ok(())
-    };
+    let mut emit =
+        |p: &mut Printer, q: Result<UnitQuat<T>, PropagateError>, n: u64| -> Result<(), Failure> {
+            let q =
+                q.map_err(|e| stopped::<T>(e, n, &format!("at the time of sample {reached}")))?;
+            if p.due(reached) {
+                p.print(reached, q.to_array())?;
+            }
+            last = q;
+            reached += 1;
+            Ok(())
+        };
     let stop = loop {
         let v = match next_sample::<T, R>(lines, &mut p.out, sensor, None) {
             Ok(Some((line, v))) => {
@@ -724,7 +694,7 @@ where
         };
         let pushed = integ
             .push(v)
-            .map_err(|e| Failure::Row(n, e.to_string()))
+            .map_err(|e| stopped::<T>(e, n, "after this sample"))
             .and_then(|qs| qs.into_iter().try_for_each(|q| emit(p, q, n)));
         if let Err(e) = pushed {
             if reached > 0 {
@@ -788,8 +758,7 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
     let q0 = UnitQuat::try_from_near_unit(Quat::new(w, x, y, z), 1e-3)
         .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
     let q0 = UnitQuat::<Q30>::try_from_f64(q0).map_err(|e| Failure::Usage(format!("--q0: {e}")))?;
-    let mut integ = IncrementIntegrator::new(CarriedAttitude::new(q0), rule, Normalization::Fast);
-    let mut quantizer = IncrementQuantizer::<30>::new();
+    let mut integ = propagate::FixedIncrements::new(q0, rule);
     let mut p = Printer {
         out: Csv::stdout(),
         every: args.every,
@@ -808,20 +777,19 @@ fn run_fixed(args: &Args) -> Result<(), Failure> {
                 Err(Failure::Row(n, e)) => break Some(Failure::Row(n, e)),
                 Err(e) => return Err(e),
             };
-            let v = quantizer
-                .try_quantize(v)
-                .map_err(|e| Failure::Row(n, format!("{e} (Q1.30 holds |value| < 2 rad)")));
-            let v = match v {
-                Ok(v) => v,
-                Err(e) => break Some(e),
-            };
-            if let Err(e) = integ.push(v) {
-                if k > 0 {
-                    p.print_last(k - 1, exact(last))?;
+            match integ.push(v) {
+                Ok(q) => last = q,
+                // A value outside Q1.30 leaves the state as it was: end the record there.
+                Err(e @ PropagateError::Quantize(_)) => {
+                    break Some(stopped::<f64>(e, n, "after this sample"));
                 }
-                return Err(Failure::Row(n, e.to_string()));
+                Err(e) => {
+                    if k > 0 {
+                        p.print_last(k - 1, exact(last))?;
+                    }
+                    return Err(stopped::<f64>(e, n, "after this sample"));
+                }
             }
-            last = integ.provisional_attitude();
             if p.due(k) {
                 p.print(k, exact(last))?;
             }

@@ -13,13 +13,13 @@ use std::io::{self, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use gyrostat::estimation::{
-    EarthFrame, Estimator, Gains, MAX_STEP, Mode, Outcome, Params, SensorUse,
-};
-use gyrostat::{Error, Real, Vec3};
+use gyrostat::Real;
+use gyrostat::estimation::{EarthFrame, Estimator, Gains, Mode, Params, SensorUse};
+use gyrostat_pipeline::broad::{Metric, Score, errors};
+use gyrostat_pipeline::estimate::{self as pipeline, Calibration, HEADER, Options, Run, Step};
 use gyrostat_tools::calibration::{self, CalibrationFile};
 use gyrostat_tools::flags::{self, Cli, Flag, Flags};
-use gyrostat_tools::imu_log::{self, Layout, OpenError, Sample, Scales, parse_row};
+use gyrostat_tools::imu_log::{self, Layout, OpenError, Scales, parse_row};
 use gyrostat_tools::stream::{self, Csv, Lines};
 use gyrostat_tools::units::{AccelUnit, GyroUnit, MagUnit, TimeUnit};
 
@@ -312,51 +312,7 @@ impl From<io::Error> for Failure {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Input: the stream, its columns and its units are `gyrostat_tools::imu_log`'s
-/// The sample's gyro, accelerometer and magnetometer readings through the calibration file's
-/// models (as read without one).
-fn calibrated(cal: Option<&CalibrationFile>, s: &Sample) -> ([f64; 3], [f64; 3], Option<[f64; 3]>) {
-    let Some(c) = cal else {
-        return (s.gyro, s.accel, s.mag);
-    };
-    let v = |a: [f64; 3]| Vec3::new(a[0], a[1], a[2]);
-    (
-        c.gyro.apply(v(s.gyro)).to_array(),
-        c.accel.apply(v(s.accel)).to_array(),
-        s.mag.map(|m| c.mag.apply(v(m)).to_array()),
-    )
-}
-
-// ---------------------------------------------------------------------------------------------
-// The metric and what the plot keeps
-
-/// The error of an estimate against a reference, BROAD's decomposition (score.py's operations
-/// in its order): `(total, heading, inclination)` in rad.
-fn errors(qe: [f64; 4], qo: [f64; 4]) -> [f64; 3] {
-    let sumsq = |q: &[f64; 4]| q.iter().fold(0.0, |s, v| s + v * v);
-    let (ne, no) = (sumsq(&qe).sqrt(), sumsq(&qo).sqrt());
-    let [w1, x1, y1, z1] = qe.map(|v| v / ne);
-    let (w2, x2, y2, z2) = (qo[0] / no, -qo[1] / no, -qo[2] / no, -qo[3] / no);
-    let w = w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2;
-    let z = w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2;
-    [
-        2.0 * w.abs().min(1.0).acos(),
-        if w != 0.0 {
-            2.0 * (z / w).abs().atan()
-        } else {
-            core::f64::consts::PI
-        },
-        2.0 * (w * w + z * z).sqrt().min(1.0).acos(),
-    ]
-}
-
-/// The running sums of the metric.
-#[derive(Default)]
-struct Metric {
-    sums: [f64; 3],
-    n: u64,
-    missing: u64,
-}
+// What the plot keeps (the loop, its policies and BROAD's metric are gyrostat_pipeline's)
 
 /// Heading and inclination of an attitude (degrees): the twist about the earth's z axis and the
 /// angle of the rest (the tilt of the sensor's z axis).
@@ -399,27 +355,6 @@ impl Scalar for f64 {
 impl Scalar for f32 {
     fn as_printed(self) -> f64 {
         format!("{self:?}").parse().unwrap_or(f64::NAN)
-    }
-}
-
-fn use_name(u: SensorUse) -> &'static str {
-    match u {
-        SensorUse::Used => "used",
-        SensorUse::Absent => "absent",
-        SensorUse::NonFinite => "nonfinite",
-        SensorUse::Saturated => "saturated",
-        SensorUse::Disturbed => "disturbed",
-        SensorUse::Zero => "zero",
-    }
-}
-
-fn library_error(e: Error, dt: f64) -> String {
-    match e {
-        Error::StepTooLong => {
-            format!("the rate turns the sensor by more than half a turn in the step of {dt} s")
-        }
-        Error::NonFinite => "a non-finite gyroscope value (in f32: beyond its range)".into(),
-        other => format!("the estimator rejected the sample (step {dt} s): {other}"),
     }
 }
 
@@ -476,15 +411,23 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
         ));
     }
 
-    let mut filter = Estimator::try_new(params)
+    let options = Options {
+        six_d,
+        skip_bad_rows: args.skip_bad_rows,
+        time_scale: scales.time,
+        calibration: args.calibration.map(|c| Calibration {
+            gyro: c.gyro,
+            accel: c.accel,
+            mag: c.mag,
+        }),
+    };
+    let mut pipeline = Run::try_new(params, options)
         .map_err(|e| Failure::Usage(format!("--set: the parameters are invalid: {e}")))?;
     let mut metric = args.truth.then(Metric::default);
     let mut rows = Vec::new();
-    writeln!(out, "t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag,heading")?;
+    writeln!(out, "{HEADER}")?;
     // Rows skipped by --skip-bad-rows: how many, and the first one's line.
     let mut skipped = (0u64, 0u64);
-    let v = |a: [f64; 3]| Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]));
-    let mut prev_t: Option<f64> = None;
     let mut pending = (!layout.header).then_some(first);
     loop {
         let (n, text) = match pending.take() {
@@ -505,96 +448,55 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
                 }
             }
         };
-        let s = match parse_row(&text, &layout, &scales, args.truth) {
-            Ok(s) => s,
-            Err(bad) if bad.glitch && args.skip_bad_rows => {
-                let t_text = text.split(',').nth(layout.time).unwrap_or("").trim();
-                skip_row(out, &filter, t_text, six_d, &mut skipped, n)?;
-                continue;
+        let (s, step) = match parse_row(&text, &layout, &scales, args.truth) {
+            Ok(s) => {
+                let sample = pipeline::Sample {
+                    t: s.t,
+                    gyro: s.gyro,
+                    accel: s.accel,
+                    mag: s.mag,
+                };
+                match pipeline.push(&sample) {
+                    Ok(step) => (s, step),
+                    Err(e) => return Err(Failure::Row(n, e.message(s.t_text))),
+                }
             }
+            // A non-finite time stamp or gyroscope value: the loop's bad-row policy.
+            Err(bad) if bad.glitch => match pipeline.bad_row() {
+                Ok(step) => {
+                    let t_text = text.split(',').nth(layout.time).unwrap_or("").trim();
+                    writeln!(out, "{}", pipeline.row_text(t_text, &step))?;
+                    out.row_done()?;
+                    count_skipped(&mut skipped, n);
+                    continue;
+                }
+                Err(_) => return Err(Failure::Row(n, bad.reason)),
+            },
             Err(bad) => return Err(Failure::Row(n, bad.reason)),
         };
-        // The first row has no step: NaN, which the library neither uses nor checks until the
-        // attitude is initialised (its first-sample rule, `Estimator::update`).
-        let dt = match prev_t {
-            None => f64::NAN,
-            Some(p) => {
-                let dt = (s.t - p) * scales.time;
-                // NaN cannot arise (both stamps are finite), an overflow to ∞ is caught below.
-                if dt <= 0.0 {
-                    return Err(Failure::Row(
-                        n,
-                        format!(
-                            "time stamp {} is not after the previous row's ({p})",
-                            s.t_text
-                        ),
-                    ));
-                }
-                if dt > MAX_STEP {
-                    return Err(Failure::Row(
-                        n,
-                        format!(
-                            "a step of {dt} s since the previous row: longer than {MAX_STEP} s (restart the estimator after a gap)"
-                        ),
-                    ));
-                }
-                dt
-            }
-        };
-        let (gyro, accel, mag) = calibrated(args.calibration.as_ref(), &s);
-        let mag = if six_d { None } else { mag.map(v) };
-        let outcome: Outcome = match filter.update(v(gyro), v(accel), mag, T::from_f64(dt)) {
-            Ok(o) => o,
-            // A gyroscope value finite in f64 but not in f32 (--f32).
-            Err(Error::NonFinite) if args.skip_bad_rows => {
-                skip_row(out, &filter, s.t_text, six_d, &mut skipped, n)?;
+        writeln!(out, "{}", pipeline.row_text(s.t_text, &step))?;
+        out.row_done()?;
+        let outcome = match step {
+            Step::Updated(o) => o,
+            Step::Skipped => {
+                count_skipped(&mut skipped, n);
                 continue;
             }
-            Err(e) => return Err(Failure::Row(n, library_error(e, dt))),
         };
-        prev_t = Some(s.t);
-        let flags = format!(
-            "{},{},{},{},{}",
-            u8::from(outcome.at_rest),
-            if outcome.gyro_saturated {
-                "saturated"
-            } else {
-                "used"
-            },
-            use_name(outcome.accel),
-            use_name(outcome.mag),
-            heading_flag(&filter, six_d)
-        );
+        let filter = pipeline.estimator();
         let (q, b) = if filter.is_initialized() {
-            let q = filter.attitude().to_array();
-            let b = filter.bias().to_array();
-            let [w, x, y, z] = q;
-            let [bx, by, bz] = b;
-            writeln!(
-                out,
-                "{},{w:?},{x:?},{y:?},{z:?},{bx:?},{by:?},{bz:?},{flags}",
-                s.t_text
-            )?;
-            (Some(q.map(T::as_printed)), b.map(T::as_printed))
+            (
+                Some(filter.attitude().to_array().map(T::as_printed)),
+                filter.bias().to_array().map(T::as_printed),
+            )
         } else {
-            writeln!(out, "{},nan,nan,nan,nan,nan,nan,nan,{flags}", s.t_text)?;
             (None, [f64::NAN; 3])
         };
-        out.row_done()?;
-        let error = match (q, s.truth) {
-            (Some(q), Some(r)) => Some(errors(q, r)),
-            _ => None,
-        };
-        if let (Some(m), Some(_), true) = (metric.as_mut(), s.truth, s.scored) {
-            match error {
-                Some(e) => {
-                    for (sum, e) in m.sums.iter_mut().zip(e) {
-                        *sum += e * e;
-                    }
-                    m.n += 1;
-                }
-                None => m.missing += 1,
-            }
+        let mut error = None;
+        if let (Some(m), Some(r), true) = (metric.as_mut(), s.truth, s.scored) {
+            error = m.add(q, r);
+        } else if let (Some(q), Some(r)) = (q, s.truth) {
+            error = Some(errors(q, r));
         }
         if args.plot.is_some() {
             let nan2 = (f64::NAN, f64::NAN);
@@ -624,64 +526,28 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
     })
 }
 
-/// The `heading` column: `ok`, `unsure` or `none` (see the help).
-fn heading_flag<T: Scalar>(filter: &Estimator<T>, six_d: bool) -> &'static str {
-    if six_d {
-        "none"
-    } else if filter.heading_trusted() {
-        "ok"
-    } else {
-        "unsure"
-    }
-}
-
-/// The output row of a row skipped by `--skip-bad-rows`: the state unchanged, the flags
-/// `skipped`; counts it in `skipped` (count, first line).
-fn skip_row<T: Scalar>(
-    out: &mut Csv,
-    filter: &Estimator<T>,
-    t_text: &str,
-    six_d: bool,
-    skipped: &mut (u64, u64),
-    line: u64,
-) -> Result<(), Failure> {
+/// Counts a row skipped by `--skip-bad-rows` in `skipped` (count, first line).
+fn count_skipped(skipped: &mut (u64, u64), line: u64) {
     if skipped.0 == 0 {
         skipped.1 = line;
     }
     skipped.0 += 1;
-    let heading = heading_flag(filter, six_d);
-    if filter.is_initialized() {
-        let [w, x, y, z] = filter.attitude().to_array();
-        let [bx, by, bz] = filter.bias().to_array();
-        writeln!(
-            out,
-            "{t_text},{w:?},{x:?},{y:?},{z:?},{bx:?},{by:?},{bz:?},0,skipped,skipped,skipped,{heading}"
-        )?;
-    } else {
-        writeln!(
-            out,
-            "{t_text},nan,nan,nan,nan,nan,nan,nan,0,skipped,skipped,skipped,{heading}"
-        )?;
-    }
-    out.row_done()?;
-    Ok(())
 }
 
 /// The metric line: `truth: total X deg, heading Y deg, inclination Z deg, n = N`.
 fn summary(m: &Metric, six_d: bool) -> String {
-    let rms = |s: f64| {
-        if m.n > 0 {
-            (s / m.n as f64).sqrt().to_degrees()
-        } else {
-            f64::NAN
-        }
-    };
-    let [t, h, i] = m.sums.map(rms);
+    let Score {
+        total: t,
+        heading: h,
+        inclination: i,
+        n,
+        missing,
+    } = m.score();
     format!(
         "truth: total {t:.6} deg, heading {h:.6} deg, inclination {i:.6} deg, n = {}{}{}",
-        m.n,
-        if m.missing > 0 {
-            format!(", MISSING {}", m.missing)
+        n,
+        if missing > 0 {
+            format!(", MISSING {}", missing)
         } else {
             String::new()
         },

@@ -2,7 +2,7 @@
 //! `--time-unit`, one spelling for every tool.
 //!
 //! Each flag's value names a unit; [`GyroUnit::parse`] and its siblings are value parsers for
-//! [`crate::flags::Flags::get`] (`f.get("--gyro-unit", GyroUnit::parse)`), and each unit gives
+//! `gyrostat_tools::flags::Flags::get` (`f.get("--gyro-unit", GyroUnit::parse)`), and each unit gives
 //! the factor that converts a value in it to SI (`to_si`). A value outside the vocabulary is
 //! `FLAG: unknown unit 'TEXT' (one of ...)`.
 
