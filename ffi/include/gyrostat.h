@@ -207,6 +207,96 @@
 #define GYRO_ESTIMATOR_F64_WORDS 236
 
 /**
+ * `gyro_sample_clock_*_interval`: the first time stamp (or the first after a restart): no
+ * step; `*dt` is NaN, which the estimator's update takes as "no step" (its first-sample rule:
+ * until the attitude is initialised no sample propagates and the step is not checked).
+ */
+#define GYRO_INTERVAL_FIRST 0
+
+/**
+ * A regular step `0 < dt ≤ gap_factor · nominal`: `*dt` is the elapsed time.
+ */
+#define GYRO_INTERVAL_STEP 1
+
+/**
+ * A step longer than `gap_factor · nominal` (samples were lost): `*dt` is the elapsed time;
+ * the clock accepted the time stamp.
+ */
+#define GYRO_INTERVAL_GAP 2
+
+/**
+ * The same time stamp as the previous accepted one (a duplicate row): `*dt` is 0; the clock
+ * keeps its state.
+ */
+#define GYRO_INTERVAL_REPEATED 3
+
+/**
+ * A time stamp before the previous accepted one: `*dt` is by how much (positive); the clock
+ * keeps its state.
+ */
+#define GYRO_INTERVAL_BACKWARDS 4
+
+/**
+ * `gyro_clip_guard_init`: the clipped reading reaches the core as it is.
+ */
+#define GYRO_CLIP_PASS 0
+
+/**
+ * Each clipped axis is replaced by that axis's last unclipped reading (a rate hold).
+ */
+#define GYRO_CLIP_HOLD_LAST 1
+
+/**
+ * A clipped reading is an error (the library's `Error::Clipped`).
+ */
+#define GYRO_CLIP_REJECT 2
+
+/**
+ * Words of `gyro_sample_clock_f32`'s storage.
+ */
+#define GYRO_SAMPLE_CLOCK_F32_WORDS 3
+
+/**
+ * Words of `gyro_sample_clock_f64`'s storage.
+ */
+#define GYRO_SAMPLE_CLOCK_F64_WORDS 5
+
+/**
+ * Words of `gyro_micros_clock`'s storage.
+ */
+#define GYRO_MICROS_CLOCK_WORDS 3
+
+/**
+ * Words of `gyro_clip_guard`'s storage.
+ */
+#define GYRO_CLIP_GUARD_WORDS 3
+
+/**
+ * Words of `gyro_inertial_calibration_f32`'s storage.
+ */
+#define GYRO_INERTIAL_CALIBRATION_F32_WORDS 12
+
+/**
+ * Words of `gyro_inertial_calibration_f64`'s storage.
+ */
+#define GYRO_INERTIAL_CALIBRATION_F64_WORDS 22
+
+/**
+ * Words of `gyro_mag_calibration_f32`'s storage.
+ */
+#define GYRO_MAG_CALIBRATION_F32_WORDS 12
+
+/**
+ * Words of `gyro_mag_calibration_f64`'s storage.
+ */
+#define GYRO_MAG_CALIBRATION_F64_WORDS 22
+
+/**
+ * Words of `gyro_axis_remap`'s storage.
+ */
+#define GYRO_AXIS_REMAP_WORDS 1
+
+/**
  * The result of every function.
  */
 typedef enum {
@@ -1072,6 +1162,104 @@ typedef struct {
   uint32_t initialized;
 } gyro_estimator_outcome;
 
+/**
+ * A sample clock on time stamps in seconds, f32 (`SampleClock`): each time stamp becomes a
+ * step, a gap, the first sample, a repeated or a backwards time stamp
+ * (`GYRO_INTERVAL_*`). Contents private; write with `gyro_sample_clock_f32_init`.
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_SAMPLE_CLOCK_F32_WORDS];
+} gyro_sample_clock_f32;
+
+/**
+ * A sample clock on time stamps in seconds, f64 (see `gyro_sample_clock_f32`).
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_SAMPLE_CLOCK_F64_WORDS];
+} gyro_sample_clock_f64;
+
+/**
+ * A sample clock on a free-running 32-bit microsecond counter that wraps (`MicrosClock`):
+ * differences are taken modulo 2³², so a wrap between two samples is an ordinary step; a
+ * wrapped difference of 2³¹ µs or more is a backwards time stamp.
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_MICROS_CLOCK_WORDS];
+} gyro_micros_clock;
+
+/**
+ * A clip guard on a stream of raw `int16_t` readings (`ClipGuard`): the full scale, the
+ * policy (`GYRO_CLIP_*`) and the last unclipped reading of each axis.
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_CLIP_GUARD_WORDS];
+} gyro_clip_guard;
+
+/**
+ * A raw register reading of three axes (`int16_t`, the sensor's LSBs).
+ */
+typedef struct {
+  /**
+   * x register.
+   */
+  int16_t x;
+  /**
+   * y register.
+   */
+  int16_t y;
+  /**
+   * z register.
+   */
+  int16_t z;
+} gyro_vec3_i16;
+
+/**
+ * A gyroscope or accelerometer calibration, f32 (`InertialCalibration`):
+ * `corrected = M · diag(s) · (raw − b)`.
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_INERTIAL_CALIBRATION_F32_WORDS];
+} gyro_inertial_calibration_f32;
+
+/**
+ * A gyroscope or accelerometer calibration, f64 (see `gyro_inertial_calibration_f32`).
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_INERTIAL_CALIBRATION_F64_WORDS];
+} gyro_inertial_calibration_f64;
+
+/**
+ * A magnetometer calibration, f32 (`MagnetometerCalibration`): `corrected = S · (raw − h)`,
+ * soft-iron matrix `S`, hard-iron offset `h`.
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_MAG_CALIBRATION_F32_WORDS];
+} gyro_mag_calibration_f32;
+
+/**
+ * A magnetometer calibration, f64 (see `gyro_mag_calibration_f32`).
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_MAG_CALIBRATION_F64_WORDS];
+} gyro_mag_calibration_f64;
+
+/**
+ * The axis remap of a sensor mounted on a board (`AxisRemap`): each body axis is a sensor
+ * axis with a sign, a proper rotation.
+ */
+typedef struct {
+  uint32_t _tag;
+  uint64_t _storage[GYRO_AXIS_REMAP_WORDS];
+} gyro_axis_remap;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1745,6 +1933,290 @@ gyro_status gyro_estimator_f32_init_params(gyro_estimator_f32 *s,
  */
 gyro_status gyro_estimator_f64_init_params(gyro_estimator_f64 *s,
                                            const gyro_estimator_params_f64 *params);
+
+/**
+ * Starts a sample clock with nominal interval `nominal` (s) and gap factor `gap_factor` (an
+ * elapsed time beyond `gap_factor · nominal` is a gap; the library's default is 5).
+ *
+ * Errors: `GYRO_NON_FINITE` (a NaN or infinite argument); `GYRO_INVALID_ARGUMENT`
+ * (`nominal ≤ 0`, `gap_factor < 1`, or a product that overflows).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_sample_clock_f32_init(gyro_sample_clock_f32 *s, float nominal, float gap_factor);
+
+/**
+ * Starts a sample clock, f64 (see `gyro_sample_clock_f32_init`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_sample_clock_f64_init(gyro_sample_clock_f64 *s, double nominal, double gap_factor);
+
+/**
+ * Classifies the time stamp `t` (s) against the last accepted one: `*kind` is a
+ * `GYRO_INTERVAL_*` and `*dt` its duration (NaN for `GYRO_INTERVAL_FIRST`, 0 for
+ * `GYRO_INTERVAL_REPEATED`). A first sample, a step or a gap accepts `t`; a repeated or
+ * backwards time stamp leaves the clock as it was (skip the sample).
+ *
+ * Errors: `GYRO_NON_FINITE` for a NaN or infinite `t` or an elapsed time that overflows
+ * (the clock unchanged: a logger's glitch, which a caller may skip as a gap).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_sample_clock_f32_interval(gyro_sample_clock_f32 *s,
+                                           float t,
+                                           uint32_t *kind,
+                                           float *dt);
+
+/**
+ * Classifies a time stamp, f64 (see `gyro_sample_clock_f32_interval`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_sample_clock_f64_interval(gyro_sample_clock_f64 *s,
+                                           double t,
+                                           uint32_t *kind,
+                                           double *dt);
+
+/**
+ * Restarts the clock: with `has_t` 1 the next interval is measured from `t` (s), with
+ * `has_t` 0 the next time stamp is a first sample again.
+ *
+ * Errors: `GYRO_INVALID_ARGUMENT` (`has_t` not 0 or 1), `GYRO_NON_FINITE` (a NaN or infinite
+ * `t` with `has_t` 1).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_sample_clock_f32_restart(gyro_sample_clock_f32 *s, uint32_t has_t, float t);
+
+/**
+ * Restarts the clock, f64 (see `gyro_sample_clock_f32_restart`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_sample_clock_f64_restart(gyro_sample_clock_f64 *s, uint32_t has_t, double t);
+
+/**
+ * Starts a microsecond-counter clock with nominal interval `nominal_us` µs and gap factor
+ * `gap_factor`.
+ *
+ * Errors: `GYRO_INVALID_ARGUMENT` (`nominal_us` or `gap_factor` 0, or a product of 2³¹ µs or
+ * more, which could not be told from a backwards step).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_micros_clock_init(gyro_micros_clock *s, uint32_t nominal_us, uint32_t gap_factor);
+
+/**
+ * Classifies the counter value `t_us` (every value is a time stamp): `*kind` a
+ * `GYRO_INTERVAL_*`, `*dt_us` its duration in µs (0 for a first sample or a repeated time
+ * stamp).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_micros_clock_interval(gyro_micros_clock *s,
+                                       uint32_t t_us,
+                                       uint32_t *kind,
+                                       uint32_t *dt_us);
+
+/**
+ * Restarts the counter clock: with `has_t` 1 the next interval is measured from `t_us`, with
+ * `has_t` 0 the next value is a first sample.
+ *
+ * Errors: `GYRO_INVALID_ARGUMENT` (`has_t` not 0 or 1).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_micros_clock_restart(gyro_micros_clock *s, uint32_t has_t, uint32_t t_us);
+
+/**
+ * Starts a clip guard: a reading `r` of an axis is clipped when `r ≥ limit` or `r ≤ −limit`
+ * (so -32768 always is; `limit` 32767 is the register's own range), and `policy`
+ * (`GYRO_CLIP_PASS`, `GYRO_CLIP_HOLD_LAST`, `GYRO_CLIP_REJECT`) decides what reaches the core.
+ *
+ * Errors: `GYRO_INVALID_ARGUMENT` (`limit ≤ 0`, an unknown policy).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_clip_guard_init(gyro_clip_guard *s, int16_t limit, uint32_t policy);
+
+/**
+ * One raw reading through the guard: `*out` the reading the core gets (the clipped axes held
+ * at their last unclipped value under `GYRO_CLIP_HOLD_LAST`; a clip before any unclipped
+ * reading passes as it is), `*clipped` (may be NULL) the clipped axes of the original
+ * reading as bits (1 x, 2 y, 4 z).
+ *
+ * Errors: under `GYRO_CLIP_REJECT` a clipped reading is the library's `Error::Clipped` (its
+ * status code; the guard unchanged).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_clip_guard_filter(gyro_clip_guard *s,
+                                   const gyro_vec3_i16 *raw,
+                                   gyro_vec3_i16 *out,
+                                   uint32_t *clipped);
+
+/**
+ * A raw reading as a physical value: `out = raw · lsb` per axis (`lsb` the value of one LSB:
+ * rad/s, m/s², µT, … per count), one rounding.
+ *
+ * Errors: `GYRO_NON_FINITE`, `GYRO_INVALID_ARGUMENT` (`lsb ≤ 0`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_raw_scale_f32(const gyro_vec3_i16 *raw, float lsb, gyro_vec3_f32 *out);
+
+/**
+ * A raw reading as a physical value, f64 (see `gyro_raw_scale_f32`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_raw_scale_f64(const gyro_vec3_i16 *raw, double lsb, gyro_vec3_f64 *out);
+
+/**
+ * Starts a gyroscope or accelerometer calibration `corrected = M · diag(s) · (raw − b)`:
+ * misalignment `M` (row-major), per-axis scale `s`, bias `b` (in the raw reading's unit).
+ *
+ * Errors: `GYRO_NON_FINITE`; `GYRO_INVALID_ARGUMENT` (a scale ≤ 0, `det M ≤ 0`);
+ * `GYRO_SINGULAR` (`M·diag(s)` not invertible or worse conditioned than 100).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_inertial_calibration_f32_init(gyro_inertial_calibration_f32 *s,
+                                               const gyro_mat3_f32 *misalignment,
+                                               const gyro_vec3_f32 *scale,
+                                               const gyro_vec3_f32 *bias);
+
+/**
+ * Starts a gyroscope or accelerometer calibration, f64 (see
+ * `gyro_inertial_calibration_f32_init`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_inertial_calibration_f64_init(gyro_inertial_calibration_f64 *s,
+                                               const gyro_mat3_f64 *misalignment,
+                                               const gyro_vec3_f64 *scale,
+                                               const gyro_vec3_f64 *bias);
+
+/**
+ * `*out = M · diag(s) · (*raw − b)`.
+ *
+ * Errors: `GYRO_NON_FINITE` (a NaN or infinite reading, or a result that overflows).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_inertial_calibration_f32_apply(const gyro_inertial_calibration_f32 *s,
+                                                const gyro_vec3_f32 *raw,
+                                                gyro_vec3_f32 *out);
+
+/**
+ * Applies a gyroscope or accelerometer calibration, f64 (see
+ * `gyro_inertial_calibration_f32_apply`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_inertial_calibration_f64_apply(const gyro_inertial_calibration_f64 *s,
+                                                const gyro_vec3_f64 *raw,
+                                                gyro_vec3_f64 *out);
+
+/**
+ * Starts a magnetometer calibration `corrected = S · (raw − h)`: soft-iron matrix `S`
+ * (row-major), hard-iron offset `h` (in the raw reading's unit).
+ *
+ * Errors: `GYRO_NON_FINITE`; `GYRO_INVALID_ARGUMENT` (`det S ≤ 0`); `GYRO_SINGULAR` (`S` not
+ * invertible or worse conditioned than 100).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_mag_calibration_f32_init(gyro_mag_calibration_f32 *s,
+                                          const gyro_mat3_f32 *soft_iron,
+                                          const gyro_vec3_f32 *hard_iron);
+
+/**
+ * Starts a magnetometer calibration, f64 (see `gyro_mag_calibration_f32_init`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_mag_calibration_f64_init(gyro_mag_calibration_f64 *s,
+                                          const gyro_mat3_f64 *soft_iron,
+                                          const gyro_vec3_f64 *hard_iron);
+
+/**
+ * `*out = S · (*raw − h)`.
+ *
+ * Errors: `GYRO_NON_FINITE` (a NaN or infinite reading, or a result that overflows).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_mag_calibration_f32_apply(const gyro_mag_calibration_f32 *s,
+                                           const gyro_vec3_f32 *raw,
+                                           gyro_vec3_f32 *out);
+
+/**
+ * Applies a magnetometer calibration, f64 (see `gyro_mag_calibration_f32_apply`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_mag_calibration_f64_apply(const gyro_mag_calibration_f64 *s,
+                                           const gyro_vec3_f64 *raw,
+                                           gyro_vec3_f64 *out);
+
+/**
+ * Starts an axis remap: body axis `i` (x, y, z) is sensor axis `source[i]` (0 x, 1 y, 2 z),
+ * negated when `negate[i]` is 1: `body[i] = ±sensor[source[i]]`.
+ *
+ * Errors: `GYRO_INVALID_ARGUMENT` (an index above 2, an axis used twice, a flag not 0 or 1);
+ * `GYRO_NOT_ROTATION` (a reflection: the remap must be a proper rotation).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type; `source` and `negate` point
+ * to three values each.
+ */
+gyro_status gyro_axis_remap_init(gyro_axis_remap *s,
+                                 const uint32_t *source,
+                                 const uint32_t *negate);
+
+/**
+ * A sensor-frame vector in the body frame: `body[i] = ±sensor[source[i]]` (exact: no
+ * rounding).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_axis_remap_apply_f32(const gyro_axis_remap *s,
+                                      const gyro_vec3_f32 *sensor,
+                                      gyro_vec3_f32 *body);
+
+/**
+ * A sensor-frame vector in the body frame, f64 (see `gyro_axis_remap_apply_f32`).
+ *
+ * # Safety
+ * Every pointer is NULL or points to a valid object of its type.
+ */
+gyro_status gyro_axis_remap_apply_f64(const gyro_axis_remap *s,
+                                      const gyro_vec3_f64 *sensor,
+                                      gyro_vec3_f64 *body);
 
 #ifdef __cplusplus
 }  // extern "C"
