@@ -97,34 +97,48 @@ impl<T: Real> Covariance<T> {
     pub fn update_component(&mut self, i: usize, r: T) -> [T; 6] {
         let i = i.min(5);
         let p = self.row(i);
-        let pi = p.get(i).copied().unwrap_or(T::ZERO);
+        let pi = p[i];
         let s = pi + r;
         if !(s.is_finite() && s > T::ZERO) {
             return [T::ZERO; 6];
         }
         let inv = T::ONE / s;
         let k = p.map(|v| v * inv);
-        let g = r * inv;
-        let ki = k.get(i).copied().unwrap_or(T::ZERO);
-        for j in 0..6 {
-            for c in j..6 {
-                let (pj, pc) = (p.get(j).copied(), p.get(c).copied());
-                let (kj, kc) = (k.get(j).copied(), k.get(c).copied());
-                let (Some(pj), Some(pc), Some(kj), Some(kc)) = (pj, pc, kj, kc) else {
-                    continue;
-                };
-                let v = if j == i && c == i {
-                    g * g * pi + r * ki * ki
-                } else if j == i {
-                    g * g * pc + r * ki * kc
-                } else if c == i {
-                    g * g * pj + r * kj * ki
-                } else {
-                    self.at(j, c) - pj * pc * inv
-                };
+        // Every entry of the upper triangle as `Pⱼₖ − (pⱼ pₖ)/s`, written to both triangles
+        // (each block read in its upper triangle only, before it is written), then row and
+        // column `i` over it in Joseph form.
+        let a = &mut self.attitude.m;
+        for j in 0..3 {
+            for c in j..3 {
+                let v = a[j][c] - p[j] * p[c] * inv;
                 let v = if j == c { v.max(T::ZERO) } else { v };
-                self.set_sym(j, c, v);
+                a[j][c] = v;
+                a[c][j] = v;
             }
+        }
+        let b = &mut self.cross.m;
+        for j in 0..3 {
+            for c in 0..3 {
+                b[j][c] = b[j][c] - p[j] * p[c + 3] * inv;
+            }
+        }
+        let cb = &mut self.bias.m;
+        for j in 0..3 {
+            for c in j..3 {
+                let v = cb[j][c] - p[j + 3] * p[c + 3] * inv;
+                let v = if j == c { v.max(T::ZERO) } else { v };
+                cb[j][c] = v;
+                cb[c][j] = v;
+            }
+        }
+        let g = r * inv;
+        let gg = g * g;
+        let ki = k[i];
+        for (j, (&pj, &kj)) in p.iter().zip(&k).enumerate() {
+            // `r Kⱼ Kᵢ` in the order of the lower triangle's loop (`j` the row).
+            let rk = if j < i { r * kj * ki } else { r * ki * kj };
+            let v = gg * pj + rk;
+            self.set_sym(i, j, if j == i { v.max(T::ZERO) } else { v });
         }
         k
     }
