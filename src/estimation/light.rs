@@ -25,7 +25,8 @@
 //! low-pass filter) and a valid magnetometer sample with the report of the last correction.
 
 use super::{
-    Estimator, GRAVITY, Gains, HARD_IRON_FEED_STEP, MAG_DELAY_MAX, Mode, Outcome, Params, SensorUse,
+    Estimator, GRAVITY, Gains, HARD_IRON_FEED_STEP, MAG_DELAY_MAX, Mode, Outcome, Params,
+    SensorUse, horizontal, length,
 };
 use crate::estimation::lowpass::LowPass;
 use crate::{Real, Vec3};
@@ -211,7 +212,7 @@ impl<T: Real> Estimator<T> {
     fn tilt_update(&mut self, v: Vec3<T>, dt: T, x: &mut [T; 6]) -> SensorUse {
         let pr = self.params;
         let g = T::from_f64(GRAVITY);
-        let residual = (v.norm() - g).abs() / g;
+        let residual = (length(v) - g).abs() / g;
         if residual > pr.accel_reject {
             return SensorUse::Disturbed;
         }
@@ -238,7 +239,7 @@ impl<T: Real> Estimator<T> {
 /// The rotation vector (x, y parts) taking the earth-frame vector `v` to +z: about
 /// `(v_y, −v_x, 0)` by the angle between `v` and z.
 fn tilt_error<T: Real>(v: Vec3<T>) -> (T, T) {
-    let h = v.x.hypot(v.y);
+    let h = horizontal(v);
     let angle = h.atan2(v.z);
     if h > T::ZERO {
         (v.y * angle / h, -v.x * angle / h)
