@@ -34,13 +34,26 @@ impl<T: Real> Covariance<T> {
     /// noise (`σ_g²·Δt`, isotropic, so the same in every frame) and the bias random walk.
     ///
     /// `A' = A + F Bᵀ + B Fᵀ + F C Fᵀ + q_θ I`, `B' = B + F C`, `C' = C + q_b I`.
+    ///
+    /// `A'` is formed in its upper triangle and mirrored (`(F C Fᵀ)ⱼₖ = (F C)ⱼ · Fₖ` for `j ≤ k`
+    /// only), so it is symmetric by construction.
     pub fn predict(&mut self, f: Mat3<T>, q_theta: T, q_bias: T) {
         let fc = f * self.bias;
         let fbt = f * self.cross.transpose();
-        let a = self.attitude + fbt + fbt.transpose() + fc * f.transpose();
-        self.attitude = symmetric(a) + Mat3::from_diagonal(Vec3::new(q_theta, q_theta, q_theta));
+        let a = &mut self.attitude.m;
+        for j in 0..3 {
+            let fcj = fc.row(j);
+            for c in j..3 {
+                let v = a[j][c] + fbt.m[j][c] + fbt.m[c][j] + fcj.dot(f.row(c));
+                let v = if j == c { v + q_theta } else { v };
+                a[j][c] = v;
+                a[c][j] = v;
+            }
+        }
         self.cross = self.cross + fc;
-        self.bias = self.bias + Mat3::from_diagonal(Vec3::new(q_bias, q_bias, q_bias));
+        for j in 0..3 {
+            self.bias.m[j][j] += q_bias;
+        }
     }
 
     /// Row `i` of `P` (0–2 attitude, 3–5 bias; larger indices read as 5).
@@ -216,14 +229,16 @@ impl<T: Real> Covariance<T> {
     /// an error cannot be larger than its physical bound (an attitude error is within ±π,
     /// a bias within the filter's clip).
     pub fn bound(&mut self, attitude_max: T, bias_max: T) {
-        let mut d = [T::ONE; 6];
-        for (j, dj) in d.iter_mut().enumerate() {
-            let max = if j < 3 { attitude_max } else { bias_max };
-            let v = self.at(j, j);
-            if v > max {
-                *dj = (max / v).sqrt();
-            }
-        }
+        let scale = |v: T, max: T| if v > max { (max / v).sqrt() } else { T::ONE };
+        let (a, c) = (&self.attitude.m, &self.bias.m);
+        let d = [
+            scale(a[0][0], attitude_max),
+            scale(a[1][1], attitude_max),
+            scale(a[2][2], attitude_max),
+            scale(c[0][0], bias_max),
+            scale(c[1][1], bias_max),
+            scale(c[2][2], bias_max),
+        ];
         if d.iter().all(|&x| x == T::ONE) {
             return;
         }
@@ -236,9 +251,4 @@ impl<T: Real> Covariance<T> {
             }
         }
     }
-}
-
-/// `(M + Mᵀ)/2`.
-fn symmetric<T: Real>(m: Mat3<T>) -> Mat3<T> {
-    (m + m.transpose()).scale(T::HALF)
 }

@@ -48,6 +48,36 @@ pub(super) struct LightState<T> {
     mag: SensorUse,
     /// The bias-corrected rate (rad/s) at the correction, for the field's delay.
     rate: Vec3<T>,
+    /// The per-step factors of the last step length, kept across corrections.
+    steps: StepFactors<T>,
+}
+
+/// What the light mode's per-sample work computes from the step `Δt` alone, kept for the next
+/// sample with the same `Δt` (a fixed sample rate): two divisions and an exponential or its
+/// series fewer per sample, which is most of a soft-float core's cost of a sample (the values
+/// are the same numbers as computed afresh).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct StepFactors<T> {
+    /// The step these are for; 0 (no valid step) before the first.
+    dt: T,
+    /// `min(s²/Δt, 1)`: the rate-proportional noise per squared step rotation.
+    scale_noise: T,
+    /// The inertial low-pass's stage gain ([`LowPass::gain`]).
+    lowpass_gain: T,
+}
+
+impl<T: Real> StepFactors<T> {
+    fn for_step(&mut self, dt: T, pr: &Params<T>) -> Self {
+        if dt != self.dt {
+            let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
+            *self = Self {
+                dt,
+                scale_noise: (s2 / dt).min(T::ONE),
+                lowpass_gain: LowPass::gain(pr.accel_time_constant, dt),
+            };
+        }
+        *self
+    }
 }
 
 impl<T: Real> Mode<T> {
@@ -94,10 +124,10 @@ impl<T: Real> Estimator<T> {
         let pr = self.params;
         let s = &mut self.light;
         s.elapsed += dt;
+        let factors = s.steps.for_step(dt, &pr);
         // The full mode's rate-proportional noise per step, `θ²·min(s²/Δt, 1)`, summed.
         let theta2 = w.scale(dt).norm_squared();
-        let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
-        s.q_scale += theta2 * (s2 / dt).min(T::ONE);
+        s.q_scale += theta2 * factors.scale_noise;
         if out.gyro_saturated {
             let a = (pr.gyro_range * dt).min(T::PI);
             s.saturated += a * a;
@@ -111,8 +141,7 @@ impl<T: Real> Estimator<T> {
                 self.lowpass_stale = false;
             }
             if pr.accel_time_constant > T::ZERO {
-                let k = LowPass::gain(pr.accel_time_constant, dt);
-                self.accel_lp.update(a_gyro, k);
+                self.accel_lp.update(a_gyro, factors.lowpass_gain);
             } else {
                 self.accel_lp = LowPass::at(a_gyro);
             }
@@ -136,6 +165,7 @@ impl<T: Real> Estimator<T> {
         }
 
         let s = core::mem::take(&mut self.light);
+        self.light.steps = s.steps;
         let tc = s.elapsed;
         // The covariance over the interval, R̂ at its end.
         let f = self.attitude_enu().to_rotation_matrix().scale(-tc);
