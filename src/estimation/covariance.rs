@@ -41,6 +41,10 @@ impl<T: Real> Covariance<T> {
         let fc = f * self.bias;
         let fbt = f * self.cross.transpose();
         let a = &mut self.attitude.m;
+        #[allow(
+            clippy::needless_range_loop,
+            reason = "a triangle: each a[j][c] is written with its mirror a[c][j]"
+        )]
         for j in 0..3 {
             let fcj = fc.row(j);
             for c in j..3 {
@@ -132,7 +136,7 @@ impl<T: Real> Covariance<T> {
         let b = &mut self.cross.m;
         for j in 0..3 {
             for c in 0..3 {
-                b[j][c] = b[j][c] - p[j] * p[c + 3] * inv;
+                b[j][c] -= p[j] * p[c + 3] * inv;
             }
         }
         let cb = &mut self.bias.m;
