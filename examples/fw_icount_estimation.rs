@@ -143,6 +143,21 @@ mod firmware {
         net
     }
 
+    /// Net ticks of `update` over the inputs `xs` (made before), minus the same loop without it.
+    fn array_ticks<V: Copy, R>(xs: &[V], mut update: impl FnMut(V) -> R) -> u32 {
+        let t = ticks(|| {
+            for &x in xs {
+                black_box(update(black_box(x)));
+            }
+        });
+        let base = ticks(|| {
+            for &x in xs {
+                black_box(x);
+            }
+        });
+        t.saturating_sub(base)
+    }
+
     fn sin(x: f32) -> f32 {
         Real::sin(x)
     }
@@ -249,6 +264,34 @@ mod firmware {
                 black_box(rest.update(vec::<f32>(s, 0), vec::<f32>(s, 3), DT, &th));
             });
             table.push("part_rest_detector_f32", t, n);
+        }
+        {
+            // Fixed point against soft float on one per-sample piece (issue 30, item 1): the
+            // low-pass's two stages `y ← y + k·(x − y)` alone on the same specific forces,
+            // f32 and Q7.24 (m/s², range ±128; the gain 0.0023 quantised to 2⁻²⁴). The inputs
+            // are converted before the timed loop, as a fixed-point path would get them from
+            // the sensor's integers.
+            use gyrostat::Ring;
+            use gyrostat::fixed::Q24;
+            let mut motion = Motion::new();
+            let mut a32 = [Vec3::<f32>::ZERO; N];
+            let mut a24 = [Vec3::new(Q24::ZERO, Q24::ZERO, Q24::ZERO); N];
+            for (x, y) in a32.iter_mut().zip(a24.iter_mut()) {
+                *x = vec::<f32>(&motion.sample(), 3);
+                *y = Vec3::<Q24>::try_from_f32(*x).unwrap_or(*y);
+            }
+            let k = LowPass::gain(3.0f32, DT);
+            let kq = Q24::try_from_f32(k).unwrap_or(Q24::ZERO);
+            let mut lp = LowPass::at(a32[0]);
+            let t = array_ticks(&a32, |x| black_box(lp.update(x, k)));
+            table.push("part_lowpass_stages_f32", t, n);
+            let (mut s1, mut s2) = (a24[0], a24[0]);
+            let t = array_ticks(&a24, |x| {
+                s1 += (x - s1).scale(kq);
+                s2 += (s1 - s2).scale(kq);
+                black_box(s2)
+            });
+            table.push("part_lowpass_stages_q24", t, n);
         }
 
         {

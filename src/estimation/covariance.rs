@@ -34,13 +34,30 @@ impl<T: Real> Covariance<T> {
     /// noise (`σ_g²·Δt`, isotropic, so the same in every frame) and the bias random walk.
     ///
     /// `A' = A + F Bᵀ + B Fᵀ + F C Fᵀ + q_θ I`, `B' = B + F C`, `C' = C + q_b I`.
+    ///
+    /// `A'` is formed in its upper triangle and mirrored (`(F C Fᵀ)ⱼₖ = (F C)ⱼ · Fₖ` for `j ≤ k`
+    /// only), so it is symmetric by construction.
     pub fn predict(&mut self, f: Mat3<T>, q_theta: T, q_bias: T) {
         let fc = f * self.bias;
         let fbt = f * self.cross.transpose();
-        let a = self.attitude + fbt + fbt.transpose() + fc * f.transpose();
-        self.attitude = symmetric(a) + Mat3::from_diagonal(Vec3::new(q_theta, q_theta, q_theta));
+        let a = &mut self.attitude.m;
+        #[allow(
+            clippy::needless_range_loop,
+            reason = "a triangle: each a[j][c] is written with its mirror a[c][j]"
+        )]
+        for j in 0..3 {
+            let fcj = fc.row(j);
+            for c in j..3 {
+                let v = a[j][c] + fbt.m[j][c] + fbt.m[c][j] + fcj.dot(f.row(c));
+                let v = if j == c { v + q_theta } else { v };
+                a[j][c] = v;
+                a[c][j] = v;
+            }
+        }
         self.cross = self.cross + fc;
-        self.bias = self.bias + Mat3::from_diagonal(Vec3::new(q_bias, q_bias, q_bias));
+        for j in 0..3 {
+            self.bias.m[j][j] += q_bias;
+        }
     }
 
     /// Row `i` of `P` (0–2 attitude, 3–5 bias; larger indices read as 5).
@@ -97,34 +114,48 @@ impl<T: Real> Covariance<T> {
     pub fn update_component(&mut self, i: usize, r: T) -> [T; 6] {
         let i = i.min(5);
         let p = self.row(i);
-        let pi = p.get(i).copied().unwrap_or(T::ZERO);
+        let pi = p[i];
         let s = pi + r;
         if !(s.is_finite() && s > T::ZERO) {
             return [T::ZERO; 6];
         }
         let inv = T::ONE / s;
         let k = p.map(|v| v * inv);
-        let g = r * inv;
-        let ki = k.get(i).copied().unwrap_or(T::ZERO);
-        for j in 0..6 {
-            for c in j..6 {
-                let (pj, pc) = (p.get(j).copied(), p.get(c).copied());
-                let (kj, kc) = (k.get(j).copied(), k.get(c).copied());
-                let (Some(pj), Some(pc), Some(kj), Some(kc)) = (pj, pc, kj, kc) else {
-                    continue;
-                };
-                let v = if j == i && c == i {
-                    g * g * pi + r * ki * ki
-                } else if j == i {
-                    g * g * pc + r * ki * kc
-                } else if c == i {
-                    g * g * pj + r * kj * ki
-                } else {
-                    self.at(j, c) - pj * pc * inv
-                };
+        // Every entry of the upper triangle as `Pⱼₖ − (pⱼ pₖ)/s`, written to both triangles
+        // (each block read in its upper triangle only, before it is written), then row and
+        // column `i` over it in Joseph form.
+        let a = &mut self.attitude.m;
+        for j in 0..3 {
+            for c in j..3 {
+                let v = a[j][c] - p[j] * p[c] * inv;
                 let v = if j == c { v.max(T::ZERO) } else { v };
-                self.set_sym(j, c, v);
+                a[j][c] = v;
+                a[c][j] = v;
             }
+        }
+        let b = &mut self.cross.m;
+        for j in 0..3 {
+            for c in 0..3 {
+                b[j][c] -= p[j] * p[c + 3] * inv;
+            }
+        }
+        let cb = &mut self.bias.m;
+        for j in 0..3 {
+            for c in j..3 {
+                let v = cb[j][c] - p[j + 3] * p[c + 3] * inv;
+                let v = if j == c { v.max(T::ZERO) } else { v };
+                cb[j][c] = v;
+                cb[c][j] = v;
+            }
+        }
+        let g = r * inv;
+        let gg = g * g;
+        let ki = k[i];
+        for (j, (&pj, &kj)) in p.iter().zip(&k).enumerate() {
+            // `r Kⱼ Kᵢ` in the order of the lower triangle's loop (`j` the row).
+            let rk = if j < i { r * kj * ki } else { r * ki * kj };
+            let v = gg * pj + rk;
+            self.set_sym(i, j, if j == i { v.max(T::ZERO) } else { v });
         }
         k
     }
@@ -202,14 +233,16 @@ impl<T: Real> Covariance<T> {
     /// an error cannot be larger than its physical bound (an attitude error is within ±π,
     /// a bias within the filter's clip).
     pub fn bound(&mut self, attitude_max: T, bias_max: T) {
-        let mut d = [T::ONE; 6];
-        for (j, dj) in d.iter_mut().enumerate() {
-            let max = if j < 3 { attitude_max } else { bias_max };
-            let v = self.at(j, j);
-            if v > max {
-                *dj = (max / v).sqrt();
-            }
-        }
+        let scale = |v: T, max: T| if v > max { (max / v).sqrt() } else { T::ONE };
+        let (a, c) = (&self.attitude.m, &self.bias.m);
+        let d = [
+            scale(a[0][0], attitude_max),
+            scale(a[1][1], attitude_max),
+            scale(a[2][2], attitude_max),
+            scale(c[0][0], bias_max),
+            scale(c[1][1], bias_max),
+            scale(c[2][2], bias_max),
+        ];
         if d.iter().all(|&x| x == T::ONE) {
             return;
         }
@@ -222,9 +255,4 @@ impl<T: Real> Covariance<T> {
             }
         }
     }
-}
-
-/// `(M + Mᵀ)/2`.
-fn symmetric<T: Real>(m: Mat3<T>) -> Mat3<T> {
-    (m + m.transpose()).scale(T::HALF)
 }

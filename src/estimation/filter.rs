@@ -567,13 +567,13 @@ impl<T: Real> Estimator<T> {
         };
         // What the low-pass filter left of non-gravitational acceleration shows in its norm.
         let g = T::from_f64(GRAVITY);
-        let residual = (v.norm() - g).abs() / g;
+        let residual = (length(v) - g).abs() / g;
         if residual > reject {
             return SensorUse::Disturbed;
         }
         let v = self.q_corr.rotate(v);
         // The rotation taking v to +z: about (v_y, −v_x, 0) by the angle between v and z.
-        let h = v.x.hypot(v.y);
+        let h = horizontal(v);
         let angle = h.atan2(v.z);
         let (ex, ey) = if h > T::ZERO {
             (v.y * angle / h, -v.x * angle / h)
@@ -607,7 +607,7 @@ impl<T: Real> Estimator<T> {
 
     fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
         let pr = MagParams::of(&self.params);
-        let rate = (gyro - self.bias).norm();
+        let rate = length(gyro - self.bias);
         // (The light mode feeds the fit on every sample itself: `light.rs`.)
         if pr.mag_hard_iron_time > T::ZERO && self.params.mode == Mode::Full {
             self.hard_iron_clock += dt;
@@ -675,7 +675,7 @@ impl<T: Real> Estimator<T> {
         if disturbed && g <= T::ZERO {
             return SensorUse::Disturbed;
         }
-        let h = m.x.hypot(m.y);
+        let h = horizontal(m);
         if h <= T::ZERO {
             return SensorUse::Disturbed;
         }
@@ -930,6 +930,19 @@ impl<T: Copy> MagParams<T> {
 
 /// The norm and dip angle (rad, positive below the horizontal) of an earth-frame (ENU) field.
 fn norm_dip<T: Real>(m: Vec3<T>) -> (T, T) {
-    let h = m.x.hypot(m.y);
-    (m.norm(), (-m.z).atan2(h))
+    (length(m), (-m.z).atan2(horizontal(m)))
+}
+
+/// `|v| = √(x² + y² + z²)` for the estimator's vectors, whose squares are finite (the checked
+/// samples and what is made of them: rotated, low-passed, a bias or offset removed). One square
+/// root where [`Vec3::norm`] takes two overflow-safe `hypot`s (libm's f32 `hypot` works in f64:
+/// about 400 instructions each on a single-precision FPU, more in soft float); the result
+/// differs from it by rounding only. A square that overflows gives `+∞`.
+pub(super) fn length<T: Real>(v: Vec3<T>) -> T {
+    v.norm_squared().sqrt()
+}
+
+/// The horizontal norm `√(x² + y²)` of an earth-frame vector (as [`length`]).
+pub(super) fn horizontal<T: Real>(v: Vec3<T>) -> T {
+    (v.x * v.x + v.y * v.y).sqrt()
 }

@@ -25,7 +25,8 @@
 //! low-pass filter) and a valid magnetometer sample with the report of the last correction.
 
 use super::{
-    Estimator, GRAVITY, Gains, HARD_IRON_FEED_STEP, MAG_DELAY_MAX, Mode, Outcome, SensorUse,
+    Estimator, GRAVITY, Gains, HARD_IRON_FEED_STEP, MAG_DELAY_MAX, Mode, Outcome, Params,
+    SensorUse, horizontal, length,
 };
 use crate::estimation::lowpass::LowPass;
 use crate::{Real, Vec3};
@@ -47,6 +48,36 @@ pub(super) struct LightState<T> {
     mag: SensorUse,
     /// The bias-corrected rate (rad/s) at the correction, for the field's delay.
     rate: Vec3<T>,
+    /// The per-step factors of the last step length, kept across corrections.
+    steps: StepFactors<T>,
+}
+
+/// What the light mode's per-sample work computes from the step `Δt` alone, kept for the next
+/// sample with the same `Δt` (a fixed sample rate): two divisions and an exponential or its
+/// series fewer per sample, which is most of a soft-float core's cost of a sample (the values
+/// are the same numbers as computed afresh).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct StepFactors<T> {
+    /// The step these are for; 0 (no valid step) before the first.
+    dt: T,
+    /// `min(s²/Δt, 1)`: the rate-proportional noise per squared step rotation.
+    scale_noise: T,
+    /// The inertial low-pass's stage gain ([`LowPass::gain`]).
+    lowpass_gain: T,
+}
+
+impl<T: Real> StepFactors<T> {
+    fn for_step(&mut self, dt: T, pr: &Params<T>) -> Self {
+        if dt != self.dt {
+            let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
+            *self = Self {
+                dt,
+                scale_noise: (s2 / dt).min(T::ONE),
+                lowpass_gain: LowPass::gain(pr.accel_time_constant, dt),
+            };
+        }
+        *self
+    }
 }
 
 impl<T: Real> Estimator<T> {
@@ -76,10 +107,10 @@ impl<T: Real> Estimator<T> {
         let pr = self.params;
         let s = &mut self.light;
         s.elapsed += dt;
+        let factors = s.steps.for_step(dt, &pr);
         // The full mode's rate-proportional noise per step, `θ²·min(s²/Δt, 1)`, summed.
         let theta2 = w.scale(dt).norm_squared();
-        let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
-        s.q_scale += theta2 * (s2 / dt).min(T::ONE);
+        s.q_scale += theta2 * factors.scale_noise;
         if out.gyro_saturated {
             let a = (pr.gyro_range * dt).min(T::PI);
             s.saturated += a * a;
@@ -93,8 +124,7 @@ impl<T: Real> Estimator<T> {
                 self.lowpass_stale = false;
             }
             if pr.accel_time_constant > T::ZERO {
-                let k = LowPass::gain(pr.accel_time_constant, dt);
-                self.accel_lp.update(a_gyro, k);
+                self.accel_lp.update(a_gyro, factors.lowpass_gain);
             } else {
                 self.accel_lp = LowPass::at(a_gyro);
             }
@@ -118,6 +148,7 @@ impl<T: Real> Estimator<T> {
         }
 
         let s = core::mem::take(&mut self.light);
+        self.light.steps = s.steps;
         let tc = s.elapsed;
         // The covariance over the interval, R̂ at its end.
         let f = self.attitude_enu().to_rotation_matrix().scale(-tc);
@@ -194,7 +225,7 @@ impl<T: Real> Estimator<T> {
     fn tilt_update(&mut self, v: Vec3<T>, dt: T, x: &mut [T; 6]) -> SensorUse {
         let pr = self.params;
         let g = T::from_f64(GRAVITY);
-        let residual = (v.norm() - g).abs() / g;
+        let residual = (length(v) - g).abs() / g;
         if residual > pr.accel_reject {
             return SensorUse::Disturbed;
         }
@@ -221,7 +252,7 @@ impl<T: Real> Estimator<T> {
 /// The rotation vector (x, y parts) taking the earth-frame vector `v` to +z: about
 /// `(v_y, −v_x, 0)` by the angle between `v` and z.
 fn tilt_error<T: Real>(v: Vec3<T>) -> (T, T) {
-    let h = v.x.hypot(v.y);
+    let h = horizontal(v);
     let angle = h.atan2(v.z);
     if h > T::ZERO {
         (v.y * angle / h, -v.x * angle / h)
