@@ -26,13 +26,15 @@
 mod firmware {
     use board::{entry, hprintln};
     use core::hint::black_box;
-    use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, IncrementScale, Q30};
+    use gyrostat::fixed::{IncrementQuantizer, IncrementScale};
+    use gyrostat::propagation::CarriedAttitude;
     use gyrostat::propagation::coning::{
         four_sample_terms, one_plus_previous_terms, three_sample_terms,
     };
     use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
     use gyrostat::propagation::normalization::norm_squared_deviation;
     use gyrostat::propagation::{ConingAccumulator, IncrementIntegrator, Normalization};
+    use gyrostat::real::Q30;
     use gyrostat::{Mat3, UnitQuat, Vec3};
 
     mod board {

@@ -212,10 +212,11 @@ mod firmware {
 
         {
             // Fixed point (Q1.30), the same operations and operands as the f32 rows above.
-            use gyrostat::fixed::{CarriedAttitude, Q30};
+            use gyrostat::propagation::CarriedAttitude;
             use gyrostat::propagation::coning::{four_sample_terms, one_plus_previous_terms};
             use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
             use gyrostat::propagation::{ConingAccumulator, Normalization};
+            use gyrostat::real::Q30;
             let q = |q: UnitQuat<f32>| UnitQuat::<Q30>::try_from_f32(q).unwrap_or_default();
             let v3 = |v: Vec3<f32>| Vec3::<Q30>::try_from_f32(v).unwrap_or_default();
             let (aq, bq, vq, phiq) = (q(a), q(b), v3(v), v3(phi));
@@ -407,9 +408,10 @@ mod firmware {
             // LSB scale → calibration K·(raw − b·dt) → axis remap, in f32 and Q1.30; the clocks;
             // clipping; the unequal-interval propagation kernels.
             use gyrostat::Mat3;
-            use gyrostat::fixed::{IncrementQuantizer, IncrementScale, Q30};
+            use gyrostat::fixed::{IncrementQuantizer, IncrementScale};
             use gyrostat::propagation::coning::two_sample_unequal_coefficient;
             use gyrostat::propagation::kernels::{coning2_update_unequal, magnus4_step_unequal};
+            use gyrostat::real::Q30;
             use gyrostat::sensor::timing::micros_to_q30;
             use gyrostat::sensor::{
                 AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, MicrosClock,

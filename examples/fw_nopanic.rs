@@ -282,11 +282,12 @@ mod firmware {
             // Fixed point (Q1.30): conversions with their typed errors, the integer hot path,
             // the raw-register scale, every rule, the accumulator.
             use gyrostat::Ring;
-            use gyrostat::fixed::{IncrementScale, Q24, Q30, increment_from_rate};
+            use gyrostat::fixed::{IncrementScale, increment_from_rate};
             use gyrostat::propagation::coning::rotation_vector_for;
             use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
             use gyrostat::propagation::normalization::norm_squared_deviation;
             use gyrostat::propagation::{ConingAccumulator, Normalization};
+            use gyrostat::real::{Q24, Q30};
             let norm = black_box(Normalization::Fast);
             sink(Q30::try_from_f64(black_box(3.0)));
             sink(Q30::try_from_f32(black_box(f32::NAN)));
@@ -346,11 +347,12 @@ mod firmware {
             // The sensor layer (`gyrostat::sensor`) and the unequal-interval kernels: every
             // entry point with its typed errors, f32 and Q1.30.
             use gyrostat::Mat3;
-            use gyrostat::fixed::{IncrementQuantizer, IncrementScale, Q30};
+            use gyrostat::fixed::{IncrementQuantizer, IncrementScale};
             use gyrostat::propagation::coning::{
                 two_sample_unequal_coefficient, two_sample_unequal_terms,
             };
             use gyrostat::propagation::kernels::{coning2_update_unequal, magnus4_step_unequal};
+            use gyrostat::real::Q30;
             use gyrostat::sensor::timing::{micros_to_q30, micros_to_seconds};
             use gyrostat::sensor::{
                 AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration,

@@ -69,7 +69,9 @@ fn scenario_start() -> [f64; 4] {
 fn run_scenario(
     out: &mut dyn FnMut(core::fmt::Arguments<'_>),
 ) -> Result<(), gyrostat::Error> {
-    use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
+    use gyrostat::fixed::IncrementQuantizer;
+    use gyrostat::propagation::CarriedAttitude;
+    use gyrostat::real::Q30;
     use gyrostat::propagation::kernels::coning2_update;
     use gyrostat::propagation::normalization::norm_squared_deviation;
     use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};

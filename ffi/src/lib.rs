@@ -41,10 +41,12 @@ use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
 use gyrostat::estimation::{
     EarthFrame, Estimator, FieldThresholds, Gains, Mode, Outcome, Params, RestThresholds, SensorUse,
 };
-use gyrostat::fixed::{CarriedAttitude, Fixed, IncrementQuantizer, IncrementScale, Q30};
+use gyrostat::fixed::{IncrementQuantizer, IncrementScale};
+use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
+use gyrostat::real::{Fixed, Q30};
 use gyrostat::rotation::{Euler, EulerSequence, EulerSolution, GimbalPolicy, Pole};
 use gyrostat::{Dcm, Error, Mat3, Quat, Real, RotationVector, UnitQuat, Vec3};
 

@@ -18,10 +18,12 @@ use std::process::Command;
 
 use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
 use gyrostat::estimation::{EarthFrame, Estimator, Outcome, Params, SensorUse};
-use gyrostat::fixed::{CarriedAttitude, Fixed, IncrementQuantizer, IncrementScale, Q30};
+use gyrostat::fixed::{IncrementQuantizer, IncrementScale};
+use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
+use gyrostat::real::{Fixed, Q30};
 use gyrostat::rotation::{Euler, EulerSequence, EulerSolution, GimbalPolicy, Pole};
 use gyrostat::{Dcm, Error, Quat, Real, RotationVector, UnitQuat, Vec3};
 

@@ -11,11 +11,13 @@ use std::fmt::Debug;
 use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 
-use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
+use gyrostat::fixed::IncrementQuantizer;
+use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
     RateIntegrator, RateMethod,
 };
+use gyrostat::real::Q30;
 use gyrostat::{Quat, Real, UnitQuat, Vec3};
 
 use crate::{RowError, array2, rows};

@@ -52,7 +52,7 @@
 //!   rate would integrate the rounding of its (identical) increment quaternion linearly. A
 //!   coning rule's update ([`UnitQuat::mul_exp_coning_unchecked`]) also forms its cross product exactly
 //!   and adds it to the increments at 2⁻³³, so the small coning term is not rounded to 2⁻³⁰.
-//! - [`CarriedAttitude`] carries the residuals of the rotation vector's, the increment's and the
+//! - [`CarriedAttitude`](crate::propagation::CarriedAttitude) carries the residuals of the rotation vector's, the increment's and the
 //!   attitude's roundings into the next update and folds the renormalisation into the increment
 //!   (see "Rounding bias" below); [`IncrementQuantizer`] converts increments with the remainder
 //!   carried.
@@ -70,7 +70,7 @@
 //! `(2ᵏ⁺¹ + 4)u` for `k` halvings, 68u at `k = 5`). The other formats (`Fixed<F>`,
 //! `6 ≤ F ≤ 30`, checked at compile time) reduce an angle beyond π modulo 2π first and take the
 //! exponential past the series in Q3.28 (Q2.29 for `F = 29`), so theirs is within 80 units of
-//! that format plus their own rounding (the `oracles` campaign of `host-tests`). Propagated with [`CarriedAttitude`] from increments
+//! that format plus their own rounding (the `oracles` campaign of `host-tests`). Propagated with [`CarriedAttitude`](crate::propagation::CarriedAttitude) from increments
 //! converted by an [`IncrementQuantizer`] (what `propagate --fixed` runs), the attitude has no
 //! rounding bias: over 60 s at 1 kHz a constant rate ends within 5e-8 rad of the exact attitude
 //! (f32: 1e-6 to 7e-4), and under classical coning every rule reproduces the f64 error, drift
@@ -102,7 +102,7 @@
 //!
 //! The fix is at each mechanism, exact in integers: [`IncrementQuantizer`] converts increments
 //! with the remainder carried (the sum of the converted increments stays within 2⁻³¹ rad of the
-//! sum of the given ones); [`CarriedAttitude`] keeps the residual of each of the three roundings
+//! sum of the given ones); [`CarriedAttitude`](crate::propagation::CarriedAttitude) keeps the residual of each of the three roundings
 //! inside an update (10 words beside the attitude) and adds it to the next update's value before
 //! rounding, and folds the renormalisation into the increment, `(cos(θ/2), u)·(1 + e)`, so that
 //! the attitude is rounded once per update. A wider attitude (an `i64` Q1.62) would remove the
@@ -130,7 +130,7 @@
 //! |---|---:|---:|---:|---:|---:|---:|
 //! | quaternion product | 3261 | 606 | 1874 | 175 | 42 | 172 |
 //! | 2-sample coning update (rule, exp, product, renormalisation) | 9052 | 1941 | 5143 | 705 | 102 | 702 |
-//! | the same, carried ([`CarriedAttitude::coning2_update`]; all six columns from one later image) | 9051 | 1854 | 5150 | 683 | 92 | 670 |
+//! | the same, carried ([`CarriedAttitude::coning2_update`](crate::propagation::CarriedAttitude::coning2_update); all six columns from one later image) | 9051 | 1854 | 5150 | 683 | 92 | 670 |
 //!
 //! # When to choose fixed point
 //! On a core without an FPU (Cortex-M0/M0+, M3), for the strapdown attitude update from gyro
@@ -142,7 +142,8 @@
 //! rates beyond the ranges above.
 //!
 //! ```
-//! use gyrostat::fixed::{IncrementScale, Q30};
+//! use gyrostat::fixed::IncrementScale;
+//! use gyrostat::real::Q30;
 //! use gyrostat::propagation::kernels::coning2_update;
 //! use gyrostat::UnitQuat;
 //!
@@ -161,17 +162,17 @@
 //! # Ok::<(), gyrostat::Error>(())
 //! ```
 
-mod carried;
 mod exp;
+mod quantizer;
 
-pub use crate::real::fixed::{Fixed, Q24, Q30};
-pub use carried::{CarriedAttitude, IncrementQuantizer};
+pub use quantizer::IncrementQuantizer;
 
 #[cfg(doc)]
 use crate::Ring;
 
 use crate::real::fixed::pow2_neg;
 use crate::real::wide::{mul_wide, round_shift, saturate};
+use crate::real::{Fixed, Q24, Q30};
 use crate::{Error, Quat, UnitQuat, Vec3};
 
 impl<const F: u32> Vec3<Fixed<F>> {

@@ -3,7 +3,9 @@
 //! [`CompensatedAttitude`] (its compensated updates). The integrators are generic over it, so
 //! one integrator serves both.
 
-use crate::propagation::compensated::{CompensatedAttitude, advance_compensated, rule_vector};
+use crate::propagation::compensated_attitude::{
+    CompensatedAttitude, advance_compensated, rule_vector,
+};
 use crate::propagation::coning::ConingRule;
 use crate::propagation::kernels::{advance_plain, apply_rule};
 use crate::propagation::normalization::Normalization;

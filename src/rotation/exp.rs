@@ -13,7 +13,7 @@
 use crate::{Error, Quat, Real, Ring, UnitQuat, Vec3};
 
 /// The scalar types the exponential map runs on, with their per-type kernels: f32 and f64
-/// (every [`Real`]) and the fixed-point [`crate::fixed::Fixed`].
+/// (every [`Real`]) and the fixed-point [`crate::real::Fixed`].
 ///
 /// The map itself, [`UnitQuat::exp_unchecked`], is one generic series below
 /// [`Ring::EXP_SERIES_MAX_SQ`]; past it, and in the attitude update `q ⊗ exp(φ)`, each kind of

@@ -8,10 +8,10 @@
 //! (exact in f64), so the comparisons measure the fixed-point arithmetic, not input rounding,
 //! except where a test says otherwise.
 
-use gyrostat::fixed::Q30;
 use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
 use gyrostat::propagation::normalization::norm_squared_deviation;
 use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
+use gyrostat::real::Q30;
 use gyrostat::{Error, Quat, Ring, UnitQuat, Vec3};
 use host_tests::cast::{self, v64, vec3};
 use host_tests::ref_propagation::{Coning, body_error, fit_slope};

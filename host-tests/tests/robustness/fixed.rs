@@ -13,11 +13,12 @@
 //! built with overflow checks in the host test profiles (release: `Cargo.toml`; debug: always),
 //! so an overflowing `i32`/`i64` operation would panic and be reported as a panic.
 
-use gyrostat::fixed::{Fixed, IncrementScale, Q24, Q30, increment_from_rate};
+use gyrostat::fixed::{IncrementScale, increment_from_rate};
 use gyrostat::propagation::coning::{four_sample, one_plus_previous, three_sample, two_sample};
 use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
 use gyrostat::propagation::normalization::norm_squared_deviation;
 use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
+use gyrostat::real::{Fixed, Q24, Q30};
 use gyrostat::{Error, Quat, Ring, UnitQuat, Vec3};
 use host_tests::campaign::*;
 use host_tests::family;

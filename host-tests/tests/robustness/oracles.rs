@@ -22,11 +22,11 @@ use gyrostat::dynamics::state::CompensatedState;
 use gyrostat::dynamics::{
     BodyHamiltonian, Drift, Gyrostat, Inertia, Integrator, Invariants, Quartic, State,
 };
-use gyrostat::fixed::Fixed;
 use gyrostat::propagation::kernels::rk4_step;
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
+use gyrostat::real::Fixed;
 use gyrostat::{Error, Quat, UnitQuat, Vec3};
 use host_tests::campaign::*;
 use host_tests::family;

@@ -9,11 +9,11 @@ use gyrostat::dynamics::state::CompensatedState;
 use gyrostat::dynamics::{
     BodyHamiltonian, Drift, Gyrostat, Inertia, Integrator, Invariants, Quartic, State,
 };
-use gyrostat::fixed::{Fixed, Q24, Q30};
 use gyrostat::propagation::kernels::{apply_rotation_vector, rk4_step};
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
+use gyrostat::real::{Fixed, Q24, Q30};
 use gyrostat::{Error, Quat, Real, UnitQuat, Vec3};
 
 /// `|q|` of a quaternion, in f64.

@@ -2,7 +2,8 @@
 //! whole raw → scale → calibration → remap chain agreeing across the formats.
 
 use super::Rng;
-use gyrostat::fixed::{IncrementQuantizer, IncrementScale, Q30};
+use gyrostat::fixed::{IncrementQuantizer, IncrementScale};
+use gyrostat::real::Q30;
 use gyrostat::sensor::{
     AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, RawScale,
 };

@@ -15,7 +15,8 @@ use std::io::{self, Write};
 use std::process::ExitCode;
 use std::str::FromStr;
 
-use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
+use gyrostat::fixed::IncrementQuantizer;
+use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::coning::{
     ConingTerms, two_sample_unequal_coefficient, two_sample_unequal_terms,
 };
@@ -26,6 +27,7 @@ use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
     RateIntegrator, RateMethod,
 };
+use gyrostat::real::Q30;
 use gyrostat::sensor::{AxisRemap, InertialCalibration, Interval, MicrosClock, SampleClock};
 use gyrostat::step_limit::MAX_STEP_ANGLE;
 use gyrostat::{Quat, Real, Ring, UnitQuat, Vec3};
@@ -103,13 +105,13 @@ OPTIONS:
                    sum of the converted increments stays within 2^-31 of the sum of the given
                    ones; |value| < 2 rad, else a row error), q0 is rounded likewise (after its
                    exact normalisation in f64), and the attitude is a
-                   gyrostat::fixed::CarriedAttitude: every update carries the low bits its
+                   gyrostat::propagation::CarriedAttitude: every update carries the low bits its
                    roundings discard into the next one and folds the fast renormalisation
                    q + q(1 - |q|^2)/2 into the increment, so the rounding does not drift.
                    The output is bit for bit what gyrostat's fixed-point firmware computes from
                    the same increments: every printed number is an exact multiple of 2^-30.
     --compensated  carry the attitude's rounding error beside it (compensated accumulation,
-                   gyrostat::propagation::compensated): every update adds its increment
+                   gyrostat::propagation::compensated_attitude): every update adds its increment
                    without losing its rounding, so an f32 attitude stays within about 1e-5 rad
                    over an hour at 1 kHz where the plain f32 attitude drifts up to 2e-2 rad (it
                    rounds q the same way again and again); the rate methods also take --dt's

@@ -66,7 +66,7 @@
 //!
 //! [`RateIntegrator::try_with_step_remainder`]: crate::propagation::RateIntegrator::try_with_step_remainder
 
-use crate::compensated::{
+use crate::error_free::{
     add_compensated, renormalize_compensated, renormalize_exact_factor, rotate_compensated,
     sixth_pair, two_sum,
 };
@@ -209,7 +209,7 @@ fn two_sum_vec<T: Real>(a: Vec3<T>, b: Vec3<T>) -> (Vec3<T>, Vec3<T>) {
 /// `a·s` as a compensated pair, component by component (Dekker's product).
 #[inline(always)]
 fn two_product_vec<T: Real>(a: Vec3<T>, s: T) -> (Vec3<T>, Vec3<T>) {
-    use crate::compensated::two_product;
+    use crate::error_free::two_product;
     let (x, ex) = two_product(a.x, s);
     let (y, ey) = two_product(a.y, s);
     let (z, ez) = two_product(a.z, s);
