@@ -107,7 +107,7 @@ fn run_scenario(
         }
         acc.push_unchecked(d);
         if acc.count() == TWO_SPEED_GROUP {
-            q_two_speed = q_two_speed.rotated_unchecked(acc.take(), fast);
+            q_two_speed = q_two_speed.mul_exp_unchecked(acc.take(), fast);
         }
         if (k + 1) % CHECK_EVERY == 0 {
             let [w, x, y, z] = q2.attitude().to_array().map(hex);

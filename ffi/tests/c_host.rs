@@ -18,13 +18,14 @@ use std::process::Command;
 
 use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
 use gyrostat::estimation::{EarthFrame, Estimator, Outcome, Params, SensorUse};
-use gyrostat::fixed::{IncrementQuantizer, IncrementScale};
+use gyrostat::fixed::IncrementQuantizer;
 use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
 use gyrostat::real::{Fixed, Q30};
 use gyrostat::rotation::{Euler, EulerSequence, EulerSolution, GimbalPolicy, Pole};
+use gyrostat::sensor::RawScale;
 use gyrostat::{Dcm, Error, Quat, Real, RotationVector, UnitQuat, Vec3};
 
 /// The scenario's input sequence (the same xorshift32 as `scenario.c`).
@@ -324,7 +325,7 @@ fn increments(r: &mut Rng, l: &mut Lines) {
         ConingRule::TwoSample,
         Normalization::Fast,
     );
-    let scale = IncrementScale::try_new(1.0653e-6).unwrap();
+    let scale = RawScale::<Q30>::try_new(1.0653e-6).unwrap();
     let mut quant = IncrementQuantizer::<30>::new();
     let (mut n32, mut n32c, mut n64, mut n30) = (0u32, 0u32, 0u32, 0u32);
     for k in 1..=203 {

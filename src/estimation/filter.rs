@@ -7,6 +7,7 @@ use super::hard_iron::HardIron;
 use super::init::{attitude_from_gravity, attitude_from_gravity_and_field};
 use super::lowpass::{LowPass, first_order_gain};
 use super::rest::{RestDetector, RestThresholds};
+use crate::propagation::Normalization;
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
 
 // The light mode (its own file; a child module for the estimator's private state).
@@ -842,8 +843,7 @@ impl<T: Real> Estimator<T> {
         let before = self.q_gyro;
         self.q_gyro = self
             .q_gyro
-            .mul_exp_unchecked(w.scale(dt))
-            .renormalize_fast();
+            .mul_exp_unchecked(w.scale(dt), Normalization::Fast);
         self.advance_grid(before, dt);
         let r = self.attitude_enu().to_rotation_matrix();
         let f = r.scale(-dt);
@@ -1261,8 +1261,7 @@ impl<T: Real> Estimator<T> {
         let q = self.attitude_enu();
         let d = self.params.gyro_delay;
         let q = if d > T::ZERO && self.initialized {
-            q.mul_exp_unchecked(self.lead_rate.scale(d))
-                .renormalize_fast()
+            q.mul_exp_unchecked(self.lead_rate.scale(d), Normalization::Fast)
         } else {
             q
         };

@@ -2,9 +2,8 @@
 //! [`IncrementQuantizer`], with the remainder of each conversion carried into the next. Why it
 //! exists and what was measured: the [module docs](super), "Rounding bias".
 
-use crate::fixed::IncrementScale;
-use crate::real::wide::{mul_wide, round_shift, saturate};
-use crate::real::{Fixed, Q30};
+use crate::real::Fixed;
+use crate::real::wide::round_shift;
 use crate::{Error, Vec3};
 
 /// Converts a stream of f64 increments to the fixed-point format with the rounding remainder of
@@ -40,32 +39,12 @@ use crate::{Error, Vec3};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct IncrementQuantizer<const F: u32> {
     /// The remainder of each component, units 2⁻⁶¹.
-    remainder: [i64; 3],
+    pub(crate) remainder: [i64; 3],
 }
 
 /// Fraction bits of the wide value an increment is first taken to.
-const WIDE: u32 = 61;
-
-impl IncrementQuantizer<30> {
-    /// A raw `[x, y, z]` increment register triple in Q1.30 rad, scaled by `scale` (as
-    /// [`IncrementScale::increment`]) with the remainder of the previous conversions added and
-    /// the new remainder kept: the scaled reading `raw · m / 2^shift` is exact in units of
-    /// 2⁻⁶¹ (`|raw · m| < 2⁴⁶`, times `2^(31 − shift) ≤ 2¹⁶`), so a reading that repeats does not
-    /// repeat its rounding. Infallible: the scale was checked so that no `i16` leaves the range
-    /// (a remainder of half a unit at the range's edge saturates).
-    pub fn quantize_raw(&mut self, scale: &IncrementScale, raw: [i16; 3]) -> Vec3<Q30> {
-        let k = WIDE - 30;
-        let (m, shift) = scale.parts();
-        let mut out = [0i32; 3];
-        for ((o, r), x) in out.iter_mut().zip(self.remainder.iter_mut()).zip(raw) {
-            let w = (mul_wide(i32::from(x), m) << (31 - shift)) + *r;
-            let q = round_shift(w, k);
-            *r = w - (q << k);
-            *o = saturate(q);
-        }
-        Vec3::new(Fixed(out[0]), Fixed(out[1]), Fixed(out[2]))
-    }
-}
+pub(crate) const QUANTIZER_WIDE: u32 = 61;
+const WIDE: u32 = QUANTIZER_WIDE;
 
 impl<const F: u32> IncrementQuantizer<F> {
     /// No remainder.
@@ -186,33 +165,5 @@ mod tests {
             Err(Error::NonFinite)
         );
         assert_eq!(quant, before);
-    }
-
-    #[test]
-    fn raw_readings_keep_the_running_sum() {
-        let scale = IncrementScale::try_new(1.0653e-6).unwrap();
-        let exact = scale.rad_per_lsb() * 2f64.powi(30); // units of 2⁻³⁰ per LSB
-        let mut quant = IncrementQuantizer::<30>::new();
-        let raw = [120i16, -4321, 7];
-        let mut sum = [0i64; 3];
-        let mut plain = [0i64; 3];
-        for n in 1..=100_000i64 {
-            let d = quant.quantize_raw(&scale, raw);
-            let p = scale.increment(raw);
-            for i in 0..3 {
-                sum[i] += i64::from(d.to_array()[i].to_bits());
-                plain[i] += i64::from(p.to_array()[i].to_bits());
-            }
-            for i in 0..3 {
-                let want = n as f64 * f64::from(raw[i]) * exact;
-                assert!(
-                    (sum[i] as f64 - want).abs() <= 0.5 + 1e-9 * want.abs(),
-                    "{n} {i}"
-                );
-            }
-        }
-        // Rounding each reading alone drifts (here by thousands of units over 10⁵ readings).
-        let want = 1e5 * f64::from(raw[1]) * exact;
-        assert!((plain[1] as f64 - want).abs() > 1000.0);
     }
 }

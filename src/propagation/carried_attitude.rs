@@ -6,12 +6,14 @@
 use crate::propagation::ConingTerms;
 use crate::propagation::attitude::{PropagatedAttitude, sealed::Propagate};
 use crate::propagation::coning::{ConingRule, coning_terms_for, two_sample_terms};
+use crate::propagation::kernels::sealed::Form;
+use crate::propagation::kernels::{RotationVectorForm, check_rotation_vector};
 use crate::propagation::normalization::Normalization;
 use crate::propagation::rate_samples::{RateMethod, Weights};
 use crate::real::Fixed;
 use crate::real::wide::{mul_wide, round_shift, saturate};
 use crate::rotation::half_angle_series;
-use crate::{Real, Ring, UnitQuat, Vec3};
+use crate::{Error, Real, Ring, UnitQuat, Vec3};
 
 /// Extra fraction bits of the rotation vector and of the rotation increment inside an update
 /// (as in the plain fused update, `fixed/exp.rs`).
@@ -21,8 +23,8 @@ const FINE: u32 = 3;
 /// in the format, what firmware reads and logs) and the low bits that each update's roundings
 /// discarded, added back into the next update (error feedback, exact in integers).
 ///
-/// Three roundings of the plain update ([`UnitQuat::mul_exp_coning_unchecked`] +
-/// [`Normalization::Fast`]) repeat their error update after update when the motion repeats or
+/// Three roundings of the plain update ([`UnitQuat::mul_exp_unchecked`] of the
+/// [`ConingTerms`] with [`Normalization::Fast`]) repeat their error update after update when the motion repeats or
 /// changes slowly, and so integrate into a drift (measured, see the [`crate::fixed`] docs); here
 /// each keeps its residual:
 /// - the coning term `lever × last`, formed exactly and rounded to the fine scale 2^−(F+3): its
@@ -108,28 +110,62 @@ impl<const F: u32> CarriedAttitude<F> {
         self.q
     }
 
-    /// `q ← q ⊗ exp(φ)` with the normalisation policy folded in (see the type docs).
-    /// Unchecked: the domain of [`UnitQuat::mul_exp_unchecked`]. Beyond the fused exponential's
+    /// `q ← q ⊗ exp(φ)` with the normalisation policy folded in (see the type docs): the update
+    /// of every attitude type under one name (as [`UnitQuat::mul_exp_unchecked`]). `φ` is any
+    /// [`RotationVectorForm`]: a plain vector, a coning rule's [`ConingTerms`] (the cross product
+    /// formed exactly, its residual carried) or a pair `(φ, φ_lo)` (added first).
+    /// Unchecked: the domain of [`UnitQuat::mul_exp_unchecked`];
+    /// [`CarriedAttitude::try_mul_exp`] is the checked form. Beyond the fused exponential's
     /// domain (a component of `φ` ≥ ¼ rad or `|φ| > 1/8` rad, no gyro update at ≥ 300 Hz) the
     /// plain update runs and the residuals restart at zero.
     #[inline]
-    pub fn rotated_unchecked(self, phi: Vec3<Fixed<F>>, norm: Normalization) -> Self {
-        let f = [phi.x.0, phi.y.0, phi.z.0].map(|s| i64::from(s) << FINE);
-        match self.update_fine(f, self.coning_lo, norm) {
-            Some(r) => r,
-            None => Self::new(norm.apply(self.q.mul_exp_unchecked(phi))),
+    pub fn mul_exp_unchecked<P: RotationVectorForm<Fixed<F>>>(
+        self,
+        phi: P,
+        norm: Normalization,
+    ) -> Self {
+        match phi.form() {
+            Form::Vector(v) => self.mul_exp_vector(v, norm),
+            Form::Coning(c) => self.mul_exp_coning(c, norm),
+            Form::Pair(hi, lo) => self.mul_exp_vector(hi + lo, norm),
         }
     }
 
-    /// `q ← q ⊗ exp(sum + lever × last)`, the update of a coning rule, with the coning term's
-    /// residual carried and the normalisation policy folded in. Unchecked, as
-    /// [`CarriedAttitude::rotated_unchecked`].
+    /// [`CarriedAttitude::mul_exp_unchecked`], checked.
+    ///
+    /// # Errors
+    /// As [`UnitQuat::try_mul_exp`]: [`Error::StepTooLong`] when `φ` turns by more than
+    /// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) (fixed point is always finite).
     #[inline]
-    pub fn rotated_coning_unchecked(
+    pub fn try_mul_exp<P: RotationVectorForm<Fixed<F>>>(
         self,
-        terms: ConingTerms<Fixed<F>>,
+        phi: P,
         norm: Normalization,
-    ) -> Self {
+    ) -> Result<Self, Error> {
+        check_rotation_vector(phi)?;
+        Ok(self.mul_exp_unchecked(phi, norm))
+    }
+
+    /// The normalisation policy alone (folded into an update by a zero rotation vector).
+    #[inline]
+    pub fn normalized(self, norm: Normalization) -> Self {
+        self.mul_exp_vector(Vec3::ZERO, norm)
+    }
+
+    /// The update by a plain vector.
+    #[inline]
+    fn mul_exp_vector(self, phi: Vec3<Fixed<F>>, norm: Normalization) -> Self {
+        let f = [phi.x.0, phi.y.0, phi.z.0].map(|s| i64::from(s) << FINE);
+        match self.update_fine(f, self.coning_lo, norm) {
+            Some(r) => r,
+            None => Self::new(self.q.mul_exp_unchecked(phi, norm)),
+        }
+    }
+
+    /// The update of a coning rule, `q ← q ⊗ exp(sum + lever × last)`, with the coning term's
+    /// residual carried.
+    #[inline]
+    fn mul_exp_coning(self, terms: ConingTerms<Fixed<F>>, norm: Normalization) -> Self {
         let (l, b, s) = (terms.lever, terms.last, terms.sum);
         // Exact, units 2^−2F (each difference of two products < 2⁶³), plus the carried residual
         // (|·| ≤ 2^(F−FINE−1)).
@@ -149,7 +185,7 @@ impl<const F: u32> CarriedAttitude<F> {
         }
         match self.update_fine(f, lo, norm) {
             Some(r) => r,
-            None => Self::new(norm.apply(self.q.mul_exp_coning_unchecked(s, l, b))),
+            None => Self::new(self.q.mul_exp_unchecked(terms, norm)),
         }
     }
 
@@ -160,7 +196,7 @@ impl<const F: u32> CarriedAttitude<F> {
     /// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) each).
     #[inline]
     pub fn coning2_update(self, t1: Vec3<Fixed<F>>, t2: Vec3<Fixed<F>>) -> Self {
-        self.rotated_coning_unchecked(two_sample_terms(t1, t2), Normalization::Fast)
+        self.mul_exp_unchecked(two_sample_terms(t1, t2), Normalization::Fast)
     }
 
     /// The carried update from the fine rotation vector `f` (units 2^−(F+3)) and the coning
@@ -258,9 +294,9 @@ impl<const F: u32> Propagate<Fixed<F>> for CarriedAttitude<F> {
                     [a] => *a,
                     s => s.iter().fold(Vec3::ZERO, |acc, t| acc + *t),
                 };
-                self.rotated_unchecked(phi, norm)
+                self.mul_exp_unchecked(phi, norm)
             }
-            (_, s) => self.rotated_coning_unchecked(coning_terms_for(previous, s), norm),
+            (_, s) => self.mul_exp_unchecked(coning_terms_for(previous, s), norm),
         }
     }
     /// Never called: fixed point has no rate methods (`Fixed` is not [`Real`]).

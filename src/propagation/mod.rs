@@ -20,7 +20,8 @@
 //! cone axis, measured in `host-tests/tests/propagation/coning.rs`.)
 //!
 //! Every exponential-map rule forms a body-frame rotation vector `φ` and then goes through one
-//! update kernel, [`kernels::apply_rotation_vector`]: `q ← normalise(q ⊗ exp(φ))`.
+//! update kernel, [`crate::UnitQuat::mul_exp_unchecked`]: `q ← normalise(q ⊗ exp(φ))`, the same name
+//! (and the checked `try_mul_exp`) on the [`CompensatedAttitude`] and the [`CarriedAttitude`].
 //! [`kinematics`] has the differential equation itself and the rate between two attitudes;
 //! [`normalization`] the renormalisation policy and the `|q|` health value.
 //!

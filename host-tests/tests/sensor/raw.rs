@@ -2,7 +2,7 @@
 //! whole raw → scale → calibration → remap chain agreeing across the formats.
 
 use super::Rng;
-use gyrostat::fixed::{IncrementQuantizer, IncrementScale};
+use gyrostat::fixed::IncrementQuantizer;
 use gyrostat::real::Q30;
 use gyrostat::sensor::{
     AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, RawScale,
@@ -66,22 +66,36 @@ fn clipping_policies() {
 #[test]
 fn lsb_scale_in_every_format() {
     let lsb = 1.0653e-6; // rad per LSB of an increment register
-    let s64 = RawScale::try_new(lsb).unwrap();
-    let s32 = RawScale::try_new(lsb as f32).unwrap();
-    let sq = IncrementScale::try_new(lsb).unwrap();
+    let s64 = RawScale::<f64>::try_new(lsb).unwrap();
+    let s32 = RawScale::<f32>::try_new(lsb).unwrap();
+    let sq = RawScale::<Q30>::try_new(lsb).unwrap();
     for r in (i16::MIN..=i16::MAX).step_by(7) {
         let exact = r as f64 * lsb;
         assert_eq!(s64.apply([r, 0, 0]).x, exact);
         let f = s32.apply([r, 0, 0]).x as f64;
         assert!((f - exact).abs() <= exact.abs() * 1.5 * f32::EPSILON as f64);
-        let q = sq.to_q30(r).to_f64();
+        let q = sq.reading(r).to_f64();
         // One rounding to 2⁻³¹ plus the scale's own relative 2⁻³¹.
         assert!((q - exact).abs() <= 2f64.powi(-31) + exact.abs() * 2f64.powi(-31));
     }
-    assert_eq!(RawScale::try_new(0.0), Err(Error::InvalidArgument));
-    assert_eq!(RawScale::try_new(-1.0f32), Err(Error::InvalidArgument));
-    assert_eq!(RawScale::try_new(f64::NAN), Err(Error::NonFinite));
-    assert_eq!(RawScale::try_new(f32::MAX), Err(Error::InvalidArgument));
+    assert_eq!(RawScale::<f64>::try_new(0.0), Err(Error::InvalidArgument));
+    assert_eq!(RawScale::<f32>::try_new(-1.0), Err(Error::InvalidArgument));
+    assert_eq!(RawScale::<f64>::try_new(f64::NAN), Err(Error::NonFinite));
+    assert_eq!(RawScale::<Q30>::try_new(f64::NAN), Err(Error::NonFinite));
+    // A full scale 32768·lsb beyond the type's range, or an lsb that rounds to 0 in it.
+    assert_eq!(
+        RawScale::<f32>::try_new(f64::from(f32::MAX)),
+        Err(Error::InvalidArgument)
+    );
+    assert_eq!(RawScale::<f32>::try_new(1e-50), Err(Error::InvalidArgument));
+    assert_eq!(
+        RawScale::<Q30>::try_new(2f64.powi(-14)),
+        Err(Error::OutOfRange)
+    );
+    // The stored LSB: rounded to f32 once, exact in f64, to 31 bits in Q1.30.
+    assert_eq!(s32.lsb(), f64::from(lsb as f32));
+    assert_eq!(s64.lsb(), lsb);
+    assert!((sq.lsb() / lsb - 1.0).abs() <= 2f64.powi(-31));
 }
 
 /// raw i16 increments → LSB scale → calibration (bias over the step) → remap, in f64, f32 and
@@ -113,9 +127,9 @@ fn chain_agrees_across_formats() {
     let calq = cal.try_to_q30().unwrap();
     let remap = AxisRemap::try_parse("y,-x,z").unwrap();
     let (s64, s32, sq) = (
-        RawScale::try_new(lsb).unwrap(),
-        RawScale::try_new(lsb as f32).unwrap(),
-        IncrementScale::try_new(lsb).unwrap(),
+        RawScale::<f64>::try_new(lsb).unwrap(),
+        RawScale::<f32>::try_new(lsb).unwrap(),
+        RawScale::<Q30>::try_new(lsb).unwrap(),
     );
     let dtq = Q30::try_from_f64(dt).unwrap();
     let mut quant = IncrementQuantizer::new();

@@ -20,9 +20,7 @@ use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::coning::{
     ConingTerms, two_sample_unequal_coefficient, two_sample_unequal_terms,
 };
-use gyrostat::propagation::kernels::{
-    apply_rotation_vector, cf4_step_unequal, magnus4_step_unequal, rk4_step_unequal,
-};
+use gyrostat::propagation::kernels::{cf4_step_unequal, magnus4_step_unequal, rk4_step_unequal};
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude,
     RateIntegrator, RateMethod,
@@ -1272,7 +1270,8 @@ impl<T: Real + Debug> TimedAttitude for UnitQuat<T> {
         (self * UnitQuat::exp_unchecked(phi)).renormalize()
     }
     fn rotated_coning(self, terms: ConingTerms<T>) -> Self {
-        apply_rotation_vector(self, terms, Normalization::Fast).renormalize()
+        self.mul_exp_unchecked(terms, Normalization::Fast)
+            .renormalize()
     }
     fn components(&self) -> [f64; 4] {
         self.to_array().map(T::to_f64)
@@ -1298,10 +1297,10 @@ impl TimedAttitude for CarriedAttitude<30> {
         })
     }
     fn rotated(self, phi: Vec3<Q30>) -> Self {
-        self.rotated_unchecked(phi, Normalization::Fast)
+        self.mul_exp_unchecked(phi, Normalization::Fast)
     }
     fn rotated_coning(self, terms: ConingTerms<Q30>) -> Self {
-        self.rotated_coning_unchecked(terms, Normalization::Fast)
+        self.mul_exp_unchecked(terms, Normalization::Fast)
     }
     fn components(&self) -> [f64; 4] {
         self.attitude().to_f64().to_array()
