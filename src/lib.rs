@@ -281,7 +281,7 @@
 //! | dynamics | [`dynamics`] | the body (inertia, Hamiltonian, gyrostat, state), the [`dynamics::integrators`] and the [`dynamics::closed_form`] on it, the step on the integrators | scalars, linear algebra, rotations, compensated arithmetic, step limits |
 //! | fixed point | [`fixed`] | the fixed-point formats' documentation and conversions, the raw increment scale and quantizer, Q1.30's exponential map | scalars, linear algebra, rotations |
 //! | sensor streams | [`sensor`] | timestamps and gap policy, calibration, mounting, raw registers and clipping, in f32, f64 and Q1.30, before the propagation core | scalars, linear algebra, rotations, fixed point |
-//! | estimation | [`estimation`] | the attitude and gyro-bias estimator: initialisation, covariance, rest detector, field monitor, the filter | scalars, linear algebra, rotations, propagation |
+//! | estimation | [`estimation`] | the attitude and gyro-bias estimator: initialisation, covariance, rest detector, field monitor, the filter | scalars, linear algebra, rotations, step limits, propagation, sensor streams |
 //! | integrations | `interop` (private; the features below) | conversions to and from nalgebra and mint, `defmt::Format` | scalars, linear algebra, rotations |
 //!
 //! # Data path

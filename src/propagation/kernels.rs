@@ -43,8 +43,9 @@ use crate::{Error, Quat, Real, Ring, UnitQuat, Vec3};
 pub trait RotationVectorForm<T: Ring>: Copy + sealed::Sealed<T> {}
 
 pub(crate) mod sealed {
-    use crate::Vec3;
     use crate::propagation::coning::ConingTerms;
+    use crate::rotation::ExpMap;
+    use crate::{Quat, Vec3};
 
     /// A rotation vector's form, taken apart by each attitude type's update.
     pub enum Form<T> {
@@ -59,12 +60,24 @@ pub(crate) mod sealed {
     pub trait Sealed<T> {
         /// The form.
         fn form(self) -> Form<T>;
+        /// `q ⊗ exp(φ)`, not renormalised: the plain update of each form, the
+        /// [`ExpMap`] kernel called directly.
+        fn mul_exp_onto(self, q: Quat<T>) -> Quat<T>
+        where
+            T: ExpMap;
     }
 
     impl<T> Sealed<T> for Vec3<T> {
         #[inline(always)]
         fn form(self) -> Form<T> {
             Form::Vector(self)
+        }
+        #[inline(always)]
+        fn mul_exp_onto(self, q: Quat<T>) -> Quat<T>
+        where
+            T: ExpMap,
+        {
+            T::mul_exp(q, self)
         }
     }
 
@@ -73,12 +86,26 @@ pub(crate) mod sealed {
         fn form(self) -> Form<T> {
             Form::Coning(self)
         }
+        #[inline(always)]
+        fn mul_exp_onto(self, q: Quat<T>) -> Quat<T>
+        where
+            T: ExpMap,
+        {
+            T::mul_exp_coning(q, self.sum, self.lever, self.last)
+        }
     }
 
     impl<T> Sealed<T> for (Vec3<T>, Vec3<T>) {
         #[inline(always)]
         fn form(self) -> Form<T> {
             Form::Pair(self.0, self.1)
+        }
+        #[inline(always)]
+        fn mul_exp_onto(self, q: Quat<T>) -> Quat<T>
+        where
+            T: ExpMap,
+        {
+            T::mul_exp(q, self.0 + self.1)
         }
     }
 }
@@ -136,13 +163,7 @@ impl<T: ExpMap> UnitQuat<T> {
     /// product exactly and adds it at that finer resolution ([`ExpMap::mul_exp_coning`]).
     #[inline(always)]
     pub fn mul_exp_unchecked<P: RotationVectorForm<T>>(self, phi: P, norm: Normalization) -> Self {
-        let q = self.into_quat();
-        let r = match phi.form() {
-            Form::Vector(v) => T::mul_exp(q, v),
-            Form::Coning(c) => T::mul_exp_coning(q, c.sum, c.lever, c.last),
-            Form::Pair(hi, lo) => T::mul_exp(q, hi + lo),
-        };
-        norm.apply(UnitQuat::new_unchecked(r))
+        norm.apply(UnitQuat::new_unchecked(phi.mul_exp_onto(self.into_quat())))
     }
 
     /// [`UnitQuat::mul_exp_unchecked`], checked.

@@ -43,7 +43,10 @@ pub trait ExpMap: Ring {
     /// component of the product is summed in 64 bits and rounded once, so that the rotation
     /// increment itself is never rounded to the format's resolution (a constant rate would
     /// otherwise integrate that rounding linearly).
-    #[inline]
+    // Always inlined: reached through the generic `mul_exp_unchecked` of every attitude type,
+    // it was left out of line in the estimator's update (29 more instructions per update on a
+    // Cortex-M4F, `fw_icount_estimation`, measured).
+    #[inline(always)]
     fn mul_exp(q: Quat<Self>, phi: Vec3<Self>) -> Quat<Self> {
         q * *UnitQuat::exp_unchecked(phi).as_quat()
     }

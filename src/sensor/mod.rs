@@ -30,6 +30,6 @@ pub mod variance;
 
 pub use calibration::{InertialCalibration, MagnetometerCalibration};
 pub use mounting::{AxisRemap, Mounting};
-pub use raw::{ClipGuard, ClipLimit, ClipPolicy, Clipped, RawScale};
+pub use raw::{ClipGuard, ClipLimit, ClipPolicy, Clipped, RawFormat, RawScale, Reading};
 pub use timing::{Interval, MicrosClock, SampleClock};
 pub use variance::{RestNoise, RunningVariance};

@@ -11,11 +11,15 @@
 //! A MEMS sensor that saturates reports its register's limit: the true value is at least that
 //! large. [`ClipLimit`] flags a reading whose magnitude reaches the configured full scale
 //! (default: `+32767` or `≤ −32767`, so `i16::MIN` too) per axis ([`Clipped`]), and the caller's
-//! [`ClipPolicy`] chooses what reaches the core:
+//! [`ClipPolicy`] chooses what reaches the core. One policy for every reading type ([`Reading`]):
+//! raw `i16` registers, and f32/f64 values against the sensor's range in physical units (the
+//! [estimator](crate::estimation::Estimator) saturates its gyroscope samples at
+//! [`Params::gyro_range`](crate::estimation::Params::gyro_range) this way).
 //!
 //! | policy | the core gets | when |
 //! |---|---|---|
 //! | [`ClipPolicy::Pass`] | the clipped reading as it is (its magnitude a lower bound) | short excursions where losing the sample is worse; the flags are still returned |
+//! | [`ClipPolicy::Saturate`] | each clipped axis set to `±limit` (no state: [`ClipLimit::saturate`]) | a value beyond the sensor's range, read in physical units (the estimator's gyroscope samples) |
 //! | [`ClipPolicy::HoldLast`] | each clipped axis replaced by that axis's last unclipped reading (a rate hold); a clip before any unclipped reading is passed | a gyro that clips briefly while rotating steadily |
 //! | [`ClipPolicy::Reject`] | nothing: [`Error::Clipped`] | the caller must re-initialise from an absolute reference |
 
@@ -23,7 +27,7 @@ use crate::fixed::IncrementQuantizer;
 use crate::fixed::quantizer::QUANTIZER_WIDE;
 use crate::real::wide::{mul_wide, round_shift, saturate};
 use crate::real::{Fixed, Q30};
-use crate::{Error, Ring, Vec3};
+use crate::{Error, Real, Ring, Vec3};
 
 /// Which axes of a reading are at the register's limit.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -40,49 +44,143 @@ impl Clipped {
     }
 }
 
-/// The full scale at which a register counts as clipped: a reading `r` with `r ≥ limit` or
-/// `r ≤ −limit` (so `i16::MIN` is clipped for every limit).
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct ClipLimit {
-    limit: i16,
-}
+/// The number type of a sensor reading that can clip: a raw register (`i16`) or a value already
+/// in physical units (f32, f64: a gyroscope rate against the sensor's range). Sealed.
+pub trait Reading: Copy + PartialEq + clip_sealed::Reading {}
 
-impl Default for ClipLimit {
-    fn default() -> Self {
-        Self::FULL_REGISTER
+impl Reading for i16 {}
+impl<T: Real> Reading for T {}
+
+pub(crate) mod clip_sealed {
+    use crate::Real;
+
+    /// The clipping arithmetic of a reading type.
+    pub trait Reading: Copy {
+        /// The limit of [`super::ClipLimit::default`]: the register's own for `i16`, none (∞)
+        /// for the floats.
+        fn default_limit() -> Self;
+        /// A usable limit: positive (and not NaN).
+        fn valid_limit(limit: Self) -> bool;
+        /// `r ≥ limit` or `r ≤ −limit`.
+        fn reaches(r: Self, limit: Self) -> bool;
+        /// `±limit` with the sign of `r`.
+        fn saturated(r: Self, limit: Self) -> Self;
+    }
+
+    impl Reading for i16 {
+        fn default_limit() -> i16 {
+            i16::MAX
+        }
+        fn valid_limit(limit: i16) -> bool {
+            limit > 0
+        }
+        #[inline(always)]
+        fn reaches(r: i16, limit: i16) -> bool {
+            // limit > 0 (checked when built), so the negation is exact; saturating keeps the
+            // compiler from seeing an overflow branch it cannot rule out.
+            r >= limit || r <= 0i16.saturating_sub(limit)
+        }
+        #[inline(always)]
+        fn saturated(r: i16, limit: i16) -> i16 {
+            if r < 0 {
+                0i16.saturating_sub(limit)
+            } else {
+                limit
+            }
+        }
+    }
+
+    impl<T: Real> Reading for T {
+        fn default_limit() -> T {
+            T::from_f64(f64::INFINITY)
+        }
+        fn valid_limit(limit: T) -> bool {
+            limit > T::ZERO
+        }
+        #[inline(always)]
+        fn reaches(r: T, limit: T) -> bool {
+            r.abs() >= limit
+        }
+        #[inline(always)]
+        fn saturated(r: T, limit: T) -> T {
+            if r < T::ZERO { -limit } else { limit }
+        }
     }
 }
 
-impl ClipLimit {
+/// The full scale at which a reading counts as clipped: a reading `r` with `r ≥ limit` or
+/// `r ≤ −limit` (so for `i16` the value `i16::MIN` is clipped for every limit). The reading type
+/// `T` is a raw register (`i16`, the default) or a value in f32/f64 (a rate against the
+/// gyroscope's range: what the [estimator](crate::estimation::Estimator) applies to its
+/// samples).
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClipLimit<T: Reading = i16> {
+    limit: T,
+}
+
+impl<T: Reading> Default for ClipLimit<T> {
+    /// The register's own limit for `i16` ([`ClipLimit::FULL_REGISTER`]); no limit (∞) for the
+    /// floats.
+    fn default() -> Self {
+        Self {
+            limit: T::default_limit(),
+        }
+    }
+}
+
+impl ClipLimit<i16> {
     /// The register's own limit: `+32767` and `−32767`, `−32768`.
     pub const FULL_REGISTER: Self = Self { limit: i16::MAX };
+}
 
-    /// A configured full scale (for a sensor that saturates below the register's range).
+impl<T: Reading> ClipLimit<T> {
+    /// A configured full scale (for a sensor that saturates below the register's range, or the
+    /// range of a reading in physical units; `∞` for the floats never clips).
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] for `limit ≤ 0`.
-    pub fn try_new(limit: i16) -> Result<Self, Error> {
-        if limit <= 0 {
+    /// [`Error::InvalidArgument`] for `limit ≤ 0` (or NaN).
+    pub fn try_new(limit: T) -> Result<Self, Error> {
+        if !T::valid_limit(limit) {
             return Err(Error::InvalidArgument);
         }
         Ok(Self { limit })
     }
 
+    /// A limit the caller has checked (positive, not NaN).
+    #[inline]
+    pub(crate) const fn new_unchecked(limit: T) -> Self {
+        Self { limit }
+    }
+
     /// The limit.
-    pub fn limit(&self) -> i16 {
+    pub fn limit(&self) -> T {
         self.limit
     }
 
     /// The clipped axes of a reading.
     #[inline]
-    pub fn check(&self, raw: [i16; 3]) -> Clipped {
-        // limit > 0 (checked when built), so the negation is exact; saturating keeps the compiler
-        // from seeing an overflow branch it cannot rule out.
-        let lo = 0i16.saturating_sub(self.limit);
+    pub fn check(&self, raw: [T; 3]) -> Clipped {
         Clipped {
-            axes: raw.map(|r| r >= self.limit || r <= lo),
+            axes: raw.map(|r| T::reaches(r, self.limit)),
         }
+    }
+
+    /// The reading with each clipped axis set to `±limit` (its sign kept; the reading's
+    /// magnitude is at least that), and the flags of the original reading: the
+    /// [`ClipPolicy::Saturate`] policy, which needs no state.
+    #[inline]
+    pub fn saturate(&self, raw: [T; 3]) -> ([T; 3], Clipped) {
+        let clipped = self.check(raw);
+        let mut out = raw;
+        if clipped.any() {
+            for (o, c) in out.iter_mut().zip(clipped.axes) {
+                if c {
+                    *o = T::saturated(*o, self.limit);
+                }
+            }
+        }
+        (out, clipped)
     }
 }
 
@@ -93,25 +191,28 @@ pub enum ClipPolicy {
     /// The clipped reading as it is.
     #[default]
     Pass,
+    /// Each clipped axis set to `±limit`, its sign kept ([`ClipLimit::saturate`]).
+    Saturate,
     /// Each clipped axis replaced by the last unclipped reading of that axis.
     HoldLast,
     /// [`Error::Clipped`].
     Reject,
 }
 
-/// A clipping guard on a stream of raw readings: the limit, the policy and the last unclipped
-/// reading of each axis (for [`ClipPolicy::HoldLast`]).
+/// A clipping guard on a stream of readings of type `T` (raw `i16` registers by default, or f32
+/// / f64 values): the limit, the policy and the last unclipped reading of each axis (for
+/// [`ClipPolicy::HoldLast`]).
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub struct ClipGuard {
-    limit: ClipLimit,
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct ClipGuard<T: Reading = i16> {
+    limit: ClipLimit<T>,
     policy: ClipPolicy,
-    last: [Option<i16>; 3],
+    last: [Option<T>; 3],
 }
 
-impl ClipGuard {
+impl<T: Reading> ClipGuard<T> {
     /// A guard with the given limit and policy.
-    pub fn new(limit: ClipLimit, policy: ClipPolicy) -> Self {
+    pub fn new(limit: ClipLimit<T>, policy: ClipPolicy) -> Self {
         Self {
             limit,
             policy,
@@ -123,7 +224,7 @@ impl ClipGuard {
     ///
     /// # Errors
     /// [`Error::Clipped`] under [`ClipPolicy::Reject`] when an axis is clipped.
-    pub fn filter(&mut self, raw: [i16; 3]) -> Result<([i16; 3], Clipped), Error> {
+    pub fn filter(&mut self, raw: [T; 3]) -> Result<([T; 3], Clipped), Error> {
         let clipped = self.limit.check(raw);
         if clipped.any() && self.policy == ClipPolicy::Reject {
             return Err(Error::Clipped);
@@ -132,8 +233,12 @@ impl ClipGuard {
         for ((o, last), c) in out.iter_mut().zip(self.last.iter_mut()).zip(clipped.axes) {
             if !c {
                 *last = Some(*o);
-            } else if let (ClipPolicy::HoldLast, Some(l)) = (self.policy, *last) {
-                *o = l;
+            } else {
+                match (self.policy, *last) {
+                    (ClipPolicy::HoldLast, Some(l)) => *o = l,
+                    (ClipPolicy::Saturate, _) => *o = T::saturated(*o, self.limit.limit),
+                    _ => {}
+                }
             }
         }
         Ok((out, clipped))

@@ -167,3 +167,47 @@ fn chain_agrees_across_formats() {
         assert!((sum32[k] - sum64[k]).abs() <= n as f64 * 4.0 * f32::EPSILON as f64 * 0.04);
     }
 }
+
+/// One clip policy for every reading type: f32 and f64 values against a range in physical units
+/// (as the estimator's gyroscope samples), with the same flags and policies as the registers.
+#[test]
+fn clipping_is_generic_over_the_reading() {
+    // f64: a range of 34.9 rad/s (2000 °/s).
+    let range = 2000f64.to_radians();
+    let limit = ClipLimit::<f64>::try_new(range).unwrap();
+    let (out, c) = limit.saturate([40.0, -35.0, 1.0]);
+    assert_eq!(c.axes, [true, true, false]);
+    assert_eq!(out, [range, -range, 1.0]);
+    // Exactly at the limit counts as clipped (as a register at its full scale).
+    assert_eq!(limit.check([range, 0.0, -range]).axes, [true, false, true]);
+    assert_eq!(ClipLimit::<f64>::try_new(0.0), Err(Error::InvalidArgument));
+    assert_eq!(
+        ClipLimit::<f32>::try_new(f32::NAN),
+        Err(Error::InvalidArgument)
+    );
+    // The floats' default limit is none (∞): nothing clips.
+    let none = ClipLimit::<f32>::default();
+    assert!(!none.check([f32::MAX, -f32::MAX, 0.0]).any());
+    // The stateful guard in f32, the four policies on the same stream.
+    let l32 = ClipLimit::<f32>::try_new(10.0).unwrap();
+    let stream = [[1.0f32, 2.0, 3.0], [12.0, 2.5, -11.0], [4.0, 10.0, 3.5]];
+    let run = |policy| {
+        let mut g = ClipGuard::new(l32, policy);
+        stream.map(|r| g.filter(r).map(|(o, _)| o))
+    };
+    let pass = run(ClipPolicy::Pass);
+    assert_eq!(pass[1], Ok([12.0, 2.5, -11.0]));
+    let sat = run(ClipPolicy::Saturate);
+    assert_eq!(sat[1], Ok([10.0, 2.5, -10.0]));
+    assert_eq!(sat[2], Ok([4.0, 10.0, 3.5]));
+    let hold = run(ClipPolicy::HoldLast);
+    assert_eq!(hold[1], Ok([1.0, 2.5, 3.0]));
+    assert_eq!(hold[2], Ok([4.0, 2.5, 3.5]));
+    let reject = run(ClipPolicy::Reject);
+    assert_eq!(reject[1], Err(Error::Clipped));
+    assert_eq!(reject[0], Ok([1.0, 2.0, 3.0]));
+    // Registers: Saturate sets a clipped axis to ±limit (i16::MIN to −limit).
+    let l16 = ClipLimit::<i16>::try_new(30000).unwrap();
+    let (out, c) = l16.saturate([31000, i16::MIN, 5]);
+    assert_eq!((out, c.axes), ([30000, -30000, 5], [true, true, false]));
+}
