@@ -99,7 +99,7 @@ pub(crate) mod sealed {
             norm: Normalization,
         ) -> Self {
             let (phi, phi_lo) = rule_vector(rule, previous, samples);
-            self.mul_exp_unchecked((phi, phi_lo), norm)
+            self.mul_exp_pair(phi, phi_lo, norm)
         }
         #[inline(always)]
         fn rates<const M: usize>(

@@ -196,7 +196,7 @@ impl<const F: u32> CarriedAttitude<F> {
     /// [`MAX_STEP_ANGLE`](crate::step_limit::MAX_STEP_ANGLE) each).
     #[inline]
     pub fn coning2_update(self, t1: Vec3<Fixed<F>>, t2: Vec3<Fixed<F>>) -> Self {
-        self.mul_exp_unchecked(two_sample_terms(t1, t2), Normalization::Fast)
+        self.mul_exp_coning(two_sample_terms(t1, t2), Normalization::Fast)
     }
 
     /// The carried update from the fine rotation vector `f` (units 2^−(F+3)) and the coning
@@ -294,9 +294,9 @@ impl<const F: u32> Propagate<Fixed<F>> for CarriedAttitude<F> {
                     [a] => *a,
                     s => s.iter().fold(Vec3::ZERO, |acc, t| acc + *t),
                 };
-                self.mul_exp_unchecked(phi, norm)
+                self.mul_exp_vector(phi, norm)
             }
-            (_, s) => self.mul_exp_unchecked(coning_terms_for(previous, s), norm),
+            (_, s) => self.mul_exp_coning(coning_terms_for(previous, s), norm),
         }
     }
     /// Never called: fixed point has no rate methods (`Fixed` is not [`Real`]).

@@ -149,16 +149,24 @@ impl<T: Real> CompensatedAttitude<T> {
     /// correction). Unchecked: the domain of [`UnitQuat::mul_exp_unchecked`];
     /// [`CompensatedAttitude::try_mul_exp`] is the checked form.
     #[inline]
-    pub fn mul_exp_unchecked<P: RotationVectorForm<T>>(
-        mut self,
-        phi: P,
-        norm: Normalization,
-    ) -> Self {
+    pub fn mul_exp_unchecked<P: RotationVectorForm<T>>(self, phi: P, norm: Normalization) -> Self {
         let (phi, phi_lo) = match phi.form() {
             Form::Vector(v) => (v, Vec3::ZERO),
             Form::Coning(c) => (c.sum, c.lever.cross(c.last)),
             Form::Pair(hi, lo) => (hi, lo),
         };
+        self.mul_exp_pair(phi, phi_lo, norm)
+    }
+
+    /// The update by a pair (the integrators' path: not generic, so that its inlining is the
+    /// compiler's choice per call site).
+    #[inline]
+    pub(crate) fn mul_exp_pair(
+        mut self,
+        phi: Vec3<T>,
+        phi_lo: Vec3<T>,
+        norm: Normalization,
+    ) -> Self {
         let mut q = self.q.into_quat();
         rotate_compensated(&mut q, &mut self.lo, phi, phi_lo);
         self.q = UnitQuat::new_unchecked(q);
@@ -185,8 +193,8 @@ impl<T: Real> CompensatedAttitude<T> {
     /// [`crate::propagation::CarriedAttitude::coning2_update`]. Unchecked, as there.
     #[inline]
     pub fn coning2_update(self, t1: Vec3<T>, t2: Vec3<T>) -> Self {
-        let pair = rule_vector(ConingRule::TwoSample, Vec3::ZERO, &[t1, t2]);
-        self.mul_exp_unchecked(pair, Normalization::Fast)
+        let (phi, phi_lo) = rule_vector(ConingRule::TwoSample, Vec3::ZERO, &[t1, t2]);
+        self.mul_exp_pair(phi, phi_lo, Normalization::Fast)
     }
 
     /// `q + (large + small)` in compensated form (an integrator's increment), then the
@@ -301,12 +309,12 @@ pub(crate) fn advance_compensated<T: Real, const M: usize>(
                     .scale(h)
                     .cross(w2.scale(h))
                     .scale(T::from_f64(SQRT_3 / 12.0));
-                q.mul_exp_unchecked((base, base_lo + commutator), norm)
+                q.mul_exp_pair(base, base_lo + commutator, norm)
             } else {
                 // φ₁,₂ = (h/4)(ω₁ + ω₂) ± (√3/6) h (ω₁ − ω₂): the CF4 weights ¼ ± √3/6.
                 let diff = (w1 - w2).scale(h * T::from_f64(SQRT_3 / 6.0));
-                q.mul_exp_unchecked((base, base_lo + diff), Normalization::None)
-                    .mul_exp_unchecked((base, base_lo - diff), norm)
+                q.mul_exp_pair(base, base_lo + diff, Normalization::None)
+                    .mul_exp_pair(base, base_lo - diff, norm)
             }
         }
         RateMethod::Rk4 => {

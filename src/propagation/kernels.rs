@@ -45,7 +45,7 @@ pub trait RotationVectorForm<T: Ring>: Copy + sealed::Sealed<T> {}
 pub(crate) mod sealed {
     use crate::propagation::coning::ConingTerms;
     use crate::rotation::ExpMap;
-    use crate::{Quat, Vec3};
+    use crate::{UnitQuat, Vec3};
 
     /// A rotation vector's form, taken apart by each attitude type's update.
     pub enum Form<T> {
@@ -60,9 +60,12 @@ pub(crate) mod sealed {
     pub trait Sealed<T> {
         /// The form.
         fn form(self) -> Form<T>;
-        /// `q ⊗ exp(φ)`, not renormalised: the plain update of each form, the
-        /// [`ExpMap`] kernel called directly.
-        fn mul_exp_onto(self, q: Quat<T>) -> Quat<T>
+        /// `q ⊗ exp(φ)`, not renormalised: the plain update of each form, through the rotation
+        /// layer's non-generic `UnitQuat::mul_exp_plain` / `mul_exp_coning_plain` (the call
+        /// chain the kernels had before the rename: taking the form apart with [`Sealed::form`]
+        /// instead cost the f32 coning updates 37 to 62 instructions and the estimator's update
+        /// 35 on a Cortex-M4F, measured with `fw_icount` and `fw_icount_estimation`).
+        fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T>
         where
             T: ExpMap;
     }
@@ -73,11 +76,11 @@ pub(crate) mod sealed {
             Form::Vector(self)
         }
         #[inline(always)]
-        fn mul_exp_onto(self, q: Quat<T>) -> Quat<T>
+        fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T>
         where
             T: ExpMap,
         {
-            T::mul_exp(q, self)
+            q.mul_exp_plain(self)
         }
     }
 
@@ -87,11 +90,11 @@ pub(crate) mod sealed {
             Form::Coning(self)
         }
         #[inline(always)]
-        fn mul_exp_onto(self, q: Quat<T>) -> Quat<T>
+        fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T>
         where
             T: ExpMap,
         {
-            T::mul_exp_coning(q, self.sum, self.lever, self.last)
+            q.mul_exp_coning_plain(self.sum, self.lever, self.last)
         }
     }
 
@@ -101,11 +104,11 @@ pub(crate) mod sealed {
             Form::Pair(self.0, self.1)
         }
         #[inline(always)]
-        fn mul_exp_onto(self, q: Quat<T>) -> Quat<T>
+        fn mul_exp_onto(self, q: UnitQuat<T>) -> UnitQuat<T>
         where
             T: ExpMap,
         {
-            T::mul_exp(q, self.0 + self.1)
+            q.mul_exp_plain(self.0 + self.1)
         }
     }
 }
@@ -163,7 +166,7 @@ impl<T: ExpMap> UnitQuat<T> {
     /// product exactly and adds it at that finer resolution ([`ExpMap::mul_exp_coning`]).
     #[inline(always)]
     pub fn mul_exp_unchecked<P: RotationVectorForm<T>>(self, phi: P, norm: Normalization) -> Self {
-        norm.apply(UnitQuat::new_unchecked(phi.mul_exp_onto(self.into_quat())))
+        norm.apply(phi.mul_exp_onto(self))
     }
 
     /// [`UnitQuat::mul_exp_unchecked`], checked.

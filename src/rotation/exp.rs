@@ -43,10 +43,7 @@ pub trait ExpMap: Ring {
     /// component of the product is summed in 64 bits and rounded once, so that the rotation
     /// increment itself is never rounded to the format's resolution (a constant rate would
     /// otherwise integrate that rounding linearly).
-    // Always inlined: reached through the generic `mul_exp_unchecked` of every attitude type,
-    // it was left out of line in the estimator's update (29 more instructions per update on a
-    // Cortex-M4F, `fw_icount_estimation`, measured).
-    #[inline(always)]
+    #[inline]
     fn mul_exp(q: Quat<Self>, phi: Vec3<Self>) -> Quat<Self> {
         q * *UnitQuat::exp_unchecked(phi).as_quat()
     }
@@ -127,6 +124,21 @@ impl<T: ExpMap> UnitQuat<T> {
         } else {
             Self::new_unchecked(T::exp_beyond_series(phi, n2))
         }
+    }
+}
+
+impl<T: ExpMap> UnitQuat<T> {
+    /// `self ⊗ exp(φ)`, not renormalised: [`ExpMap::mul_exp`] on the attitude (the plain update
+    /// behind `UnitQuat::mul_exp_unchecked` of [`crate::propagation`]).
+    #[inline]
+    pub(crate) fn mul_exp_plain(self, phi: Vec3<T>) -> Self {
+        Self::new_unchecked(T::mul_exp(self.into_quat(), phi))
+    }
+
+    /// `self ⊗ exp(sum + lever × last)`, not renormalised: [`ExpMap::mul_exp_coning`].
+    #[inline]
+    pub(crate) fn mul_exp_coning_plain(self, sum: Vec3<T>, lever: Vec3<T>, last: Vec3<T>) -> Self {
+        Self::new_unchecked(T::mul_exp_coning(self.into_quat(), sum, lever, last))
     }
 }
 
