@@ -218,8 +218,8 @@ mod firmware {
             black_box(coning2_update(attitude, t1, t2));
         }
         if links(GYRO2_Q30) {
-            use gyrostat::fixed::Q30;
             use gyrostat::propagation::kernels::coning2_update;
+            use gyrostat::real::Q30;
             let q =
                 UnitQuat::new_unchecked(Quat::from_array(inputs.attitude_q30.map(Q30::from_bits)));
             let [d1, d2] = black_box(DIRECTIONS_Q30);

@@ -72,7 +72,7 @@ mod firmware {
                 four_sample_terms, one_plus_previous_terms, three_sample_terms,
             };
             use gyrostat::propagation::kernels::{
-                self, apply_rotation_vector, cf4_step, coning2_update, magnus4_step, rk4_step,
+                self, cf4_step, coning2_update, magnus4_step, rk4_step,
             };
             use gyrostat::propagation::rate_samples::{gauss_rates, midpoint_rate};
             use gyrostat::propagation::{
@@ -110,21 +110,21 @@ mod firmware {
             count!(table, "prop_exp_step_fast_f32", || fast.apply(
                 kernels::step_constant_rate(black_box(a), black_box(w), black_box(dt))
             ));
-            count!(table, "prop_coning1_fast_f32", || apply_rotation_vector(
-                black_box(a),
-                one_plus_previous_terms(black_box(t1), black_box(t2)),
-                fast
-            ));
-            count!(table, "prop_coning3_fast_f32", || apply_rotation_vector(
-                black_box(a),
-                three_sample_terms(black_box(t1), black_box(t2), black_box(t3)),
-                fast
-            ));
-            count!(table, "prop_coning4_fast_f32", || apply_rotation_vector(
-                black_box(a),
-                four_sample_terms(black_box(t1), black_box(t2), black_box(t3), black_box(t4)),
-                fast
-            ));
+            count!(table, "prop_coning1_fast_f32", || black_box(a)
+                .mul_exp_unchecked(
+                    one_plus_previous_terms(black_box(t1), black_box(t2)),
+                    fast
+                ));
+            count!(table, "prop_coning3_fast_f32", || black_box(a)
+                .mul_exp_unchecked(
+                    three_sample_terms(black_box(t1), black_box(t2), black_box(t3)),
+                    fast
+                ));
+            count!(table, "prop_coning4_fast_f32", || black_box(a)
+                .mul_exp_unchecked(
+                    four_sample_terms(black_box(t1), black_box(t2), black_box(t3), black_box(t4)),
+                    fast
+                ));
             let mut acc = ConingAccumulator::<f32>::new();
             count!(table, "prop_two_speed_push_f32", || {
                 let mut x = black_box(acc);
@@ -134,7 +134,7 @@ mod firmware {
             acc.push_unchecked(t1);
             count!(table, "prop_two_speed_take_update_f32", || {
                 let mut x = black_box(acc);
-                apply_rotation_vector(black_box(a), x.take(), fast)
+                black_box(a).mul_exp_unchecked(x.take(), fast)
             });
             count!(table, "prop_magnus4_fast_f32", || {
                 let (w1, w2) = gauss_rates(black_box(&win), 2);
@@ -162,7 +162,7 @@ mod firmware {
             count!(table, "prop_exp_step_fast_compensated_f32", || black_box(
                 ca
             )
-            .rotated_unchecked(black_box(w).scale(black_box(dt)), fast));
+            .mul_exp_unchecked(black_box(w).scale(black_box(dt)), fast));
             let inc_plain = IncrementIntegrator::new(a, ConingRule::TwoSample, fast);
             let inc_comp = IncrementIntegrator::new(ca, ConingRule::TwoSample, fast);
             count!(table, "prop_integrator_coning2_f32", || {
@@ -212,10 +212,11 @@ mod firmware {
 
         {
             // Fixed point (Q1.30), the same operations and operands as the f32 rows above.
-            use gyrostat::fixed::{CarriedAttitude, Q30};
+            use gyrostat::propagation::CarriedAttitude;
             use gyrostat::propagation::coning::{four_sample_terms, one_plus_previous_terms};
-            use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
+            use gyrostat::propagation::kernels::coning2_update;
             use gyrostat::propagation::{ConingAccumulator, Normalization};
+            use gyrostat::real::Q30;
             let q = |q: UnitQuat<f32>| UnitQuat::<Q30>::try_from_f32(q).unwrap_or_default();
             let v3 = |v: Vec3<f32>| Vec3::<Q30>::try_from_f32(v).unwrap_or_default();
             let (aq, bq, vq, phiq) = (q(a), q(b), v3(v), v3(phi));
@@ -254,16 +255,16 @@ mod firmware {
                 carried
             )
             .coning2_update(black_box(t1), black_box(t2)));
-            count!(table, "prop_coning1_fast_q30", || apply_rotation_vector(
-                black_box(aq),
-                one_plus_previous_terms(black_box(t1), black_box(t2)),
-                fast
-            ));
-            count!(table, "prop_coning4_fast_q30", || apply_rotation_vector(
-                black_box(aq),
-                four_sample_terms(black_box(t1), black_box(t2), black_box(t3), black_box(t4)),
-                fast
-            ));
+            count!(table, "prop_coning1_fast_q30", || black_box(aq)
+                .mul_exp_unchecked(
+                    one_plus_previous_terms(black_box(t1), black_box(t2)),
+                    fast
+                ));
+            count!(table, "prop_coning4_fast_q30", || black_box(aq)
+                .mul_exp_unchecked(
+                    four_sample_terms(black_box(t1), black_box(t2), black_box(t3), black_box(t4)),
+                    fast
+                ));
             let acc = ConingAccumulator::<Q30>::new();
             count!(table, "prop_two_speed_push_q30", || {
                 let mut x = black_box(acc);
@@ -407,9 +408,10 @@ mod firmware {
             // LSB scale → calibration K·(raw − b·dt) → axis remap, in f32 and Q1.30; the clocks;
             // clipping; the unequal-interval propagation kernels.
             use gyrostat::Mat3;
-            use gyrostat::fixed::{IncrementQuantizer, IncrementScale, Q30};
+            use gyrostat::fixed::IncrementQuantizer;
             use gyrostat::propagation::coning::two_sample_unequal_coefficient;
             use gyrostat::propagation::kernels::{coning2_update_unequal, magnus4_step_unequal};
+            use gyrostat::real::Q30;
             use gyrostat::sensor::timing::micros_to_q30;
             use gyrostat::sensor::{
                 AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, MicrosClock,
@@ -434,8 +436,8 @@ mod firmware {
                 Vec3::new(1.01f32, 0.995, 1.003),
                 Vec3::new(0.002f32, -0.001, 0.0005),
             );
-            let lsb32 = RawScale::try_new(1.0653e-6f32);
-            let lsbq = IncrementScale::try_new(1.0653e-6);
+            let lsb32 = RawScale::<f32>::try_new(1.0653e-6);
+            let lsbq = RawScale::<Q30>::try_new(1.0653e-6);
             let raw = [1200i16, -4321, 77];
             let dtq = Q30::try_from_f64(1e-3);
             if let (Ok(remap), Ok(cal64), Ok(cal32), Ok(lsb32), Ok(lsbq), Ok(dtq)) =

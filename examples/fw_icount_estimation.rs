@@ -32,6 +32,7 @@ mod firmware {
     use cortex_m_rt::entry;
     use cortex_m_semihosting::debug;
     use gyrostat::estimation::{Covariance, Estimator, LowPass, Mode, Params, RestDetector};
+    use gyrostat::propagation::Normalization;
     use gyrostat::{Real, UnitQuat, Vec3};
 
     /// Sample period (s): 285.7 Hz, BROAD's rate.
@@ -241,7 +242,7 @@ mod firmware {
             let mut q = Motion::new().attitude();
             let t = sequence_ticks(|s| {
                 let w = vec::<f32>(s, 0);
-                q = black_box(q.mul_exp_unchecked(w.scale(DT)).renormalize_fast());
+                q = black_box(q.mul_exp_unchecked(w.scale(DT), Normalization::Fast));
             });
             table.push("part_prediction_f32", t, n);
             let mut p = Covariance::<f32>::diagonal(1e-4, 1e-5);

@@ -153,7 +153,7 @@ mod firmware {
         {
             use gyrostat::propagation::coning::rotation_vector_for;
             use gyrostat::propagation::exponential::step_constant_rate;
-            use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
+            use gyrostat::propagation::kernels::coning2_update;
             use gyrostat::propagation::kinematics::{
                 body_rate_between, lab_rate_between, quat_rate_body,
             };
@@ -167,7 +167,7 @@ mod firmware {
             sink(coning2_update(q, d, d));
             sink(rotation_vector_for(d, black_box(&[d, d, d, d, d][..])));
             sink(step_constant_rate(q, v, dt));
-            sink(apply_rotation_vector(q, d, norm));
+            sink(q.mul_exp_unchecked(d, norm));
             sink(body_rate_between(q, q, dt));
             sink(lab_rate_between(q, q, dt));
             sink(quat_rate_body(raw, v));
@@ -179,7 +179,7 @@ mod firmware {
                 Normalization::Fast,
                 Normalization::None,
             ] {
-                sink(CompensatedAttitude::new(q).rotated_unchecked(d, black_box(n)));
+                sink(CompensatedAttitude::new(q).mul_exp_unchecked(d, black_box(n)));
             }
             let mut acc = ConingAccumulator::new();
             sink(acc.push(d));
@@ -282,11 +282,13 @@ mod firmware {
             // Fixed point (Q1.30): conversions with their typed errors, the integer hot path,
             // the raw-register scale, every rule, the accumulator.
             use gyrostat::Ring;
-            use gyrostat::fixed::{IncrementScale, Q24, Q30, increment_from_rate};
+            use gyrostat::fixed::increment_from_rate;
             use gyrostat::propagation::coning::rotation_vector_for;
-            use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
+            use gyrostat::propagation::kernels::coning2_update;
             use gyrostat::propagation::normalization::norm_squared_deviation;
             use gyrostat::propagation::{ConingAccumulator, Normalization};
+            use gyrostat::real::{Q24, Q30};
+            use gyrostat::sensor::RawScale;
             let norm = black_box(Normalization::Fast);
             sink(Q30::try_from_f64(black_box(3.0)));
             sink(Q30::try_from_f32(black_box(f32::NAN)));
@@ -310,17 +312,13 @@ mod firmware {
             sink(norm_squared_deviation(qx));
             sink(UnitQuat::exp_unchecked(dx));
             sink(UnitQuat::exp_unchecked(big));
-            sink(qx.mul_exp_unchecked(big));
+            sink(qx.mul_exp_unchecked(big, Normalization::None));
             sink(coning2_update(qx, dx, dx));
             sink(rotation_vector_for(
                 dx,
                 black_box(&[dx, dx, dx, dx, dx][..]),
             ));
-            sink(apply_rotation_vector(
-                qx,
-                big,
-                black_box(Normalization::Exact),
-            ));
+            sink(qx.mul_exp_unchecked(big, black_box(Normalization::Exact)));
             sink(qx.to_f64());
             sink(vx.to_f32());
             every_rule(qx, dx, norm);
@@ -328,10 +326,10 @@ mod firmware {
             sink(acc.push(big));
             acc.push_unchecked(big);
             sink(acc.take());
-            if let Ok(scale) = IncrementScale::try_new(black_box(1e-6)) {
-                sink(scale.increment(black_box([i16::MIN, -1, i16::MAX])));
+            if let Ok(scale) = RawScale::<Q30>::try_new(black_box(1e-6)) {
+                sink(scale.apply(black_box([i16::MIN, -1, i16::MAX])));
             }
-            sink(IncrementScale::try_from_rate(
+            sink(RawScale::<Q30>::try_from_rate(
                 black_box(1e-3),
                 black_box(1.0),
             ));
@@ -346,11 +344,12 @@ mod firmware {
             // The sensor layer (`gyrostat::sensor`) and the unequal-interval kernels: every
             // entry point with its typed errors, f32 and Q1.30.
             use gyrostat::Mat3;
-            use gyrostat::fixed::{IncrementQuantizer, IncrementScale, Q30};
+            use gyrostat::fixed::IncrementQuantizer;
             use gyrostat::propagation::coning::{
                 two_sample_unequal_coefficient, two_sample_unequal_terms,
             };
             use gyrostat::propagation::kernels::{coning2_update_unequal, magnus4_step_unequal};
+            use gyrostat::real::Q30;
             use gyrostat::sensor::timing::{micros_to_q30, micros_to_seconds};
             use gyrostat::sensor::{
                 AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration,
@@ -398,7 +397,7 @@ mod firmware {
                 black_box(Vec3::new(0.01, 0.0, 0.0)),
             ) && let (Ok(calq), Ok(scale), Ok(dt)) = (
                 cal64.try_to_q30(),
-                IncrementScale::try_new(black_box(1e-6)),
+                RawScale::<Q30>::try_new(black_box(1e-6)),
                 Q30::try_from_f64(black_box(1e-3)),
             ) {
                 let mut quant = IncrementQuantizer::<30>::new();
@@ -430,7 +429,7 @@ mod firmware {
                     sink(g.filter(black_box([1, 5, 2])));
                 }
             }
-            if let Ok(sc) = RawScale::try_new(black_box(1e-3f32)) {
+            if let Ok(sc) = RawScale::<f32>::try_new(black_box(1e-3)) {
                 sink(sc.apply(black_box([i16::MIN, 0, i16::MAX])));
             }
             let d = black_box(Vec3::new(1e-3f32, -2e-3, 5e-4));

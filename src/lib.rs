@@ -18,7 +18,7 @@
 //! |---|---|
 //! | [strapdown attitude from gyro increments, in f32](#strapdown-attitude-from-gyro-increments-in-f32) | [`propagation::IncrementIntegrator`], [`propagation::ConingRule`], [`propagation::CompensatedAttitude`] |
 //! | [attitude from rate samples](#attitude-from-rate-samples) | [`propagation::RateIntegrator`], [`propagation::RateMethod`] |
-//! | [fixed point on a Cortex-M0](#fixed-point-on-a-cortex-m0) | [`fixed::Q30`], [`fixed::IncrementScale`], [`fixed::IncrementQuantizer`], [`fixed::CarriedAttitude`] |
+//! | [fixed point on a Cortex-M0](#fixed-point-on-a-cortex-m0) | [`real::Q30`], [`sensor::RawScale`], [`fixed::IncrementQuantizer`], [`propagation::CarriedAttitude`] |
 //! | [Euler angles, with gimbal lock](#euler-angles-with-gimbal-lock) | [`UnitQuat::to_euler`], [`rotation::EulerSequence`], [`rotation::GimbalPolicy`] |
 //! | [a gyrostat with a reaction wheel](#a-gyrostat-with-a-reaction-wheel) | [`dynamics::Gyrostat::with_wheels`], [`dynamics::Gyrostat::step_with`], [`dynamics::Control`] |
 //! | [a real sensor stream: timestamps, calibration, mounting](#a-real-sensor-stream-timestamps-calibration-mounting) | [`sensor::SampleClock`], [`sensor::MicrosClock`], [`sensor::InertialCalibration`], [`sensor::AxisRemap`], [`sensor::ClipGuard`], [`propagation::kernels::coning2_update_unequal`], [`propagation::kernels::magnus4_step_unequal`] |
@@ -66,17 +66,20 @@
 //!
 //! ## Fixed point on a Cortex-M0
 //! With no FPU, run the update in Q1.30 ([`fixed`]): the same generic functions take
-//! [`fixed::Q30`] instead of `f32`, in integer arithmetic only and with the same bits on every
+//! [`real::Q30`] instead of `f32`, in integer arithmetic only and with the same bits on every
 //! target. Raw sensor registers become Q1.30 increments through a scale checked once, with the
 //! rounding remainder carried from one reading to the next ([`fixed::IncrementQuantizer`]); the
-//! attitude is a [`fixed::CarriedAttitude`], which carries the low bits its roundings discard
+//! attitude is a [`propagation::CarriedAttitude`], which carries the low bits its roundings discard
 //! into the next update, so that neither drifts from rounding (the plain `UnitQuat<Q30>` with
 //! [`propagation::kernels::coning2_update`] does: see the [`fixed`] docs, "Rounding bias").
 //! ```
-//! use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, IncrementScale};
+//! use gyrostat::fixed::IncrementQuantizer;
+//! use gyrostat::propagation::CarriedAttitude;
+//! use gyrostat::real::Q30;
+//! use gyrostat::sensor::RawScale;
 //! use gyrostat::UnitQuat;
 //!
-//! let scale = IncrementScale::try_new(1.0653e-6)?; // the gyro's rad per LSB, checked once
+//! let scale = RawScale::<Q30>::try_new(1.0653e-6)?; // the gyro's rad per LSB, checked once
 //! let mut quant = IncrementQuantizer::new();
 //! let mut q = CarriedAttitude::new(UnitQuat::IDENTITY);
 //! let (r1, r2) = ([120i16, -40, 7], [118i16, -43, 9]); // two raw increment readings
@@ -253,8 +256,13 @@
 //! - **One name per conversion**: `X::from_unit_quat` and `X::to_unit_quat` (with `try_` where
 //!   they can fail) beside the `From`/`TryFrom` impls; one type per quantity
 //!   ([`rotation::AxisAngle::to_rotation_vector`] returns a [`RotationVector`]).
+//! - **One name for `q ⊗ exp(φ)`** on every attitude type: `mul_exp_unchecked(φ, norm)` (the
+//!   update, then the [`propagation::Normalization`] policy) and the checked
+//!   `try_mul_exp(φ, norm)`, on [`UnitQuat`], [`propagation::CompensatedAttitude`] and
+//!   [`propagation::CarriedAttitude`]; `φ` a vector, a coning rule's terms or a compensated pair
+//!   ([`propagation::RotationVectorForm`]).
 //! - Fixed point and the compensated f32 attitude use the float path's names
-//!   ([`fixed::Fixed`] is a [`Ring`]; [`propagation::CompensatedAttitude`] is given to the same
+//!   ([`real::Fixed`] is a [`Ring`]; [`propagation::CompensatedAttitude`] is given to the same
 //!   integrators as a `UnitQuat`).
 //!
 //! # Layers
@@ -264,16 +272,16 @@
 //!
 //! | layer | modules | contents | depends on |
 //! |---|---|---|---|
-//! | scalars | [`real`] | [`Ring`], [`Real`], their f32/f64 implementations and the fixed-point number [`fixed::Fixed`] | nothing |
+//! | scalars | [`real`] | [`Ring`], [`Real`], their f32/f64 implementations and the fixed-point number [`real::Fixed`] ([`real::Q30`], [`real::Q24`]) | nothing |
 //! | linear algebra | [`linalg`] | [`Vec3`], [`Mat3`], [`Complex`], [`Axis`] | scalars |
 //! | rotations | [`rotation`] | [`Quat`], [`UnitQuat`] and every representation; the exponential map ([`ExpMap`]) | scalars, linear algebra |
-//! | compensated arithmetic | `compensated` (private) | error-free sums and products, the compensated rotation update | scalars, linear algebra, rotations |
+//! | compensated arithmetic | `error_free` (private) | error-free sums and products, the compensated rotation update | scalars, linear algebra, rotations |
 //! | step limits | [`step_limit`] | the validity limit of a step, shared by the two layers below | scalars, linear algebra |
-//! | propagation | [`propagation`] | rules and interpolation, then the [`propagation::kernels`] and the compensated updates, the attitude trait, the integrators | scalars, linear algebra, rotations, compensated arithmetic, step limits |
+//! | propagation | [`propagation`] | rules and interpolation, then the [`propagation::kernels`], the compensated (f32/f64) and carried (fixed-point) attitudes, the attitude trait, the integrators | scalars, linear algebra, rotations, compensated arithmetic, step limits |
 //! | dynamics | [`dynamics`] | the body (inertia, Hamiltonian, gyrostat, state), the [`dynamics::integrators`] and the [`dynamics::closed_form`] on it, the step on the integrators | scalars, linear algebra, rotations, compensated arithmetic, step limits |
-//! | fixed point | [`fixed`] | the fixed-point formats, conversions and raw increment scale, Q1.30's exponential map, the carried attitude on the propagation kernels | scalars, linear algebra, rotations, propagation |
+//! | fixed point | [`fixed`] | the fixed-point formats' documentation and conversions, the raw increment scale and quantizer, Q1.30's exponential map | scalars, linear algebra, rotations |
 //! | sensor streams | [`sensor`] | timestamps and gap policy, calibration, mounting, raw registers and clipping, in f32, f64 and Q1.30, before the propagation core | scalars, linear algebra, rotations, fixed point |
-//! | estimation | [`estimation`] | the attitude and gyro-bias estimator: initialisation, covariance, rest detector, field monitor, the filter | scalars, linear algebra, rotations |
+//! | estimation | [`estimation`] | the attitude and gyro-bias estimator: initialisation, covariance, rest detector, field monitor, the filter | scalars, linear algebra, rotations, step limits, propagation, sensor streams |
 //! | integrations | `interop` (private; the features below) | conversions to and from nalgebra and mint, `defmt::Format` | scalars, linear algebra, rotations |
 //!
 //! # Data path
@@ -291,7 +299,7 @@
 //! |-------------|--------------|
 //! | *(none)*    | everything; math from `libm`, except f32 `sin`/`cos` from gyrostat's own f32 kernel ([`real`]) |
 //! | `micromath` | micromath's fast f32 `sin`/`cos`/`atan2`/`sqrt` instead of libm (see [`real`] for the measured errors) |
-//! | `defmt`     | `defmt::Format` for the foundation types ([`Vec3`], [`Mat3`], [`Complex`], [`Quat`], [`UnitQuat`], [`Su2`]), [`Error`], the propagation types ([`propagation::ConingRule`], [`propagation::Normalization`], [`propagation::RateMethod`], [`propagation::IncrementIntegrator`], [`propagation::ConingAccumulator`], [`propagation::RateIntegrator`]) and the fixed-point types ([`fixed::Fixed`], [`fixed::IncrementScale`]), the sensor clocks, calibrations and clipping types ([`sensor::SampleClock`], [`sensor::MicrosClock`], [`sensor::Interval`], [`sensor::InertialCalibration`], [`sensor::MagnetometerCalibration`], [`sensor::ClipGuard`], …); not [`sensor::AxisRemap`], [`sensor::Mounting`], the other rotation representations nor the dynamics types |
+//! | `defmt`     | `defmt::Format` for the foundation types ([`Vec3`], [`Mat3`], [`Complex`], [`Quat`], [`UnitQuat`], [`Su2`]), [`Error`], the propagation types ([`propagation::ConingRule`], [`propagation::Normalization`], [`propagation::RateMethod`], [`propagation::IncrementIntegrator`], [`propagation::ConingAccumulator`], [`propagation::RateIntegrator`]) and the fixed-point types ([`real::Fixed`], [`sensor::RawScale`], [`propagation::CarriedAttitude`]), the sensor clocks, calibrations and clipping types ([`sensor::SampleClock`], [`sensor::MicrosClock`], [`sensor::Interval`], [`sensor::InertialCalibration`], [`sensor::MagnetometerCalibration`], [`sensor::ClipGuard`], …); not [`sensor::AxisRemap`], [`sensor::Mounting`], the other rotation representations nor the dynamics types |
 //! | `nalgebra`  | `From`/`Into` nalgebra's `UnitQuaternion`, `Quaternion`, `Vector3`, `Matrix3` (no std) |
 //! | `mint`      | `From`/`Into` mint's types, so glam, cgmath and others convert for free |
 //!
@@ -303,9 +311,9 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
-mod compensated;
 pub mod dynamics;
 mod error;
+mod error_free;
 pub mod estimation;
 pub mod fixed;
 mod interop;

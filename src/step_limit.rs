@@ -40,6 +40,14 @@ pub(crate) fn within_step_limit<T: Ring>(v: Vec3<T>) -> bool {
     v.scale(T::ratio::<1, 4>()).norm_squared() <= T::ratio::<223_764_909, 362_754_007>()
 }
 
+/// [`within_step_limit`] for the floats, without the quarter (which only keeps the square inside
+/// Q1.30's range): `|v|² ≤ π²` (`π²` rounded to `T` once), for a hot path that pays for every
+/// multiplication (the estimator's step checks). An overflowing square fails, and so does a NaN.
+#[inline]
+pub(crate) fn within_step_limit_real<T: Real>(v: Vec3<T>) -> bool {
+    v.norm_squared() <= T::from_f64(MAX_STEP_ANGLE * MAX_STEP_ANGLE)
+}
+
 /// The validity limit of the exact steps (the exponential of a rate held constant,
 /// [`crate::propagation::exponential::step_constant_rate`], and the closed-form free rigid body,
 /// [`crate::dynamics::FreeRigidBody::try_state_at`]): `|ω|·Δt ≤ 1/ε` (8.4e6 rad in f32, 4.5e15 in f64).

@@ -69,7 +69,9 @@ fn scenario_start() -> [f64; 4] {
 fn run_scenario(
     out: &mut dyn FnMut(core::fmt::Arguments<'_>),
 ) -> Result<(), gyrostat::Error> {
-    use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
+    use gyrostat::fixed::IncrementQuantizer;
+    use gyrostat::propagation::CarriedAttitude;
+    use gyrostat::real::Q30;
     use gyrostat::propagation::kernels::coning2_update;
     use gyrostat::propagation::normalization::norm_squared_deviation;
     use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
@@ -105,7 +107,7 @@ fn run_scenario(
         }
         acc.push_unchecked(d);
         if acc.count() == TWO_SPEED_GROUP {
-            q_two_speed = q_two_speed.rotated_unchecked(acc.take(), fast);
+            q_two_speed = q_two_speed.mul_exp_unchecked(acc.take(), fast);
         }
         if (k + 1) % CHECK_EVERY == 0 {
             let [w, x, y, z] = q2.attitude().to_array().map(hex);

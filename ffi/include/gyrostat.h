@@ -586,7 +586,7 @@ typedef struct {
 
 /**
  * Raw gyro increment registers to Q1.30 rad, with the scale (rad per LSB, checked once by
- * `init`) and the rounding remainder carried from one reading to the next (`IncrementScale`,
+ * `init`) and the rounding remainder carried from one reading to the next (`RawScale<Q30>`,
  * `IncrementQuantizer`): a repeating reading does not repeat its rounding.
  */
 typedef struct {

@@ -39,11 +39,14 @@ use core::mem::{align_of, size_of};
 
 use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
 use gyrostat::estimation::{EarthFrame, Estimator, Gains, Mode, Outcome, Params, SensorUse};
-use gyrostat::fixed::{CarriedAttitude, Fixed, IncrementQuantizer, IncrementScale, Q30};
+use gyrostat::fixed::IncrementQuantizer;
+use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
+use gyrostat::real::{Fixed, Q30};
 use gyrostat::rotation::{Euler, EulerSequence, EulerSolution, GimbalPolicy, Pole};
+use gyrostat::sensor::RawScale;
 use gyrostat::{Dcm, Error, Mat3, Quat, Real, RotationVector, UnitQuat, Vec3};
 
 #[cfg(all(target_os = "none", not(test)))]
@@ -1403,7 +1406,7 @@ pub unsafe extern "C" fn gyro_increment_integrator_q30_attitude(
 pub const GYRO_INCREMENT_QUANTIZER_Q30_WORDS: usize = 5;
 
 /// Raw gyro increment registers to Q1.30 rad, with the scale (rad per LSB, checked once by
-/// `init`) and the rounding remainder carried from one reading to the next (`IncrementScale`,
+/// `init`) and the rounding remainder carried from one reading to the next (`RawScale<Q30>`,
 /// `IncrementQuantizer`): a repeating reading does not repeat its rounding.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
@@ -1414,7 +1417,7 @@ pub struct gyro_increment_quantizer_q30 {
 
 slot!(
     gyro_increment_quantizer_q30,
-    (IncrementScale, IncrementQuantizer<30>),
+    (RawScale<Q30>, IncrementQuantizer<30>),
     0x6779_0104
 );
 
@@ -1433,7 +1436,7 @@ pub unsafe extern "C" fn gyro_increment_quantizer_q30_init(
     rad_per_lsb: f64,
 ) -> gyro_status {
     status((|| {
-        let scale = IncrementScale::try_new(rad_per_lsb)?;
+        let scale = RawScale::<Q30>::try_new(rad_per_lsb)?;
         init(s, (scale, IncrementQuantizer::new()))
     })())
 }
@@ -2561,7 +2564,7 @@ pub fn state_sizes() -> [(usize, usize); 11] {
             size_of::<gyro_increment_integrator_q30>(),
         ),
         (
-            size_of::<(IncrementScale, IncrementQuantizer<30>)>(),
+            size_of::<(RawScale<Q30>, IncrementQuantizer<30>)>(),
             size_of::<gyro_increment_quantizer_q30>(),
         ),
         (

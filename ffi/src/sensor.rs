@@ -12,7 +12,7 @@
 use gyrostat::Axis;
 use gyrostat::sensor::{
     AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, Interval,
-    MagnetometerCalibration, MicrosClock, RawScale, SampleClock,
+    MagnetometerCalibration, MicrosClock, RawFormat, RawScale, SampleClock,
 };
 
 use super::*;
@@ -451,13 +451,17 @@ pub unsafe extern "C" fn gyro_clip_guard_filter(
     })())
 }
 
-fn raw_scale<T: CFloat>(raw: *const gyro_vec3_i16, lsb: T, out: *mut T::V) -> gyro_status {
+fn raw_scale<T: CFloat + RawFormat>(
+    raw: *const gyro_vec3_i16,
+    lsb: T,
+    out: *mut T::V,
+) -> gyro_status {
     status((|| {
         let r = read(raw)?;
         ok_ptr(out)?;
         write(
             out,
-            T::v_out(RawScale::try_new(lsb)?.apply([r.x, r.y, r.z])),
+            T::v_out(RawScale::<T>::try_new(lsb.to_f64())?.apply([r.x, r.y, r.z])),
         );
         Ok(())
     })())

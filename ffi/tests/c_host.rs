@@ -18,11 +18,14 @@ use std::process::Command;
 
 use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
 use gyrostat::estimation::{EarthFrame, Estimator, Outcome, Params, SensorUse};
-use gyrostat::fixed::{CarriedAttitude, Fixed, IncrementQuantizer, IncrementScale, Q30};
+use gyrostat::fixed::IncrementQuantizer;
+use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
+use gyrostat::real::{Fixed, Q30};
 use gyrostat::rotation::{Euler, EulerSequence, EulerSolution, GimbalPolicy, Pole};
+use gyrostat::sensor::RawScale;
 use gyrostat::{Dcm, Error, Quat, Real, RotationVector, UnitQuat, Vec3};
 
 /// The scenario's input sequence (the same xorshift32 as `scenario.c`).
@@ -322,7 +325,7 @@ fn increments(r: &mut Rng, l: &mut Lines) {
         ConingRule::TwoSample,
         Normalization::Fast,
     );
-    let scale = IncrementScale::try_new(1.0653e-6).unwrap();
+    let scale = RawScale::<Q30>::try_new(1.0653e-6).unwrap();
     let mut quant = IncrementQuantizer::<30>::new();
     let (mut n32, mut n32c, mut n64, mut n30) = (0u32, 0u32, 0u32, 0u32);
     for k in 1..=203 {
@@ -679,11 +682,13 @@ fn sensors(r: &mut Rng, l: &mut Lines, f64: bool) {
         ));
         l.put(
             "raw32",
-            Ok(v(RawScale::try_new(0.00106526f32).unwrap().apply(o))),
+            Ok(v(RawScale::<f32>::try_new(f64::from(0.00106526f32))
+                .unwrap()
+                .apply(o))),
         );
         l.put(
             "raw64",
-            Ok(v(RawScale::try_new(0.00106526f64).unwrap().apply(o))),
+            Ok(v(RawScale::<f64>::try_new(0.00106526f64).unwrap().apply(o))),
         );
     }
     let mut reject = ClipGuard::new(ClipLimit::try_new(1000).unwrap(), ClipPolicy::Reject);

@@ -18,10 +18,12 @@
 //! not a finite unit quaternion to 1e-3 (a collapsed or overflowed norm: samples too large for
 //! the step). A sample that fails leaves the integrator as it was.
 
-use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
+use gyrostat::fixed::IncrementQuantizer;
+use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{
     ConingRule, IncrementIntegrator, Normalization, PropagatedAttitude, RateIntegrator, RateMethod,
 };
+use gyrostat::real::Q30;
 use gyrostat::{Error, Real, UnitQuat, Vec3};
 
 /// The largest rounding of one increment's turn angle the `exp` rule accepts (rad). An angle

@@ -11,8 +11,8 @@ use std::fmt::Debug;
 use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 
-use gyrostat::fixed::Q30;
 use gyrostat::propagation::{CompensatedAttitude, ConingRule, PropagatedAttitude, RateMethod};
+use gyrostat::real::Q30;
 use gyrostat::{Quat, Real, UnitQuat, Vec3};
 use gyrostat_pipeline::propagate::{self, PropagateError};
 

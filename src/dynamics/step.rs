@@ -183,7 +183,7 @@ impl<T: Real, const N: usize> StepState<T, N> for CompensatedState<T, N> {}
 mod sealed {
     use super::{CompensatedState, ControlLaw, Gyrostat, Real, State};
     use crate::dynamics::integrators::splitting::Flows;
-    use crate::dynamics::integrators::{compensated, rk4};
+    use crate::dynamics::integrators::{compensated_flows, rk4};
 
     /// The steps of a state type (crate-internal: the methods of [`super::StepState`]) beside
     /// its splitting flows ([`Flows`]).
@@ -234,7 +234,7 @@ mod sealed {
             h: T,
             input: &mut L,
         ) -> Self {
-            compensated::rk4_step(body, self, t, h, input)
+            compensated_flows::rk4_step(body, self, t, h, input)
         }
         #[inline]
         fn plain(&self) -> &State<T, N> {
@@ -242,7 +242,7 @@ mod sealed {
         }
         #[inline]
         fn renormalized(self) -> Option<Self> {
-            compensated::finish(self).ok()
+            compensated_flows::finish(self).ok()
         }
     }
 }

@@ -8,6 +8,10 @@ use super::init::{attitude_from_gravity, attitude_from_gravity_and_field};
 use super::lowpass::{LowPass, first_order_gain};
 use super::params::{EarthFrame, FieldThresholds, Gains, Mode, Params};
 use super::rest::RestDetector;
+use crate::propagation::Normalization;
+use crate::propagation::coning::one_plus_previous_terms;
+use crate::sensor::ClipLimit;
+use crate::step_limit::within_step_limit_real;
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
 
 // The light mode (its own file; a child module for the estimator's private state).
@@ -221,7 +225,9 @@ impl<T: Real> Estimator<T> {
 
     /// One update from a gyroscope increment `dtheta` (rad, the integral of the body rate over
     /// the sample interval `dt`) instead of a rate: the rate `dtheta/dt` is the mean over the
-    /// step as it is (no trapezoid with the previous sample). Unlike a rate sample, an
+    /// step as it is (no trapezoid with the previous sample), and the attitude takes the
+    /// one-plus-previous coning rule `θₖ + (1/12) θₖ₋₁ × θₖ` of [`crate::propagation::coning`]
+    /// on the bias-corrected increments (not after a saturated sample). Unlike a rate sample, an
     /// increment needs its interval even on the first sample (to form the rate the rest
     /// detector starts from).
     ///
@@ -274,19 +280,15 @@ impl<T: Real> Estimator<T> {
         }
         let gyro = gyro.try_finite()?;
         let mut out = Outcome::default();
-        let range = self.params.gyro_range;
-        let clip = |c: T| c.max(-range).min(range);
-        let gyro = if gyro.max_abs() >= range {
-            out.gyro_saturated = true;
-            Vec3::new(clip(gyro.x), clip(gyro.y), clip(gyro.z))
-        } else {
-            gyro
-        };
-        // More than half a turn in one step: no step of any method is valid there
-        // (`propagation::MAX_STEP_ANGLE`); an overflowing square fails too.
-        let turn = gyro.scale(dt);
-        let within = turn.norm_squared() <= T::PI * T::PI;
-        if self.initialized && !within {
+        // The sensor layer's clip policy at the gyroscope's range: each clipped axis saturated
+        // at ±range (`ClipPolicy::Saturate`; the range was checked with the parameters).
+        let (gyro, clipped) =
+            ClipLimit::new_unchecked(self.params.gyro_range).saturate(gyro.to_array());
+        out.gyro_saturated = clipped.any();
+        let gyro = Vec3::from_array(gyro);
+        // More than half a turn in one step: no step of any method is valid there (the shared
+        // `step_limit::MAX_STEP_ANGLE`); an overflowing square fails too.
+        if self.initialized && !within_step_limit_real(gyro.scale(dt)) {
             return Err(Error::StepTooLong);
         }
         let accel_use = self.check(accel, self.params.accel_range);
@@ -311,19 +313,21 @@ impl<T: Real> Estimator<T> {
         }
 
         // The mean rate over the step: the trapezoid of the two samples at its ends (an
-        // increment's rate is that mean already).
+        // increment's rate is that mean already, and the previous increment is the coning
+        // lever of its step, unless either was saturated).
         let mean_rate = if self.rate_is_mean {
-            gyro
+            if !out.gyro_saturated && !self.last_saturated {
+                self.coned_rate(gyro, dt)
+            } else {
+                gyro
+            }
         } else {
             // Halved before the sum: two finite samples near the type's limit stay finite. A
             // trapezoid turning by more than half a turn (a huge previous sample over a tiny
             // step, then an ordinary step) is no mean of this step: the sample alone is used.
             // A saturated sample at either end is no rate to average with.
             let m = gyro.scale(T::HALF) + self.last_gyro.scale(T::HALF);
-            if !out.gyro_saturated
-                && !self.last_saturated
-                && m.scale(dt).norm_squared() <= T::PI * T::PI
-            {
+            if !out.gyro_saturated && !self.last_saturated && within_step_limit_real(m.scale(dt)) {
                 m
             } else {
                 gyro
@@ -408,13 +412,29 @@ impl<T: Real> Estimator<T> {
         self.initialized = true;
     }
 
+    /// The mean rate of an increment's step with the previous increment's coning correction:
+    /// the one-plus-previous rule of [`crate::propagation::coning`],
+    /// `φ = θₖ + (1/12) θₖ₋₁ × θₖ` on the bias-corrected increments (`θₖ₋₁` the previous
+    /// sample's rate over this step: the previous increment for equal intervals), as the rate
+    /// `φ/Δt + b` that the prediction's `q ⊗ exp((ω − b)·Δt)` turns by `φ`.
+    // Out of line: only increments take it, and inlined into `update` it cost the rate path 4
+    // instructions per update on a Cortex-M4F (measured with `fw_icount_estimation`).
+    #[inline(never)]
+    fn coned_rate(&self, increment_rate: Vec3<T>, dt: T) -> Vec3<T> {
+        let b = self.bias;
+        let terms = one_plus_previous_terms(
+            (self.last_gyro - b).scale(dt),
+            (increment_rate - b).scale(dt),
+        );
+        terms.rotation_vector().scale(T::ONE / dt) + b
+    }
+
     fn predict(&mut self, gyro: Vec3<T>, dt: T, saturated: bool) {
         let w = gyro - self.bias;
         let before = self.q_gyro;
         self.q_gyro = self
             .q_gyro
-            .mul_exp_unchecked(w.scale(dt))
-            .renormalize_fast();
+            .mul_exp_unchecked(w.scale(dt), Normalization::Fast);
         self.advance_grid(before, dt);
         let r = self.attitude_enu().to_rotation_matrix();
         let f = r.scale(-dt);
@@ -832,8 +852,7 @@ impl<T: Real> Estimator<T> {
         let q = self.attitude_enu();
         let d = self.params.gyro_delay;
         let q = if d > T::ZERO && self.initialized {
-            q.mul_exp_unchecked(self.lead_rate.scale(d))
-                .renormalize_fast()
+            q.mul_exp_unchecked(self.lead_rate.scale(d), Normalization::Fast)
         } else {
             q
         };

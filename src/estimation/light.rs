@@ -29,6 +29,7 @@ use super::{
     SensorUse, horizontal, length,
 };
 use crate::estimation::lowpass::LowPass;
+use crate::propagation::Normalization;
 use crate::{Real, Vec3};
 
 /// What the light mode accumulates between two corrections.
@@ -101,8 +102,7 @@ impl<T: Real> Estimator<T> {
         let w = mean_rate - self.bias;
         self.q_gyro = self
             .q_gyro
-            .mul_exp_unchecked(w.scale(dt))
-            .renormalize_fast();
+            .mul_exp_unchecked(w.scale(dt), Normalization::Fast);
         self.lead_rate = gyro - self.bias;
         let pr = self.params;
         let s = &mut self.light;

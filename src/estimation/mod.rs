@@ -26,10 +26,15 @@
 //! frame → earth) collects every correction.
 //!
 //! 1. **Prediction** — the propagation core: `q_g ← q_g ⊗ exp((ω̄ − b̂)·Δt)`
-//!    ([`crate::UnitQuat::mul_exp_unchecked`], the exponential map of [`crate::propagation`], then the
-//!    fast renormalisation), with the per-sample `Δt` of the time stamps, `ω̄` the mean of the
+//!    ([`crate::UnitQuat::mul_exp_unchecked`], the update kernel of [`crate::propagation`], with
+//!    the fast renormalisation), with the per-sample `Δt` of the time stamps, `ω̄` the mean of the
 //!    rate samples at the two ends of the step (the trapezoid: a rate sample is the rate at its
-//!    time stamp; an increment, [`Estimator::update_increment`], is a mean already). The
+//!    time stamp; an increment, [`Estimator::update_increment`], is a mean already, and takes
+//!    the one-plus-previous coning rule of [`crate::propagation::coning`] with the previous
+//!    increment). The samples' checks are the shared ones: the step limit of
+//!    [`crate::step_limit`] (at most half a turn per step) and the clip policy of
+//!    [`crate::sensor::raw`] (the gyroscope saturated at [`Params::gyro_range`],
+//!    [`crate::sensor::ClipPolicy::Saturate`]). The
 //!    output, [`Estimator::attitude`], is carried forward by the gyroscope's own delay
 //!    ([`Params::gyro_delay`]).
 //! 2. **Error covariance** — an error-state (multiplicative) Kalman filter over

@@ -19,7 +19,7 @@
 //! | unit quaternion components | `UnitQuat<Q30>` | Q1.30 | `[−2, 2)`, used `[−1, 1]` | 2⁻³⁰ ≈ 9.3e-10 | cannot overflow: `|qᵢ| ≤ 1 + drift` |
 //! | rotation matrix entries, unit vectors | `Mat3<Q30>`, `Vec3<Q30>` | Q1.30 | `[−1, 1]` | 2⁻³⁰ | a diagonal entry of exactly −1 saturates to −1 + 2⁻³⁰ |
 //! | gyro increments `Δθ`, rotation vectors `φ` (rad) | `Vec3<Q30>` | Q1.30 | `|·| < 2` rad per component | 2⁻³⁰ rad | conversion: [`Error::OutOfRange`]; sums (coning rules, accumulator): saturate |
-//! | raw sensor increments | `[i16; 3]` × [`IncrementScale`] | integer × rad/LSB | any `i16` | the sensor's LSB | the scale is checked once: no `i16` can leave Q1.30 |
+//! | raw sensor increments | `[i16; 3]` × [`RawScale<Q30>`](crate::sensor::RawScale) | integer × rad/LSB | any `i16` | the sensor's LSB | the scale is checked once: no `i16` can leave Q1.30 |
 //! | body rates (rad/s) | `Vec3<Q24>` | Q7.24 | `[−128, 128)` rad/s | 2⁻²⁴ ≈ 6.0e-8 rad/s | conversion: [`Error::OutOfRange`] |
 //! | time steps (s) | `Q30` | Q1.30 | `(0, 2)` s | 2⁻³⁰ s ≈ 0.93 ns | conversion: [`Error::OutOfRange`] |
 //! | rate × step → increment | [`increment_from_rate`] | Q7.24 × Q1.30 → Q1.30 | | one rounding | saturates at ±2 rad |
@@ -50,9 +50,9 @@
 //!   integrator): fused, so that the small rotation increment `sin(θ/2)/θ·φ` is carried with 3
 //!   more fraction bits (2⁻³³) and each output component is rounded once. Without it, a constant
 //!   rate would integrate the rounding of its (identical) increment quaternion linearly. A
-//!   coning rule's update ([`UnitQuat::mul_exp_coning_unchecked`]) also forms its cross product exactly
+//!   coning rule's update ([`UnitQuat::mul_exp_unchecked`] of its `ConingTerms`) also forms its cross product exactly
 //!   and adds it to the increments at 2⁻³³, so the small coning term is not rounded to 2⁻³⁰.
-//! - [`CarriedAttitude`] carries the residuals of the rotation vector's, the increment's and the
+//! - [`CarriedAttitude`](crate::propagation::CarriedAttitude) carries the residuals of the rotation vector's, the increment's and the
 //!   attitude's roundings into the next update and folds the renormalisation into the increment
 //!   (see "Rounding bias" below); [`IncrementQuantizer`] converts increments with the remainder
 //!   carried.
@@ -70,7 +70,7 @@
 //! `(2ᵏ⁺¹ + 4)u` for `k` halvings, 68u at `k = 5`). The other formats (`Fixed<F>`,
 //! `6 ≤ F ≤ 30`, checked at compile time) reduce an angle beyond π modulo 2π first and take the
 //! exponential past the series in Q3.28 (Q2.29 for `F = 29`), so theirs is within 80 units of
-//! that format plus their own rounding (the `oracles` campaign of `host-tests`). Propagated with [`CarriedAttitude`] from increments
+//! that format plus their own rounding (the `oracles` campaign of `host-tests`). Propagated with [`CarriedAttitude`](crate::propagation::CarriedAttitude) from increments
 //! converted by an [`IncrementQuantizer`] (what `propagate --fixed` runs), the attitude has no
 //! rounding bias: over 60 s at 1 kHz a constant rate ends within 5e-8 rad of the exact attitude
 //! (f32: 1e-6 to 7e-4), and under classical coning every rule reproduces the f64 error, drift
@@ -78,7 +78,7 @@
 //! and within 1 % on one that does), started on the cone or at the identity.
 //!
 //! # Rounding bias
-//! The plain update (`UnitQuat<Q30>` with [`UnitQuat::mul_exp_coning_unchecked`] and
+//! The plain update (`UnitQuat<Q30>` with [`UnitQuat::mul_exp_unchecked`] of the `ConingTerms` and
 //! [`Normalization::Fast`](crate::propagation::Normalization::Fast), each increment converted on
 //! its own) rounds to nearest with ties to even, an unbiased rounding of a random value. But an
 //! attitude update does not round random values: under a constant rate, or under coning, the
@@ -102,7 +102,7 @@
 //!
 //! The fix is at each mechanism, exact in integers: [`IncrementQuantizer`] converts increments
 //! with the remainder carried (the sum of the converted increments stays within 2⁻³¹ rad of the
-//! sum of the given ones); [`CarriedAttitude`] keeps the residual of each of the three roundings
+//! sum of the given ones); [`CarriedAttitude`](crate::propagation::CarriedAttitude) keeps the residual of each of the three roundings
 //! inside an update (10 words beside the attitude) and adds it to the next update's value before
 //! rounding, and folds the renormalisation into the increment, `(cos(θ/2), u)·(1 + e)`, so that
 //! the attitude is rounded once per update. A wider attitude (an `i64` Q1.62) would remove the
@@ -130,7 +130,7 @@
 //! |---|---:|---:|---:|---:|---:|---:|
 //! | quaternion product | 3261 | 606 | 1874 | 175 | 42 | 172 |
 //! | 2-sample coning update (rule, exp, product, renormalisation) | 9052 | 1941 | 5143 | 705 | 102 | 702 |
-//! | the same, carried ([`CarriedAttitude::coning2_update`]; all six columns from one later image) | 9051 | 1854 | 5150 | 683 | 92 | 670 |
+//! | the same, carried ([`CarriedAttitude::coning2_update`](crate::propagation::CarriedAttitude::coning2_update); all six columns from one later image) | 9051 | 1854 | 5150 | 683 | 92 | 670 |
 //!
 //! # When to choose fixed point
 //! On a core without an FPU (Cortex-M0/M0+, M3), for the strapdown attitude update from gyro
@@ -142,16 +142,17 @@
 //! rates beyond the ranges above.
 //!
 //! ```
-//! use gyrostat::fixed::{IncrementScale, Q30};
+//! use gyrostat::sensor::RawScale;
+//! use gyrostat::real::Q30;
 //! use gyrostat::propagation::kernels::coning2_update;
 //! use gyrostat::UnitQuat;
 //!
 //! // A gyro delivering increments of 2^-20 rad per LSB.
-//! let scale = IncrementScale::try_new(1.0 / 1048576.0)?;
+//! let scale = RawScale::<Q30>::try_new(1.0 / 1048576.0)?;
 //! let mut q = UnitQuat::<Q30>::IDENTITY;
 //! for _ in 0..1000 {
-//!     let t1 = scale.increment([1024, 0, 0]); // 2^-10 rad about body x
-//!     let t2 = scale.increment([1024, 0, 0]);
+//!     let t1 = scale.apply([1024, 0, 0]); // 2^-10 rad about body x
+//!     let t2 = scale.apply([1024, 0, 0]);
 //!     q = coning2_update(q, t1, t2);
 //! }
 //! // 2000 · 2^-10 rad ≈ 1.953 rad about x: cos(θ/2) to within the 1000 updates' roundings
@@ -161,17 +162,15 @@
 //! # Ok::<(), gyrostat::Error>(())
 //! ```
 
-mod carried;
 mod exp;
+pub(crate) mod quantizer;
 
-pub use crate::real::fixed::{Fixed, Q24, Q30};
-pub use carried::{CarriedAttitude, IncrementQuantizer};
+pub use quantizer::IncrementQuantizer;
 
 #[cfg(doc)]
 use crate::Ring;
 
-use crate::real::fixed::pow2_neg;
-use crate::real::wide::{mul_wide, round_shift, saturate};
+use crate::real::{Fixed, Q24, Q30};
 use crate::{Error, Quat, UnitQuat, Vec3};
 
 impl<const F: u32> Vec3<Fixed<F>> {
@@ -262,136 +261,10 @@ pub fn increment_from_rate(omega: Vec3<Q24>, dt: Q30) -> Vec3<Q30> {
     Vec3::new(omega.x.mul_to(dt), omega.y.mul_to(dt), omega.z.mul_to(dt))
 }
 
-/// The scale of a gyro's raw increment registers: rad per LSB, for `i16` readings turned into
-/// Q1.30 increments without any floating point at run time.
-///
-/// Stored as a 31-bit mantissa and a shift, fixed when the scale is built (the only place a float
-/// is read): an increment is `round(raw · m / 2^shift)` in units of 2⁻³⁰ rad, one exact
-/// product and one rounding (ties to even). The scale's own rounding is relative 2⁻³¹ at most.
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct IncrementScale {
-    mantissa: i32,
-    shift: u32,
-}
-
-impl IncrementScale {
-    /// The scale `rad_per_lsb` (rad per LSB of an increment register).
-    ///
-    /// # Errors
-    /// [`Error::NonFinite`] for NaN or ±∞; [`Error::InvalidArgument`] for a scale `≤ 0`;
-    /// [`Error::OutOfRange`] for a scale `≥ 2⁻¹⁴` rad/LSB (then a full-scale reading,
-    /// 32768 LSB, would reach 2 rad and leave Q1.30) or `< 2⁻³⁰` (below the resolution of
-    /// Q1.30: every reading would round to a multiple of it).
-    pub fn try_new(rad_per_lsb: f64) -> Result<Self, Error> {
-        let b = rad_per_lsb.to_bits();
-        let exp = ((b >> 52) & 0x7FF) as i32;
-        if exp == 0x7FF {
-            return Err(Error::NonFinite);
-        }
-        if b >> 63 != 0 || rad_per_lsb == 0.0 {
-            return Err(Error::InvalidArgument);
-        }
-        // x = M·2^(exp − 1075), M ∈ [2⁵², 2⁵³) (a subnormal x is far below the lower bound);
-        // x·2³⁰ = round(M/2²²)·2^(exp − 1023) = m / 2^(1023 − exp).
-        let big_m = ((b & ((1u64 << 52) - 1)) | (1u64 << 52)) as i64;
-        let mut m = round_shift(big_m, 22);
-        let mut shift = 1023 - exp;
-        if m == 1 << 31 {
-            m = 1 << 30;
-            shift -= 1;
-        }
-        // x < 2⁻¹⁴ ⇔ shift ≥ 15; x ≥ 2⁻³⁰ ⇔ shift ≤ 30.
-        if exp == 0 || !(15..=30).contains(&shift) {
-            return Err(Error::OutOfRange);
-        }
-        Ok(Self {
-            mantissa: m as i32,
-            shift: shift as u32,
-        })
-    }
-
-    /// The scale of a rate register (rad/s per LSB) integrated over a step `dt` (s):
-    /// `rad_per_s_per_lsb · dt` rad per LSB, the rectangle rule for a rate sampled once per step.
-    ///
-    /// # Errors
-    /// As [`IncrementScale::try_new`] for the product.
-    pub fn try_from_rate(rad_per_s_per_lsb: f64, dt: f64) -> Result<Self, Error> {
-        Self::try_new(rad_per_s_per_lsb * dt)
-    }
-
-    /// The stored mantissa and shift (`rad_per_lsb = mantissa · 2^−(shift + 30)`).
-    #[inline]
-    pub(crate) fn parts(&self) -> (i32, u32) {
-        (self.mantissa, self.shift)
-    }
-
-    /// The scale in rad/LSB, exactly as stored.
-    pub fn rad_per_lsb(&self) -> f64 {
-        f64::from(self.mantissa) * pow2_neg(self.shift + 30)
-    }
-
-    /// One reading in Q1.30 rad. Infallible: the scale was checked so that no `i16` leaves the
-    /// range.
-    #[inline]
-    pub fn to_q30(&self, raw: i16) -> Q30 {
-        Fixed(saturate(round_shift(
-            mul_wide(i32::from(raw), self.mantissa),
-            self.shift,
-        )))
-    }
-
-    /// The increment vector of a raw `[x, y, z]` register triple, in Q1.30 rad.
-    #[inline]
-    pub fn increment(&self, raw: [i16; 3]) -> Vec3<Q30> {
-        Vec3::new(
-            self.to_q30(raw[0]),
-            self.to_q30(raw[1]),
-            self.to_q30(raw[2]),
-        )
-    }
-}
-
 #[cfg(test)]
 mod tests {
     extern crate std;
     use super::*;
-
-    #[test]
-    fn increment_scale_is_checked_once() {
-        let s = IncrementScale::try_new(2f64.powi(-20)).unwrap();
-        assert_eq!(s.rad_per_lsb(), 2f64.powi(-20));
-        assert_eq!(s.to_q30(1).to_bits(), 1 << 10);
-        assert_eq!(s.to_q30(i16::MIN).to_bits(), -(1 << 25));
-        let g = IncrementScale::try_new(1.0653e-6).unwrap();
-        let want = 1.0653e-6 * 32767.0 * 2f64.powi(30);
-        assert!((f64::from(g.to_q30(32767).to_bits()) - want).abs() <= 0.5 + want * 2f64.powi(-31));
-        assert!((g.rad_per_lsb() / 1.0653e-6 - 1.0).abs() < 2f64.powi(-30));
-        assert_eq!(
-            IncrementScale::try_new(2f64.powi(-14)),
-            Err(Error::OutOfRange)
-        );
-        assert!(IncrementScale::try_new(2f64.powi(-14) * 0.999).is_ok());
-        assert!(IncrementScale::try_new(2f64.powi(-30)).is_ok());
-        assert_eq!(
-            IncrementScale::try_new(2f64.powi(-31)),
-            Err(Error::OutOfRange)
-        );
-        assert_eq!(IncrementScale::try_new(0.0), Err(Error::InvalidArgument));
-        assert_eq!(IncrementScale::try_new(-1e-6), Err(Error::InvalidArgument));
-        assert_eq!(IncrementScale::try_new(f64::NAN), Err(Error::NonFinite));
-        // A scale that rounds (to 31 bits) up to 2⁻¹⁴ is rejected; the largest valid one keeps
-        // every i16 inside Q1.30.
-        assert_eq!(
-            IncrementScale::try_new(2f64.powi(-14) * (1.0 - 2f64.powi(-40))),
-            Err(Error::OutOfRange)
-        );
-        let top = IncrementScale::try_new(2f64.powi(-14) * (1.0 - 2f64.powi(-20))).unwrap();
-        assert!(top.to_q30(i16::MIN) > Q30::MIN && top.to_q30(i16::MAX) < Q30::MAX);
-        // A rate register: 0.061 °/s per LSB at 1 kHz.
-        let r = IncrementScale::try_from_rate(0.061f64.to_radians(), 1e-3).unwrap();
-        assert!((r.rad_per_lsb() / (0.061f64.to_radians() * 1e-3) - 1.0).abs() < 1e-9);
-    }
 
     #[test]
     fn rate_times_step() {

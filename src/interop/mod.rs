@@ -4,7 +4,7 @@
 //!   types (`Vec3`, `Mat3`, `Complex`, `Quat`, `UnitQuat`, `Su2`) and [`crate::Error`] (in
 //!   `interop/defmt.rs`), and for the propagation types `ConingRule`, `Normalization`,
 //!   `RateMethod`, `IncrementIntegrator`, `ConingAccumulator` and `RateIntegrator` and the
-//!   fixed-point types `Fixed<F>` and `IncrementScale` (beside their definitions). The rotation
+//!   fixed-point type `Fixed<F>`, the carried attitude and `RawScale` (beside their definitions). The rotation
 //!   representations and the dynamics types do not implement it.
 //! - `nalgebra` (feature `nalgebra`): conversions with nalgebra's geometry types, without std.
 //! - `mint` (feature `mint`): conversions with mint's plain types, the lingua franca of glam,

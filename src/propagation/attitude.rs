@@ -3,7 +3,9 @@
 //! [`CompensatedAttitude`] (its compensated updates). The integrators are generic over it, so
 //! one integrator serves both.
 
-use crate::propagation::compensated::{CompensatedAttitude, advance_compensated, rule_vector};
+use crate::propagation::compensated_attitude::{
+    CompensatedAttitude, advance_compensated, rule_vector,
+};
 use crate::propagation::coning::ConingRule;
 use crate::propagation::kernels::{advance_plain, apply_rule};
 use crate::propagation::normalization::Normalization;
@@ -97,7 +99,7 @@ pub(crate) mod sealed {
             norm: Normalization,
         ) -> Self {
             let (phi, phi_lo) = rule_vector(rule, previous, samples);
-            self.rotated_pair_unchecked(phi, phi_lo, norm)
+            self.mul_exp_pair(phi, phi_lo, norm)
         }
         #[inline(always)]
         fn rates<const M: usize>(

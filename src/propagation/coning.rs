@@ -110,7 +110,7 @@ impl core::fmt::Display for ConingRule {
 /// A rule's rotation vector in the form every rule shares, `φ = sum + lever × last`: the sum of
 /// the increments, the (scaled) earlier increments, and the last increment.
 ///
-/// [`crate::UnitQuat::mul_exp_coning_unchecked`] takes this form, so that fixed point can form the coning term
+/// [`crate::UnitQuat::mul_exp_unchecked`] takes this form, so that fixed point can form the coning term
 /// `lever × last` (small, and nearly constant under coning) at a finer resolution than the
 /// format instead of rounding it to 2⁻³⁰ every update.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -302,7 +302,7 @@ pub fn rotation_vector_for<T: Ring>(previous: Vec3<T>, samples: &[Vec3<T>]) -> V
 ///
 /// (a handful of multiply-adds per sample, no exponential); at the attitude rate,
 /// [`ConingAccumulator::take`] returns `φ = α + β` for one update `q ⊗ exp(φ)` (see
-/// [`crate::propagation::kernels::apply_rotation_vector`]) and restarts the sums. `Δθₗ₋₁`
+/// [`crate::UnitQuat::mul_exp_unchecked`]) and restarts the sums. `Δθₗ₋₁`
 /// carries across update boundaries. The residual coning drift is that of the one-plus-previous
 /// rule at the SAMPLE interval, `α²Ω (Ωh)⁴/60`, whatever the update interval (to leading order
 /// in `α`: the neglected `O(α⁴)` terms grow with the update interval, measured +18% over the

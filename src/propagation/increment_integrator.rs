@@ -24,7 +24,7 @@ pub type IncrementBuffer<T> = HVec<Vec3<T>, 4>;
 /// `q ← normalise(q ⊗ exp(φ))`.
 ///
 /// The attitude it carries is a [`UnitQuat`] (the plain update) or, when it is started from a
-/// [`CompensatedAttitude`], the compensated pair (see [`crate::propagation::compensated`]: the
+/// [`CompensatedAttitude`], the compensated pair (see [`crate::propagation::compensated_attitude`]: the
 /// f32 attitude then does not drift from rounding over hours).
 ///
 /// ```

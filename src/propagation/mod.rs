@@ -20,7 +20,8 @@
 //! cone axis, measured in `host-tests/tests/propagation/coning.rs`.)
 //!
 //! Every exponential-map rule forms a body-frame rotation vector `φ` and then goes through one
-//! update kernel, [`kernels::apply_rotation_vector`]: `q ← normalise(q ⊗ exp(φ))`.
+//! update kernel, [`crate::UnitQuat::mul_exp_unchecked`]: `q ← normalise(q ⊗ exp(φ))`, the same name
+//! (and the checked `try_mul_exp`) on the [`CompensatedAttitude`] and the [`CarriedAttitude`].
 //! [`kinematics`] has the differential equation itself and the rate between two attitudes;
 //! [`normalization`] the renormalisation policy and the `|q|` health value.
 //!
@@ -30,17 +31,20 @@
 //! for gyro increments (any [`ConingRule`]), [`ConingAccumulator`] for the two-speed form,
 //! [`RateIntegrator`] for rate samples (any [`RateMethod`]). Each carries a
 //! [`PropagatedAttitude`]: a plain [`crate::UnitQuat`] or a [`CompensatedAttitude`] (the f32
-//! attitude with its rounding carried, [`compensated`]). The updates they run are the
+//! attitude with its rounding carried, [`compensated_attitude`]) or a [`CarriedAttitude`] (the
+//! fixed-point attitude with its roundings' residuals carried, [`carried_attitude`]), with the same
+//! methods. The updates they run are the
 //! unchecked [`kernels`], for an inner loop whose input was validated upstream:
 //! [`kernels::coning2_update`] is the complete 2-sample update (rotation vector, exponential by
 //! series, product, fast renormalisation).
 //!
 //! Files: the rules' formulas ([`coning`], [`rate_samples`]) at the bottom, then the
-//! [`kernels`] and the [`compensated`] updates built on them, the attitude trait over both, and
+//! [`kernels`] and the [`compensated_attitude`] and [`carried_attitude`] updates built on them, the attitude trait over both, and
 //! the integrators on top.
 
 pub(crate) mod attitude;
-pub mod compensated;
+pub mod carried_attitude;
+pub mod compensated_attitude;
 pub mod coning;
 pub mod exponential;
 mod increment_integrator;
@@ -51,7 +55,8 @@ mod rate_integrator;
 pub mod rate_samples;
 
 pub use attitude::PropagatedAttitude;
-pub use compensated::CompensatedAttitude;
+pub use carried_attitude::CarriedAttitude;
+pub use compensated_attitude::CompensatedAttitude;
 pub use coning::{ConingAccumulator, ConingRule, ConingTerms};
 pub use increment_integrator::{IncrementBuffer, IncrementIntegrator};
 pub use kernels::RotationVectorForm;

@@ -49,7 +49,7 @@ pub type Attitudes<T> = HVec<UnitQuat<T>, 3>;
 /// the interpolation.
 ///
 /// The attitude it carries is a [`UnitQuat`] (the plain update) or, when it is started from a
-/// [`CompensatedAttitude`], the compensated pair (see [`crate::propagation::compensated`]).
+/// [`CompensatedAttitude`], the compensated pair (see [`crate::propagation::compensated_attitude`]).
 #[derive(Clone, Debug)]
 pub struct RateIntegrator<T, A = UnitQuat<T>> {
     q: A,

@@ -36,17 +36,17 @@ impl<const F: u32> Fixed<F> {
     /// range and using it does not compile:
     ///
     /// ```compile_fail
-    /// let _ = gyrostat::fixed::Fixed::<1024>::from_bits(1).to_f64();
+    /// let _ = gyrostat::real::Fixed::<1024>::from_bits(1).to_f64();
     /// ```
     /// ```compile_fail
-    /// let _ = gyrostat::fixed::Fixed::<31>::try_from_f64(0.5);
+    /// let _ = gyrostat::real::Fixed::<31>::try_from_f64(0.5);
     /// ```
     /// ```compile_fail
-    /// let _ = gyrostat::fixed::Fixed::<5>::from_bits(1);
+    /// let _ = gyrostat::real::Fixed::<5>::from_bits(1);
     /// ```
     /// ```
-    /// assert_eq!(gyrostat::fixed::Fixed::<6>::from_bits(1).to_f64(), 1.0 / 64.0);
-    /// assert_eq!(gyrostat::fixed::Fixed::<30>::from_bits(1).to_f64(), 2f64.powi(-30));
+    /// assert_eq!(gyrostat::real::Fixed::<6>::from_bits(1).to_f64(), 1.0 / 64.0);
+    /// assert_eq!(gyrostat::real::Fixed::<30>::from_bits(1).to_f64(), 2f64.powi(-30));
     /// ```
     pub const SUPPORTED: () = assert!(F >= 6 && F <= 30, "Fixed<F> supports 6 ≤ F ≤ 30");
 

@@ -1,5 +1,5 @@
 //! The scalar layer: two narrow, sealed traits, [`Ring`] and [`Real`], and their
-//! implementations for f32, f64 and the fixed-point [`crate::fixed::Fixed`].
+//! implementations for f32, f64 and the fixed-point [`crate::real::Fixed`].
 //!
 //! This is the bottom of the crate: it depends on nothing else in it. Vectors, quaternions and
 //! everything built on them (the exponential map's per-type kernels included) live in the layers
@@ -13,7 +13,7 @@
 //! - [`Ring`]: `+ − ×`, negation, comparisons, `0`, `1`, `½`, exact ratios of small integers,
 //!   sums of products rounded once ([`Ring::dot`]), and the one per-type kernel a unit
 //!   quaternion needs beyond a polynomial, the inverse square root of a norm near one.
-//!   Implemented for f32, f64 and the fixed-point [`crate::fixed::Fixed`] (saturating, see
+//!   Implemented for f32, f64 and the fixed-point [`crate::real::Fixed`] (saturating, see
 //!   [`crate::fixed`]). Everything on the attitude hot path is generic over `Ring`: `Vec3`/`Quat`
 //!   arithmetic, the quaternion product, vector rotation, the rotation matrix, renormalisation,
 //!   the coning rules and the two-speed accumulator; the exponential map and the increment
@@ -66,6 +66,8 @@ pub(crate) mod fixed;
 mod float;
 pub(crate) mod wide;
 
+pub use fixed::{Fixed, Q24, Q30};
+
 pub(crate) mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}
@@ -74,7 +76,7 @@ pub(crate) mod sealed {
 }
 
 /// The ring layer: what the attitude hot path needs, implemented for f32, f64 and the
-/// fixed-point [`crate::fixed::Fixed`].
+/// fixed-point [`crate::real::Fixed`].
 ///
 /// Arithmetic is IEEE for the floats and saturating, round-to-nearest (ties to even) for fixed
 /// point (see [`crate::fixed`]). Sealed: only gyrostat implements it, so that the library can

@@ -13,7 +13,7 @@
 use crate::{Error, Quat, Real, Ring, UnitQuat, Vec3};
 
 /// The scalar types the exponential map runs on, with their per-type kernels: f32 and f64
-/// (every [`Real`]) and the fixed-point [`crate::fixed::Fixed`].
+/// (every [`Real`]) and the fixed-point [`crate::real::Fixed`].
 ///
 /// The map itself, [`UnitQuat::exp_unchecked`], is one generic series below
 /// [`Ring::EXP_SERIES_MAX_SQ`]; past it, and in the attitude update `q ⊗ exp(φ)`, each kind of
@@ -35,7 +35,8 @@ pub trait ExpMap: Ring {
     fn exp_beyond_series(phi: Vec3<Self>, theta_sq: Self) -> Quat<Self>;
 
     /// `q ⊗ exp(φ)`: the attitude update by a body-frame rotation vector, the step of every
-    /// increment integrator ([`UnitQuat::mul_exp_unchecked`]).
+    /// increment integrator (`UnitQuat::mul_exp_unchecked` of
+    /// [`crate::propagation`]).
     ///
     /// The floats form `exp(φ)` and multiply. Fixed point fuses the two on the series domain:
     /// `sin(θ/2)/θ·φ`, a small vector, is kept with 3 more fraction bits than the format, and each
@@ -48,7 +49,7 @@ pub trait ExpMap: Ring {
     }
 
     /// `q ⊗ exp(sum + lever × last)`: the attitude update of a coning rule
-    /// ([`UnitQuat::mul_exp_coning_unchecked`]). The floats form the rotation vector and call
+    /// (`UnitQuat::mul_exp_unchecked` of [`crate::propagation`] given its `ConingTerms`). The floats form the rotation vector and call
     /// [`ExpMap::mul_exp`]; fixed point forms the cross product exactly and adds it to the sum at
     /// the finer resolution of its fused exponential, so that the small coning term is rounded to
     /// 2^−(F+3), not to the format's step.
@@ -127,23 +128,16 @@ impl<T: ExpMap> UnitQuat<T> {
 }
 
 impl<T: ExpMap> UnitQuat<T> {
-    /// `self ⊗ exp(φ)`: the attitude after the body-frame rotation vector `φ`, unchecked (see
-    /// [`UnitQuat::exp_unchecked`]). Equal to `self * UnitQuat::exp_unchecked(phi)` for the
-    /// floats; fused in fixed point ([`ExpMap::mul_exp`]): one rounding per component, with the
-    /// small rotation increment carried at a finer resolution than the format.
+    /// `self ⊗ exp(φ)`, not renormalised: [`ExpMap::mul_exp`] on the attitude (the plain update
+    /// behind `UnitQuat::mul_exp_unchecked` of [`crate::propagation`]).
     #[inline]
-    pub fn mul_exp_unchecked(self, phi: Vec3<T>) -> Self {
+    pub(crate) fn mul_exp_plain(self, phi: Vec3<T>) -> Self {
         Self::new_unchecked(T::mul_exp(self.into_quat(), phi))
     }
 
-    /// `self ⊗ exp(sum + lever × last)`, unchecked: the update of a coning rule, whose rotation
-    /// vector is the sum of the increments plus a cross product of them (the coning term, see
-    /// [`crate::propagation::ConingTerms`]). Equal to
-    /// `self.mul_exp_unchecked(sum + lever.cross(last))` for the floats; in fixed point the
-    /// coning term is formed exactly and kept at the fused exponential's finer resolution
-    /// ([`ExpMap::mul_exp_coning`]).
+    /// `self ⊗ exp(sum + lever × last)`, not renormalised: [`ExpMap::mul_exp_coning`].
     #[inline]
-    pub fn mul_exp_coning_unchecked(self, sum: Vec3<T>, lever: Vec3<T>, last: Vec3<T>) -> Self {
+    pub(crate) fn mul_exp_coning_plain(self, sum: Vec3<T>, lever: Vec3<T>, last: Vec3<T>) -> Self {
         Self::new_unchecked(T::mul_exp_coning(self.into_quat(), sum, lever, last))
     }
 }

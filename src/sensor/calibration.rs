@@ -33,7 +33,8 @@
 //! rad/s, applied to Q1.30 increments with a Q1.30 step ([`InertialCalibration::apply_increment`]
 //! is generic over [`Ring`] through [`Bias`]).
 
-use crate::fixed::{Q24, Q30, increment_from_rate};
+use crate::fixed::increment_from_rate;
+use crate::real::{Q24, Q30};
 use crate::{Error, Mat3, Real, Ring, Vec3};
 
 /// The largest accepted Frobenius condition number `‖K‖_F·‖K⁻¹‖_F` of a calibration matrix

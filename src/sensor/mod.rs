@@ -3,8 +3,8 @@
 //!
 //! The data path of one sample:
 //!
-//! `raw i16 registers` → [`ClipGuard`] (clipping flags and policy) → LSB scale ([`RawScale`], or
-//! [`IncrementScale`](crate::fixed::IncrementScale) in Q1.30) → [`InertialCalibration`]
+//! `raw i16 registers` → [`ClipGuard`] (clipping flags and policy) → LSB scale ([`RawScale`], in f32, f64
+//! or Q1.30) → [`InertialCalibration`]
 //! (`K·(raw − b)`) → mounting ([`AxisRemap`] or [`Mounting`]) → propagation with the interval
 //! from [`SampleClock`] / [`MicrosClock`] ([`crate::propagation::kernels::coning2_update_unequal`]
 //! for increments over unequal intervals, [`crate::propagation::kernels::magnus4_step_unequal`] for rates
@@ -30,6 +30,6 @@ pub mod variance;
 
 pub use calibration::{InertialCalibration, MagnetometerCalibration};
 pub use mounting::{AxisRemap, Mounting};
-pub use raw::{ClipGuard, ClipLimit, ClipPolicy, Clipped, RawScale};
+pub use raw::{ClipGuard, ClipLimit, ClipPolicy, Clipped, RawFormat, RawScale, Reading};
 pub use timing::{Interval, MicrosClock, SampleClock};
 pub use variance::{RestNoise, RunningVariance};

@@ -23,7 +23,7 @@
 //! wrapped difference of `2³¹` µs (≈ 35.8 min) or more is read as backwards (a forward step that
 //! long is not distinguishable from a backwards one in 32 bits).
 
-use crate::fixed::Q30;
+use crate::real::Q30;
 use crate::{Error, Real};
 
 /// The default gap factor: an interval longer than 5 nominal intervals is a [`Interval::Gap`].

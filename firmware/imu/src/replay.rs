@@ -195,9 +195,9 @@ impl Replay {
     pub fn try_new() -> Result<Self, Error> {
         let v = |a: [f64; 3]| Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32);
         Ok(Self {
-            gyro_scale: RawScale::try_new(GYRO_LSB_RAD_S as f32)?,
-            accel_scale: RawScale::try_new(ACCEL_LSB_M_S2 as f32)?,
-            mag_scale: RawScale::try_new(MAG_LSB_UT as f32)?,
+            gyro_scale: RawScale::<f32>::try_new(GYRO_LSB_RAD_S)?,
+            accel_scale: RawScale::<f32>::try_new(ACCEL_LSB_M_S2)?,
+            mag_scale: RawScale::<f32>::try_new(MAG_LSB_UT)?,
             gyro_cal: InertialCalibration::try_new(Mat3::IDENTITY, Vec3::new(1.0, 1.0, 1.0), v(GYRO_BIAS))?,
             mag_cal: MagnetometerCalibration::try_new(Mat3::IDENTITY, v(MAG_HARD_IRON_UT))?,
             mag_mounting: AxisRemap::try_parse(MAG_MOUNTING)?,

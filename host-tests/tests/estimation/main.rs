@@ -7,6 +7,8 @@
 // Matrix and per-axis code reads best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
+mod increments;
+
 use gyrostat::estimation::{
     Covariance, EarthFrame, Estimator, FieldMonitor, Gains, Mode as FilterMode, Params,
     RestDetector, SensorUse, attitude_from_gravity, attitude_from_gravity_and_field,

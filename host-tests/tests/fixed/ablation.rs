@@ -1,5 +1,5 @@
 //! Which rounding of the fixed-point update drifts: the experiment behind
-//! `fixed::CarriedAttitude` and `fixed::IncrementQuantizer` (the `gyrostat::fixed` module docs,
+//! `propagation::CarriedAttitude` and `fixed::IncrementQuantizer` (the `gyrostat::fixed` module docs,
 //! "Rounding bias"; BENCHMARKS.md).
 //!
 //! The Q1.30 increment update is written out here again, independently of the library, in
@@ -23,8 +23,10 @@
 //! rad at the end of every case; the two differ only in how the 2 lowest bits of the wide
 //! products are dropped).
 
-use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
+use gyrostat::fixed::IncrementQuantizer;
+use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{ConingRule, IncrementIntegrator, Normalization};
+use gyrostat::real::Q30;
 use gyrostat::{Quat, UnitQuat, Vec3};
 use host_tests::ref_propagation::Coning;
 use host_tests::reference::{Q, qmul, quat_angle};

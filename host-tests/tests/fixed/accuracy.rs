@@ -8,10 +8,10 @@
 //! (exact in f64), so the comparisons measure the fixed-point arithmetic, not input rounding,
 //! except where a test says otherwise.
 
-use gyrostat::fixed::Q30;
-use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
+use gyrostat::propagation::kernels::coning2_update;
 use gyrostat::propagation::normalization::norm_squared_deviation;
 use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
+use gyrostat::real::Q30;
 use gyrostat::{Error, Quat, Ring, UnitQuat, Vec3};
 use host_tests::cast::{self, v64, vec3};
 use host_tests::ref_propagation::{Coning, body_error, fit_slope};
@@ -374,12 +374,10 @@ fn coning_drift_constants_in_fixed_point() {
                 }
                 let step = |q: UnitQuat<f64>| {
                     if rule == ConingRule::Exp {
-                        q.mul_exp_unchecked(group[0])
+                        q.mul_exp_unchecked(group[0], Normalization::Fast)
                     } else {
-                        let t = coning_terms_for(prev, &group);
-                        q.mul_exp_coning_unchecked(t.sum, t.lever, t.last)
+                        q.mul_exp_unchecked(coning_terms_for(prev, &group), Normalization::Fast)
                     }
-                    .renormalize_fast()
                 };
                 q64 = step(q64);
                 q_round =
@@ -434,8 +432,8 @@ fn million_constant_rate_updates_fixed_beats_f32() {
     let fast = Normalization::Fast;
     let (mut worst_norm, mut log) = (0.0f64, Vec::new());
     for n in 1..=1_000_000u32 {
-        qx = apply_rotation_vector(qx, dx, fast);
-        q32 = apply_rotation_vector(q32, d32, fast);
+        qx = qx.mul_exp_unchecked(dx, fast);
+        q32 = q32.mul_exp_unchecked(d32, fast);
         worst_norm = worst_norm.max(norm_squared_deviation(qx).to_f64().abs());
         if [1_000, 10_000, 100_000, 1_000_000].contains(&n) {
             let nf = f64::from(n);
@@ -460,8 +458,8 @@ fn million_constant_rate_updates_fixed_beats_f32() {
 /// value, and the integrator fed them equals the integrator fed the same values converted.
 #[test]
 fn raw_sensor_increments() {
-    use gyrostat::fixed::IncrementScale;
-    let scale = IncrementScale::try_new(1.0653e-6).unwrap();
+    use gyrostat::sensor::RawScale;
+    let scale = RawScale::<Q30>::try_new(1.0653e-6).unwrap();
     let raws: Vec<[i16; 3]> = (0..400)
         .map(|k| {
             [
@@ -478,8 +476,8 @@ fn raw_sensor_increments() {
     );
     let mut b = a.clone();
     for r in &raws {
-        let inc = scale.increment(*r);
-        let want = r.map(|x| f64::from(x) * scale.rad_per_lsb());
+        let inc = scale.apply(*r);
+        let want = r.map(|x| f64::from(x) * scale.lsb());
         assert!(vec_dist(&inc.to_f64().to_array(), &want) <= 0.5 * U);
         a.push(inc).unwrap();
         b.push(Vec3::<Q30>::try_from_f64(Vec3::from_array(want)).unwrap())

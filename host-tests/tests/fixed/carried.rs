@@ -1,5 +1,5 @@
-//! The carried fixed-point attitude (`fixed::CarriedAttitude`, `fixed::IncrementQuantizer`,
-//! `src/fixed/carried.rs`) against the closed-form coning attitude and the exact constant-rate
+//! The carried fixed-point attitude (`propagation::CarriedAttitude`, `fixed::IncrementQuantizer`,
+//! `src/propagation/carried_attitude.rs`, `src/fixed/quantizer.rs`) against the closed-form coning attitude and the exact constant-rate
 //! attitude, beside the plain f32 and the f64 paths fed the same f64 increments (f32: rounded to
 //! f32), on inputs that do not repeat and on one that does.
 //!
@@ -14,8 +14,10 @@
 //! `rounding_causes` shows the causes of the plain path's bias one at a time (see the
 //! `gyrostat::fixed` module docs, "Rounding bias").
 
-use gyrostat::fixed::{CarriedAttitude, IncrementQuantizer, Q30};
+use gyrostat::fixed::IncrementQuantizer;
+use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{ConingRule, IncrementIntegrator, Normalization};
+use gyrostat::real::Q30;
 use gyrostat::{Quat, UnitQuat, Vec3};
 use host_tests::cast::{self, vec3};
 use host_tests::ref_propagation::Coning;

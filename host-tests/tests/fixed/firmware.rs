@@ -28,8 +28,9 @@
 //! beside it; the comparison with f32 over several cone angles and base attitudes is in
 //! `accuracy.rs`.
 
-use gyrostat::fixed::{IncrementQuantizer, Q30};
+use gyrostat::fixed::IncrementQuantizer;
 use gyrostat::propagation::kernels::coning2_update;
+use gyrostat::real::Q30;
 use gyrostat::{Quat, UnitQuat, Vec3};
 use host_tests::cast::{self, vec3};
 use host_tests::examples::firmware_output;

@@ -15,4 +15,5 @@ mod compensated_ablation;
 mod coning;
 mod kinematics;
 mod long_run;
+mod mul_exp;
 mod rate_samples;

@@ -13,11 +13,13 @@
 //! built with overflow checks in the host test profiles (release: `Cargo.toml`; debug: always),
 //! so an overflowing `i32`/`i64` operation would panic and be reported as a panic.
 
-use gyrostat::fixed::{Fixed, IncrementScale, Q24, Q30, increment_from_rate};
+use gyrostat::fixed::increment_from_rate;
 use gyrostat::propagation::coning::{four_sample, one_plus_previous, three_sample, two_sample};
-use gyrostat::propagation::kernels::{apply_rotation_vector, coning2_update};
+use gyrostat::propagation::kernels::coning2_update;
 use gyrostat::propagation::normalization::norm_squared_deviation;
 use gyrostat::propagation::{ConingAccumulator, ConingRule, IncrementIntegrator, Normalization};
+use gyrostat::real::{Fixed, Q24, Q30};
+use gyrostat::sensor::RawScale;
 use gyrostat::{Error, Quat, Ring, UnitQuat, Vec3};
 use host_tests::campaign::*;
 use host_tests::family;
@@ -200,7 +202,7 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                 finite_all(&back)
             })
         }),
-        family!("IncrementScale::try_new, try_from_rate, increment", |g| {
+        family!("RawScale<Q30>::try_new, try_from_rate, increment", |g| {
             let s = match g.rng.below(3) {
                 0 => g.scalar().to_f64(),
                 _ => g.magnitude_in(U / 4.0, 1e-3),
@@ -211,8 +213,8 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                 _ => g.rng.next_u64() as i16,
             });
             probe(&(s, dt, raw), || {
-                let _ = IncrementScale::try_from_rate(s, dt);
-                let sc = match IncrementScale::try_new(s) {
+                let _ = RawScale::<Q30>::try_from_rate(s, dt);
+                let sc = match RawScale::<Q30>::try_new(s) {
                     Err(Error::NonFinite) => return ensure(!s.is_finite(), || "NonFinite".into()),
                     Err(Error::InvalidArgument) => return ensure(s <= 0.0, || "InvalidArg".into()),
                     Err(Error::OutOfRange) => {
@@ -225,11 +227,11 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                     Err(e) => return Err(e.into()),
                     Ok(sc) => sc,
                 };
-                let r = sc.rad_per_lsb();
+                let r = sc.lsb();
                 ensure((r - s).abs() <= s * 2f64.powi(-30), || {
                     format!("scale {s:e} stored as {r:e}")
                 })?;
-                let inc = v64(sc.increment(raw));
+                let inc = v64(sc.apply(raw));
                 for (c, &n) in inc.iter().zip(&raw) {
                     let exact = f64::from(n) * r;
                     ensure((c - exact).abs() <= U / 2.0 && c.abs() < 2.0, || {
@@ -280,10 +282,10 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                         t[0],
                     ];
                     for phi in phis {
-                        healthy(apply_rotation_vector(q, phi, norm), norm, "rule")?;
+                        healthy(q.mul_exp_unchecked(phi, norm), norm, "rule")?;
                     }
                     healthy(
-                        q.mul_exp_unchecked(t[0]),
+                        q.mul_exp_unchecked(t[0], Normalization::None),
                         Normalization::None,
                         "mul_exp_unchecked",
                     )?;

@@ -4,7 +4,7 @@
 //!
 //! - the compensated paths equal the plain f64 path fed the same (rounded) inputs within a few
 //!   ulp of the type (the update is the rule's composition of exponentials);
-//! - `CompensatedAttitude::rotated_pair_unchecked` is `q ⊗ exp(φ + φ_lo)` by the closed form in
+//! - `CompensatedAttitude::mul_exp_unchecked((φ, φ_lo))` is `q ⊗ exp(φ + φ_lo)` by the closed form in
 //!   f64, for angles of any size;
 //! - the rate integrator's inputs are in range while their products are not (`dt` from 10⁻³⁰⁰
 //!   to 10³⁰⁰ with rates scaled inversely), with adversarial step remainders;
@@ -22,11 +22,11 @@ use gyrostat::dynamics::state::CompensatedState;
 use gyrostat::dynamics::{
     BodyHamiltonian, Drift, Gyrostat, Inertia, Integrator, Invariants, Quartic, State,
 };
-use gyrostat::fixed::Fixed;
 use gyrostat::propagation::kernels::rk4_step;
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
+use gyrostat::real::Fixed;
 use gyrostat::{Error, Quat, UnitQuat, Vec3};
 use host_tests::campaign::*;
 use host_tests::family;
@@ -105,7 +105,7 @@ fn update_tolerance<T: Tolerance>(theta: f64, steps: f64) -> f64 {
 fn families<T: Tolerance>() -> Vec<Family<T>> {
     vec![
         family!(
-            "oracle: CompensatedAttitude::rotated_pair_unchecked = q ⊗ exp(φ + φ_lo)",
+            "oracle: CompensatedAttitude::mul_exp_unchecked((φ, φ_lo)) = q ⊗ exp(φ + φ_lo)",
             |g| {
                 let q = g.unit_quat();
                 let phi = rotation_vector(g);
@@ -117,7 +117,7 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                 };
                 let norm = *g.rng.pick(&[Normalization::Exact, Normalization::Fast]);
                 probe(&(q, phi, lo, norm), || {
-                    let c = CompensatedAttitude::new(q).rotated_pair_unchecked(phi, lo, norm);
+                    let c = CompensatedAttitude::new(q).mul_exp_unchecked((phi, lo), norm);
                     let a = c.attitude();
                     ensure(a.into_quat().is_finite(), || format!("non-finite {c:?}"))?;
                     let p = v64(phi) + v64(lo);

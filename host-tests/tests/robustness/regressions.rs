@@ -400,7 +400,7 @@ host_tests::per_type! {
 /// the increment integrator refuses components of a quarter of the range (0.25 rad) or more.
 #[test]
 fn fixed_point_saturating_sums_are_out_of_range() {
-    use gyrostat::fixed::Q30;
+    use gyrostat::real::Q30;
     let x = |v: f64| {
         Vec3::new(
             Q30::try_from_f64(v).unwrap(),

@@ -9,11 +9,11 @@ use gyrostat::dynamics::state::CompensatedState;
 use gyrostat::dynamics::{
     BodyHamiltonian, Drift, Gyrostat, Inertia, Integrator, Invariants, Quartic, State,
 };
-use gyrostat::fixed::{Fixed, Q24, Q30};
-use gyrostat::propagation::kernels::{apply_rotation_vector, rk4_step};
+use gyrostat::propagation::kernels::rk4_step;
 use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, IncrementIntegrator, Normalization, RateIntegrator, RateMethod,
 };
+use gyrostat::real::{Fixed, Q24, Q30};
 use gyrostat::{Error, Quat, Real, UnitQuat, Vec3};
 
 /// `|q|` of a quaternion, in f64.
@@ -156,14 +156,14 @@ fn compensated_coning_is_exp<T: Real>(tol: f64) {
         let e = angle(unit_f64(plain.attitude()), want);
         assert!(e < tol, "{norm:?}: plain {e} rad from exp(φ)");
     }
-    // rotated_pair((0.5, 0, 0), (0, 0.05, 0)) is exp(φ + φ_lo).
-    let q = CompensatedAttitude::new(UnitQuat::<T>::IDENTITY).rotated_pair_unchecked(
-        v(0.5, 0.0, 0.0),
-        v(0.0, 0.05, 0.0),
-        Normalization::Exact,
-    );
+    // mul_exp_unchecked(((0.5, 0, 0), (0, 0.05, 0))) is exp(φ + φ_lo).
+    let q = CompensatedAttitude::new(UnitQuat::<T>::IDENTITY)
+        .mul_exp_unchecked((v(0.5, 0.0, 0.0), v(0.0, 0.05, 0.0)), Normalization::Exact);
     let e = angle(carried(q), exp_ref([0.5, 0.05, 0.0]));
-    assert!(e < tol, "rotated_pair {e} rad from exp(φ + φ_lo)");
+    assert!(
+        e < tol,
+        "mul_exp_unchecked of a pair {e} rad from exp(φ + φ_lo)"
+    );
 }
 
 #[test]
@@ -261,14 +261,14 @@ fn r05_compensated_exp_large_increments_f32() {
     compensated_exp_large::<f32>(&[1e8, 1e15, 1e18, 1e19], 1e-6);
 }
 
-/// 6. `rotated((1e200, 0, 0), Exact)` is finite and unit, like `apply_rotation_vector`.
+/// 6. `mul_exp_unchecked((1e200, 0, 0), Exact)` is finite and unit, like `UnitQuat::mul_exp_unchecked`.
 #[test]
 fn r06_compensated_rotated_huge_angle() {
     for m in [1e200f64, 1e300, 1e154] {
         let phi = Vec3::new(m, 0.0, 0.0);
         let q = CompensatedAttitude::new(UnitQuat::<f64>::IDENTITY)
-            .rotated_unchecked(phi, Normalization::Exact);
-        let plain = apply_rotation_vector(UnitQuat::<f64>::IDENTITY, phi, Normalization::Exact);
+            .mul_exp_unchecked(phi, Normalization::Exact);
+        let plain = (UnitQuat::<f64>::IDENTITY).mul_exp_unchecked(phi, Normalization::Exact);
         assert!(q.attitude().into_quat().is_finite(), "{m:e}: {q:?}");
         assert!((norm_of(q.attitude()) - 1.0).abs() < 1e-14, "{m:e}: {q:?}");
         let e = angle(carried(q), unit_f64(plain));
@@ -276,7 +276,7 @@ fn r06_compensated_rotated_huge_angle() {
     }
     let phi = Vec3::new(1e30f32, 0.0, 0.0);
     let q = CompensatedAttitude::new(UnitQuat::<f32>::IDENTITY)
-        .rotated_unchecked(phi, Normalization::Exact);
+        .mul_exp_unchecked(phi, Normalization::Exact);
     assert!((norm_of(q.attitude()) - 1.0).abs() < 1e-6, "{q:?}");
 }
 

@@ -222,8 +222,15 @@ fn families<T: Tolerance>() -> Vec<Family<T>> {
                         }
                     }
                 }
-                let s = RawScale::try_new(lsb)?;
-                raws.iter().try_for_each(|r| finite_vec(s.apply(*r)))
+                // The scale in T (the lsb, drawn in T, widened exactly).
+                let l = lsb.to_f64();
+                if T::INDEX == 0 {
+                    let s = RawScale::<f32>::try_new(l)?;
+                    raws.iter().try_for_each(|r| finite_vec(s.apply(*r)))
+                } else {
+                    let s = RawScale::<f64>::try_new(l)?;
+                    raws.iter().try_for_each(|r| finite_vec(s.apply(*r)))
+                }
             })
         }),
         family!(

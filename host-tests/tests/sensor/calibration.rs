@@ -2,7 +2,7 @@
 //! inverse round trips, validation, and the same model in f32 and Q1.30.
 
 use super::Rng;
-use gyrostat::fixed::Q30;
+use gyrostat::real::Q30;
 use gyrostat::sensor::{InertialCalibration, MagnetometerCalibration};
 use gyrostat::{Error, Mat3, Vec3};
 use host_tests::reference::{M3, V3, mat_vec};

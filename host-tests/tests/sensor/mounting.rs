@@ -2,7 +2,7 @@
 //! brute force, parsing, and rotations of vectors and attitudes.
 
 use super::Rng;
-use gyrostat::fixed::Q30;
+use gyrostat::real::Q30;
 use gyrostat::sensor::{AxisRemap, Mounting};
 use gyrostat::{Axis, Error, Quat, UnitQuat, Vec3};
 use host_tests::reference::{M3, det, mat_mul, mat_vec, qmul, qrotate, transpose};

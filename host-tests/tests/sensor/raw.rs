@@ -2,7 +2,8 @@
 //! whole raw → scale → calibration → remap chain agreeing across the formats.
 
 use super::Rng;
-use gyrostat::fixed::{IncrementQuantizer, IncrementScale, Q30};
+use gyrostat::fixed::IncrementQuantizer;
+use gyrostat::real::Q30;
 use gyrostat::sensor::{
     AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, RawScale,
 };
@@ -65,22 +66,36 @@ fn clipping_policies() {
 #[test]
 fn lsb_scale_in_every_format() {
     let lsb = 1.0653e-6; // rad per LSB of an increment register
-    let s64 = RawScale::try_new(lsb).unwrap();
-    let s32 = RawScale::try_new(lsb as f32).unwrap();
-    let sq = IncrementScale::try_new(lsb).unwrap();
+    let s64 = RawScale::<f64>::try_new(lsb).unwrap();
+    let s32 = RawScale::<f32>::try_new(lsb).unwrap();
+    let sq = RawScale::<Q30>::try_new(lsb).unwrap();
     for r in (i16::MIN..=i16::MAX).step_by(7) {
         let exact = r as f64 * lsb;
         assert_eq!(s64.apply([r, 0, 0]).x, exact);
         let f = s32.apply([r, 0, 0]).x as f64;
         assert!((f - exact).abs() <= exact.abs() * 1.5 * f32::EPSILON as f64);
-        let q = sq.to_q30(r).to_f64();
+        let q = sq.reading(r).to_f64();
         // One rounding to 2⁻³¹ plus the scale's own relative 2⁻³¹.
         assert!((q - exact).abs() <= 2f64.powi(-31) + exact.abs() * 2f64.powi(-31));
     }
-    assert_eq!(RawScale::try_new(0.0), Err(Error::InvalidArgument));
-    assert_eq!(RawScale::try_new(-1.0f32), Err(Error::InvalidArgument));
-    assert_eq!(RawScale::try_new(f64::NAN), Err(Error::NonFinite));
-    assert_eq!(RawScale::try_new(f32::MAX), Err(Error::InvalidArgument));
+    assert_eq!(RawScale::<f64>::try_new(0.0), Err(Error::InvalidArgument));
+    assert_eq!(RawScale::<f32>::try_new(-1.0), Err(Error::InvalidArgument));
+    assert_eq!(RawScale::<f64>::try_new(f64::NAN), Err(Error::NonFinite));
+    assert_eq!(RawScale::<Q30>::try_new(f64::NAN), Err(Error::NonFinite));
+    // A full scale 32768·lsb beyond the type's range, or an lsb that rounds to 0 in it.
+    assert_eq!(
+        RawScale::<f32>::try_new(f64::from(f32::MAX)),
+        Err(Error::InvalidArgument)
+    );
+    assert_eq!(RawScale::<f32>::try_new(1e-50), Err(Error::InvalidArgument));
+    assert_eq!(
+        RawScale::<Q30>::try_new(2f64.powi(-14)),
+        Err(Error::OutOfRange)
+    );
+    // The stored LSB: rounded to f32 once, exact in f64, to 31 bits in Q1.30.
+    assert_eq!(s32.lsb(), f64::from(lsb as f32));
+    assert_eq!(s64.lsb(), lsb);
+    assert!((sq.lsb() / lsb - 1.0).abs() <= 2f64.powi(-31));
 }
 
 /// raw i16 increments → LSB scale → calibration (bias over the step) → remap, in f64, f32 and
@@ -112,9 +127,9 @@ fn chain_agrees_across_formats() {
     let calq = cal.try_to_q30().unwrap();
     let remap = AxisRemap::try_parse("y,-x,z").unwrap();
     let (s64, s32, sq) = (
-        RawScale::try_new(lsb).unwrap(),
-        RawScale::try_new(lsb as f32).unwrap(),
-        IncrementScale::try_new(lsb).unwrap(),
+        RawScale::<f64>::try_new(lsb).unwrap(),
+        RawScale::<f32>::try_new(lsb).unwrap(),
+        RawScale::<Q30>::try_new(lsb).unwrap(),
     );
     let dtq = Q30::try_from_f64(dt).unwrap();
     let mut quant = IncrementQuantizer::new();
@@ -151,4 +166,48 @@ fn chain_agrees_across_formats() {
         );
         assert!((sum32[k] - sum64[k]).abs() <= n as f64 * 4.0 * f32::EPSILON as f64 * 0.04);
     }
+}
+
+/// One clip policy for every reading type: f32 and f64 values against a range in physical units
+/// (as the estimator's gyroscope samples), with the same flags and policies as the registers.
+#[test]
+fn clipping_is_generic_over_the_reading() {
+    // f64: a range of 34.9 rad/s (2000 °/s).
+    let range = 2000f64.to_radians();
+    let limit = ClipLimit::<f64>::try_new(range).unwrap();
+    let (out, c) = limit.saturate([40.0, -35.0, 1.0]);
+    assert_eq!(c.axes, [true, true, false]);
+    assert_eq!(out, [range, -range, 1.0]);
+    // Exactly at the limit counts as clipped (as a register at its full scale).
+    assert_eq!(limit.check([range, 0.0, -range]).axes, [true, false, true]);
+    assert_eq!(ClipLimit::<f64>::try_new(0.0), Err(Error::InvalidArgument));
+    assert_eq!(
+        ClipLimit::<f32>::try_new(f32::NAN),
+        Err(Error::InvalidArgument)
+    );
+    // The floats' default limit is none (∞): nothing clips.
+    let none = ClipLimit::<f32>::default();
+    assert!(!none.check([f32::MAX, -f32::MAX, 0.0]).any());
+    // The stateful guard in f32, the four policies on the same stream.
+    let l32 = ClipLimit::<f32>::try_new(10.0).unwrap();
+    let stream = [[1.0f32, 2.0, 3.0], [12.0, 2.5, -11.0], [4.0, 10.0, 3.5]];
+    let run = |policy| {
+        let mut g = ClipGuard::new(l32, policy);
+        stream.map(|r| g.filter(r).map(|(o, _)| o))
+    };
+    let pass = run(ClipPolicy::Pass);
+    assert_eq!(pass[1], Ok([12.0, 2.5, -11.0]));
+    let sat = run(ClipPolicy::Saturate);
+    assert_eq!(sat[1], Ok([10.0, 2.5, -10.0]));
+    assert_eq!(sat[2], Ok([4.0, 10.0, 3.5]));
+    let hold = run(ClipPolicy::HoldLast);
+    assert_eq!(hold[1], Ok([1.0, 2.5, 3.0]));
+    assert_eq!(hold[2], Ok([4.0, 2.5, 3.5]));
+    let reject = run(ClipPolicy::Reject);
+    assert_eq!(reject[1], Err(Error::Clipped));
+    assert_eq!(reject[0], Ok([1.0, 2.0, 3.0]));
+    // Registers: Saturate sets a clipped axis to ±limit (i16::MIN to −limit).
+    let l16 = ClipLimit::<i16>::try_new(30000).unwrap();
+    let (out, c) = l16.saturate([31000, i16::MIN, 5]);
+    assert_eq!((out, c.axes), ([30000, -30000, 5], [true, true, false]));
 }

@@ -8,13 +8,14 @@
 //! - Magnus-4 on rate samples at jittered times: global order 4.
 
 use super::Rng;
-use gyrostat::fixed::{IncrementQuantizer, Q30};
+use gyrostat::fixed::IncrementQuantizer;
 use gyrostat::propagation::coning::{
     two_sample_terms, two_sample_unequal_coefficient, two_sample_unequal_terms,
 };
 use gyrostat::propagation::kernels::{
     cf4_step_unequal, coning2_update_unequal, magnus4_step_unequal, rk4_step_unequal,
 };
+use gyrostat::real::Q30;
 use gyrostat::{Quat, UnitQuat, Vec3};
 use host_tests::ref_propagation::{Coning, body_error, fit_slope};
 use host_tests::reference::{Q, V3, add, qmul, quat_angle, scale};

@@ -104,7 +104,7 @@
 //! the plain f64 splitting is already accurate to its truncation error on every horizon tested,
 //! so there the compensation buys little.
 
-pub(crate) mod compensated;
+pub(crate) mod compensated_flows;
 pub(crate) mod rk4;
 pub(crate) mod splitting;
 

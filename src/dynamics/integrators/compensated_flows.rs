@@ -2,14 +2,14 @@
 //! compensated step"): every rotation, kick and renormalisation adds its increment to the
 //! carried pairs; and the compensated RK4 step.
 
-use crate::compensated::{
-    HalfTurn, add_compensated, add_compensated_vec, add_pair, renormalize_compensated,
-    rotate_compensated, sixth_pair, two_product,
-};
 use crate::dynamics::gyrostat::Gyrostat;
 use crate::dynamics::integrators::rk4;
 use crate::dynamics::integrators::splitting::{Flows, plane, times_axis};
 use crate::dynamics::state::{CompensatedState, ControlLaw};
+use crate::error_free::{
+    HalfTurn, add_compensated, add_compensated_vec, add_pair, renormalize_compensated,
+    rotate_compensated, sixth_pair, two_product,
+};
 use crate::{Axis, Error, Quat, Real, UnitQuat, Vec3};
 
 /// The attitude and momentum of a compensated step in progress, each with its low-order part.

@@ -66,24 +66,25 @@
 //!
 //! [`RateIntegrator::try_with_step_remainder`]: crate::propagation::RateIntegrator::try_with_step_remainder
 
-use crate::compensated::{
+use crate::error_free::{
     add_compensated, renormalize_compensated, renormalize_exact_factor, rotate_compensated,
     sixth_pair, two_sum,
 };
 use crate::propagation::coning::{ConingRule, coning_terms_for};
-use crate::propagation::kernels::rk4_slope_sum;
+use crate::propagation::kernels::sealed::Form;
+use crate::propagation::kernels::{RotationVectorForm, check_rotation_vector, rk4_slope_sum};
 use crate::propagation::normalization::Normalization;
 use crate::propagation::rate_samples::{
     END, G1, G2, MID, RateMethod, SQRT_3, START, Weights, interp_difference,
 };
-use crate::{Quat, Real, UnitQuat, Vec3};
+use crate::{Error, Quat, Real, UnitQuat, Vec3};
 
 /// An attitude with its rounding error carried: `q + q_lo`, `q` the attitude rounded to `T`.
 ///
 /// Give it to [`crate::propagation::IncrementIntegrator::new`] or
 /// [`crate::propagation::RateIntegrator::try_new`] in place of a [`UnitQuat`] to run that
 /// integrator compensated (see the module docs); or update it directly with
-/// [`CompensatedAttitude::rotated_unchecked`] (for example with the rotation vector of a
+/// [`CompensatedAttitude::mul_exp_unchecked`] (for example with the rotation vector of a
 /// [`crate::propagation::ConingAccumulator`]).
 ///
 /// ```
@@ -140,18 +141,27 @@ impl<T: Real> CompensatedAttitude<T> {
         self.lo
     }
 
-    /// `q ⊗ exp(φ)` in compensated form, then the normalisation policy (see the module docs).
-    /// `φ` is taken as exact (an increment, or a rule's rotation vector); unchecked, like
-    /// [`crate::propagation::kernels::apply_rotation_vector`].
+    /// `q ⊗ exp(φ)` in compensated form, then the normalisation policy (see the module docs):
+    /// the update of every attitude type under one name (as [`UnitQuat::mul_exp_unchecked`]).
+    /// `φ` is taken as exact, in any [`RotationVectorForm`]: a plain vector, a coning rule's
+    /// [`ConingTerms`](crate::propagation::ConingTerms) (the coning term `lever × last` added to
+    /// the low part) or a compensated pair `(φ, φ_lo)` (`φ_lo` below an ulp of `φ`, or a small
+    /// correction). Unchecked: the domain of [`UnitQuat::mul_exp_unchecked`];
+    /// [`CompensatedAttitude::try_mul_exp`] is the checked form.
     #[inline]
-    pub fn rotated_unchecked(self, phi: Vec3<T>, norm: Normalization) -> Self {
-        self.rotated_pair_unchecked(phi, Vec3::ZERO, norm)
+    pub fn mul_exp_unchecked<P: RotationVectorForm<T>>(self, phi: P, norm: Normalization) -> Self {
+        let (phi, phi_lo) = match phi.form() {
+            Form::Vector(v) => (v, Vec3::ZERO),
+            Form::Coning(c) => (c.sum, c.lever.cross(c.last)),
+            Form::Pair(hi, lo) => (hi, lo),
+        };
+        self.mul_exp_pair(phi, phi_lo, norm)
     }
 
-    /// `q ⊗ exp(φ + φ_lo)` for a rotation vector given as a compensated pair (`φ_lo` below an
-    /// ulp of `φ`, or a small correction such as a coning term), then the normalisation policy.
+    /// The update by a pair (the integrators' path: not generic, so that its inlining is the
+    /// compiler's choice per call site).
     #[inline]
-    pub fn rotated_pair_unchecked(
+    pub(crate) fn mul_exp_pair(
         mut self,
         phi: Vec3<T>,
         phi_lo: Vec3<T>,
@@ -161,6 +171,30 @@ impl<T: Real> CompensatedAttitude<T> {
         rotate_compensated(&mut q, &mut self.lo, phi, phi_lo);
         self.q = UnitQuat::new_unchecked(q);
         self.normalized(norm)
+    }
+
+    /// [`CompensatedAttitude::mul_exp_unchecked`], checked.
+    ///
+    /// # Errors
+    /// As [`UnitQuat::try_mul_exp`]: [`Error::NonFinite`], [`Error::StepTooLong`].
+    #[inline]
+    pub fn try_mul_exp<P: RotationVectorForm<T>>(
+        self,
+        phi: P,
+        norm: Normalization,
+    ) -> Result<Self, Error> {
+        check_rotation_vector(phi)?;
+        Ok(self.mul_exp_unchecked(phi, norm))
+    }
+
+    /// The complete 2-sample update, `q ⊗ exp(θ₁ + θ₂ + ⅔ θ₁ × θ₂)` with the fast
+    /// renormalisation, compensated (the increments summed exactly, the coning term in the low
+    /// part): the counterpart of [`crate::propagation::kernels::coning2_update`] and
+    /// [`crate::propagation::CarriedAttitude::coning2_update`]. Unchecked, as there.
+    #[inline]
+    pub fn coning2_update(self, t1: Vec3<T>, t2: Vec3<T>) -> Self {
+        let (phi, phi_lo) = rule_vector(ConingRule::TwoSample, Vec3::ZERO, &[t1, t2]);
+        self.mul_exp_pair(phi, phi_lo, Normalization::Fast)
     }
 
     /// `q + (large + small)` in compensated form (an integrator's increment), then the
@@ -209,7 +243,7 @@ fn two_sum_vec<T: Real>(a: Vec3<T>, b: Vec3<T>) -> (Vec3<T>, Vec3<T>) {
 /// `a·s` as a compensated pair, component by component (Dekker's product).
 #[inline(always)]
 fn two_product_vec<T: Real>(a: Vec3<T>, s: T) -> (Vec3<T>, Vec3<T>) {
-    use crate::compensated::two_product;
+    use crate::error_free::two_product;
     let (x, ex) = two_product(a.x, s);
     let (y, ey) = two_product(a.y, s);
     let (z, ez) = two_product(a.z, s);
@@ -275,12 +309,12 @@ pub(crate) fn advance_compensated<T: Real, const M: usize>(
                     .scale(h)
                     .cross(w2.scale(h))
                     .scale(T::from_f64(SQRT_3 / 12.0));
-                q.rotated_pair_unchecked(base, base_lo + commutator, norm)
+                q.mul_exp_pair(base, base_lo + commutator, norm)
             } else {
                 // φ₁,₂ = (h/4)(ω₁ + ω₂) ± (√3/6) h (ω₁ − ω₂): the CF4 weights ¼ ± √3/6.
                 let diff = (w1 - w2).scale(h * T::from_f64(SQRT_3 / 6.0));
-                q.rotated_pair_unchecked(base, base_lo + diff, Normalization::None)
-                    .rotated_pair_unchecked(base, base_lo - diff, norm)
+                q.mul_exp_pair(base, base_lo + diff, Normalization::None)
+                    .mul_exp_pair(base, base_lo - diff, norm)
             }
         }
         RateMethod::Rk4 => {
