@@ -471,6 +471,8 @@ pub struct Estimator<T> {
     lowpass_stale: bool,
     /// The light mode's accumulators ([`Mode::Light`]).
     light: light::LightState<T>,
+    /// The bias before the current rest's updates (`None` when not at rest).
+    rest_bias: Option<Vec3<T>>,
 }
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
@@ -616,6 +618,7 @@ impl<T: Real> Estimator<T> {
             hard_iron_clock: T::ZERO,
             lowpass_stale: false,
             light: light::LightState::default(),
+            rest_bias: None,
         })
     }
 
@@ -778,9 +781,7 @@ impl<T: Real> Estimator<T> {
 
         if accel_use == SensorUse::Used {
             out.at_rest = self.rest.update(gyro, accel, dt, &self.params.rest);
-            if out.at_rest {
-                self.rest_update(&mut x);
-            }
+            self.rest_correction(out.at_rest, &mut x);
             out.accel = self.accel_update(accel, dt, &mut x);
         } else {
             out.accel = accel_use;
@@ -966,8 +967,38 @@ impl<T: Real> Estimator<T> {
         }
     }
 
-    /// At rest, the mean rate measures the bias: `z = ω̄ − b̂ = δb + noise`.
+    /// At rest, the rest update; after a rest that the specific force showed to be a slow
+    /// turn ([`RestDetector::turning`]), what it taught undone: the bias back to its value
+    /// before that rest, its variance widened by the change the rest made (per axis), and the
+    /// attitude variance by `(th_a/g)²` (the turn the attitude missed while the bias cancelled
+    /// it: the specific force moved by `th_a` at most before the rest ended).
+    fn rest_correction(&mut self, at_rest: bool, x: &mut [T; 6]) {
+        if at_rest {
+            self.rest_update(x);
+        } else if let Some(b) = self.rest_bias.take()
+            && self.rest.turning()
+        {
+            let d = self.bias - b;
+            self.bias = b;
+            for (i, di) in d.to_array().into_iter().enumerate() {
+                if let Some(row) = self.p.bias.m.get_mut(i)
+                    && let Some(v) = row.get_mut(i)
+                {
+                    *v += di * di;
+                }
+            }
+            let a = self.params.rest.accel / T::from_f64(GRAVITY);
+            self.p.inflate_attitude(a * a);
+            self.p.bound(T::PI * T::PI, self.bias_variance_max());
+        }
+    }
+
+    /// At rest, the mean rate measures the bias: `z = ω̄ − b̂ = δb + noise` (the bias before
+    /// the rest kept, see [`Self::rest_correction`]).
     fn rest_update(&mut self, x: &mut [T; 6]) {
+        if self.rest_bias.is_none() {
+            self.rest_bias = Some(self.bias);
+        }
         let z = self.rest.mean_rate() - self.bias;
         let s = self.params.rest_bias_noise;
         let r = s * s;
