@@ -789,7 +789,14 @@ impl<T: Real> Estimator<T> {
         self.inject(&x);
 
         out.mag = match (mag, mag_use) {
-            (Some(m), SensorUse::Used) => self.mag_update(m, gyro, dt),
+            (Some(m), SensorUse::Used) => {
+                let u = self.mag_update(m, gyro, dt);
+                if u == SensorUse::Used {
+                    let pr = &self.params;
+                    self.rest.update_field(m, dt, pr.field.dip, &pr.rest);
+                }
+                u
+            }
             (_, u) => u,
         };
         self.last = out;
@@ -967,11 +974,13 @@ impl<T: Real> Estimator<T> {
         }
     }
 
-    /// At rest, the rest update; after a rest that the specific force showed to be a slow
-    /// turn ([`RestDetector::turning`]), what it taught undone: the bias back to its value
-    /// before that rest, its variance widened by the change the rest made (per axis), and the
-    /// attitude variance by `(th_a/g)²` (the turn the attitude missed while the bias cancelled
-    /// it: the specific force moved by `th_a` at most before the rest ended).
+    /// At rest, the rest update; after a rest that the specific force or the field showed to
+    /// be a slow turn ([`RestDetector::turning`]), what it taught undone: the bias back to its
+    /// value before that rest, its variance widened by the change the rest made (per axis), the
+    /// attitude variance by `(th_a/g)²` and the heading variance by the field monitor's
+    /// direction threshold squared (the turn the attitude missed while the bias cancelled it:
+    /// the specific force moved by `th_a` at most, the field's horizontal direction by that
+    /// angle at most, before the rest ended).
     fn rest_correction(&mut self, at_rest: bool, x: &mut [T; 6]) {
         if at_rest {
             self.rest_update(x);
@@ -987,8 +996,11 @@ impl<T: Real> Estimator<T> {
                     *v += di * di;
                 }
             }
-            let a = self.params.rest.accel / T::from_f64(GRAVITY);
+            let pr = &self.params;
+            let a = pr.rest.accel / T::from_f64(GRAVITY);
+            let h = pr.field.dip;
             self.p.inflate_attitude(a * a);
+            self.p.inflate_heading(h * h);
             self.p.bound(T::PI * T::PI, self.bias_variance_max());
         }
     }

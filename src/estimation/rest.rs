@@ -14,10 +14,10 @@
 //! a turn, and stays one (no rest) until the gyroscope moves (`|ω − ω̄| ≥ th_ω`): a slow turn
 //! would otherwise be still again for `t_min` after each restart. [`RestDetector::turning`]
 //! says so, and the estimator undoes what a rest that ended this way taught its bias. A turn
-//! about the vertical leaves `a` alone and is not found: the magnetometer's heading update
-//! bounds its effect (the field's horizontal direction would find it too, but a magnetic
-//! disturbance at rest turns it as well: on BROAD's disturbed trials such a test ended true
-//! rests and cost accuracy).
+//! about the vertical leaves `a` alone; the field's horizontal direction shows it
+//! ([`RestDetector::update_field`], fed by the estimator with undisturbed field samples and the
+//! field monitor's direction threshold: a smaller angle ended true rests on BROAD's magnetically
+//! disturbed trials).
 
 use super::lowpass::LowPass;
 use crate::{Real, Vec3};
@@ -34,6 +34,10 @@ pub struct RestDetector<T> {
     at_rest: bool,
     /// A steady rate found to be a turn (the specific force drifted), until the gyroscope moves.
     turning: bool,
+    /// The mean field over the still period (`None` until its first field sample).
+    field: Option<LowPass<T>>,
+    /// The horizontal direction of the mean field when the rest began (unit; zero until then).
+    field_anchor: Vec3<T>,
 }
 
 /// The rest detector's thresholds (SI units).
@@ -61,6 +65,8 @@ impl<T: Real> RestDetector<T> {
             still_for: T::ZERO,
             at_rest: false,
             turning: false,
+            field: None,
+            field_anchor: Vec3::ZERO,
         }
     }
 
@@ -90,6 +96,8 @@ impl<T: Real> RestDetector<T> {
         } else {
             if self.still_for <= T::ZERO {
                 self.anchor = accel;
+                self.field = None;
+                self.field_anchor = Vec3::ZERO;
             }
             self.still_for += dt;
             if self.still_for >= th.min_duration {
@@ -97,6 +105,49 @@ impl<T: Real> RestDetector<T> {
             }
         }
         self.at_rest
+    }
+
+    /// Feeds one magnetometer sample (any unit, sensor frame) taken `dt` after the previous
+    /// sample. A steady turn about the vertical leaves the specific force alone but turns the
+    /// field's horizontal direction `ĥ` (the mean field `m̄`, time constant `τ_rest`, less its
+    /// component along `ā`, normalised). When, during a rest, `ĥ` has turned by `angle` (rad)
+    /// or more from its direction when the rest began (the mean then settled for `t_min`), the
+    /// steady rate is a turn, as for the specific force ([`RestDetector::turning`]). Outside a
+    /// still period it does nothing.
+    pub fn update_field(&mut self, mag: Vec3<T>, dt: T, angle: T, th: &RestThresholds<T>) {
+        if self.still_for <= T::ZERO {
+            return;
+        }
+        let m = match &mut self.field {
+            Some(lp) => lp.update(mag, LowPass::gain(th.time_constant, dt)),
+            None => {
+                self.field = Some(LowPass::at(mag));
+                return;
+            }
+        };
+        if !self.at_rest {
+            return;
+        }
+        let up = self.accel.output();
+        let n2 = up.norm_squared();
+        if !(n2 > T::ZERO) {
+            return;
+        }
+        let h = m - up.scale(m.dot(up) / n2);
+        let h2 = h.norm_squared();
+        if !(h2 > T::ZERO && h2.is_finite()) {
+            return;
+        }
+        let h = h.scale(T::ONE / h2.sqrt());
+        if self.field_anchor == Vec3::ZERO {
+            self.field_anchor = h;
+            return;
+        }
+        if (h - self.field_anchor).norm_squared() >= angle * angle {
+            self.turning = true;
+            self.still_for = T::ZERO;
+            self.at_rest = false;
+        }
     }
 
     /// Whether the last sample was at rest.
