@@ -838,7 +838,7 @@ impl<T: Real> Estimator<T> {
         p.attitude.m[2][2] = s_head * s_head;
         self.p = p;
         if let Some(m) = mag {
-            let (norm, dip) = norm_dip(q.rotate(m));
+            let (norm, dip, _) = norm_dip(q.rotate(m));
             self.field = FieldMonitor::new(norm, dip);
             self.field_started = true;
         }
@@ -984,25 +984,35 @@ impl<T: Real> Estimator<T> {
     fn rest_correction(&mut self, at_rest: bool, x: &mut [T; 6]) {
         if at_rest {
             self.rest_update(x);
-        } else if let Some(b) = self.rest_bias.take()
-            && self.rest.turning()
-        {
-            let d = self.bias - b;
-            self.bias = b;
-            for (i, di) in d.to_array().into_iter().enumerate() {
-                if let Some(row) = self.p.bias.m.get_mut(i)
-                    && let Some(v) = row.get_mut(i)
-                {
-                    *v += di * di;
-                }
-            }
-            let pr = &self.params;
-            let a = pr.rest.accel / T::from_f64(GRAVITY);
-            let h = pr.field.dip;
-            self.p.inflate_attitude(a * a);
-            self.p.inflate_heading(h * h);
-            self.p.bound(T::PI * T::PI, self.bias_variance_max());
+        } else if self.rest_bias.is_some() {
+            self.rest_ended();
         }
+    }
+
+    /// The end of a rest ([`Self::rest_correction`]).
+    #[inline(never)]
+    fn rest_ended(&mut self) {
+        let Some(b) = self.rest_bias.take() else {
+            return;
+        };
+        if !self.rest.turning() {
+            return;
+        }
+        let d = self.bias - b;
+        self.bias = b;
+        for (i, di) in d.to_array().into_iter().enumerate() {
+            if let Some(row) = self.p.bias.m.get_mut(i)
+                && let Some(v) = row.get_mut(i)
+            {
+                *v += di * di;
+            }
+        }
+        let pr = &self.params;
+        let a = pr.rest.accel / T::from_f64(GRAVITY);
+        let h = pr.field.dip;
+        self.p.inflate_attitude(a * a);
+        self.p.inflate_heading(h * h);
+        self.p.bound(T::PI * T::PI, self.bias_variance_max());
     }
 
     /// At rest, the mean rate measures the bias: `z = ω̄ − b̂ = δb + noise` (the bias before
@@ -1108,16 +1118,16 @@ impl<T: Real> Estimator<T> {
         };
         let lag = lag.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX));
         let mut m = self.q_corr.rotate(self.field_at(mag, lag));
-        let (mut norm, mut dip) = norm_dip(m);
+        let (mut norm, mut dip, mut h_field) = norm_dip(m);
         // The offered hard-iron offset is subtracted when the corrected field is closer to
         // the reference (relative norm plus dip) than the raw one.
         self.hard_iron_applied = Vec3::ZERO;
         let h = self.hard_iron_offer;
         if self.field_started && h != Vec3::ZERO {
             let mc = self.q_corr.rotate(self.field_at(mag - h, lag));
-            let (nc, dc) = norm_dip(mc);
+            let (nc, dc, hc) = norm_dip(mc);
             if self.field.deviation(nc, dc) < self.field.deviation(norm, dip) {
-                (m, norm, dip) = (mc, nc, dc);
+                (m, norm, dip, h_field) = (mc, nc, dc, hc);
                 self.hard_iron_applied = h;
             }
         }
@@ -1147,7 +1157,7 @@ impl<T: Real> Estimator<T> {
         if disturbed && g <= T::ZERO {
             return SensorUse::Disturbed;
         }
-        let h = m.x.hypot(m.y);
+        let h = h_field;
         if h <= T::ZERO {
             return SensorUse::Disturbed;
         }
@@ -1400,8 +1410,9 @@ impl<T: Copy> MagParams<T> {
     }
 }
 
-/// The norm and dip angle (rad, positive below the horizontal) of an earth-frame (ENU) field.
-fn norm_dip<T: Real>(m: Vec3<T>) -> (T, T) {
+/// The norm, dip angle (rad, positive below the horizontal) and horizontal magnitude `hypot(x, y)`
+/// of an earth-frame (ENU) field.
+fn norm_dip<T: Real>(m: Vec3<T>) -> (T, T, T) {
     let h = m.x.hypot(m.y);
-    (m.norm(), (-m.z).atan2(h))
+    (m.norm(), (-m.z).atan2(h), h)
 }

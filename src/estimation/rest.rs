@@ -114,10 +114,16 @@ impl<T: Real> RestDetector<T> {
     /// or more from its direction when the rest began (the mean then settled for `t_min`), the
     /// steady rate is a turn, as for the specific force ([`RestDetector::turning`]). Outside a
     /// still period it does nothing.
+    #[inline]
     pub fn update_field(&mut self, mag: Vec3<T>, dt: T, angle: T, th: &RestThresholds<T>) {
-        if self.still_for <= T::ZERO {
-            return;
+        if self.still_for > T::ZERO {
+            self.field_still(mag, dt, angle, th);
         }
+    }
+
+    /// [`RestDetector::update_field`] in a still period.
+    #[inline(never)]
+    fn field_still(&mut self, mag: Vec3<T>, dt: T, angle: T, th: &RestThresholds<T>) {
         let m = match &mut self.field {
             Some(lp) => lp.update(mag, LowPass::gain(th.time_constant, dt)),
             None => {
