@@ -473,6 +473,10 @@ pub struct Estimator<T> {
     light: light::LightState<T>,
     /// The bias before the current rest's updates (`None` when not at rest).
     rest_bias: Option<Vec3<T>>,
+    /// The averaged inclination innovation (earth `x`, `y`), rad ([`Self::persistent_tilt`]).
+    tilt_disagreement: [T; 2],
+    /// The averaged heading innovation of undisturbed field samples, rad.
+    heading_disagreement: T,
 }
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
@@ -619,6 +623,8 @@ impl<T: Real> Estimator<T> {
             lowpass_stale: false,
             light: light::LightState::default(),
             rest_bias: None,
+            tilt_disagreement: [T::ZERO; 2],
+            heading_disagreement: T::ZERO,
         })
     }
 
@@ -1041,12 +1047,12 @@ impl<T: Real> Estimator<T> {
             self.accel_lp = LowPass::at(a_gyro);
             self.lowpass_stale = false;
         }
-        let v = if tau_a > T::ZERO {
-            let k = LowPass::gain(tau_a, dt);
-            self.accel_lp.update(a_gyro, k)
+        let k = if tau_a > T::ZERO {
+            LowPass::gain(tau_a, dt)
         } else {
-            a_gyro
+            T::ONE
         };
+        let v = self.accel_lp.update(a_gyro, k);
         // What the low-pass filter left of non-gravitational acceleration shows in its norm.
         let g = T::from_f64(GRAVITY);
         let residual = (v.norm() - g).abs() / g;
@@ -1062,6 +1068,7 @@ impl<T: Real> Estimator<T> {
         } else {
             (T::ZERO, T::ZERO)
         };
+        self.persistent_tilt(ex, ey, k);
         match gains {
             Gains::Kalman => {
                 let r = self.tilt_variance(dt);
@@ -1079,6 +1086,36 @@ impl<T: Real> Estimator<T> {
             }
         }
         SensorUse::Used
+    }
+
+    /// A tilt disagreement that persists: the inclination innovation `(e_x, e_y)` (earth frame)
+    /// averaged with the accelerometer's stage gain `k` (time constant `τ_a/2`) is beyond three
+    /// standard deviations of what the filter expects of it, `|ē|² > 9·(P_xx + P_yy + 2σ_a²)`:
+    /// the attitude is off by more than its variance says (a tilt learned from a sustained
+    /// acceleration, which the filter then trusts). Each tilt variance is raised to at least
+    /// `ē_i²`, so the next updates correct the error at once instead of at the steady-state
+    /// gain (about 25 s per e-fold at 20 Hz).
+    fn persistent_tilt(&mut self, ex: T, ey: T, k: T) {
+        let [dx, dy] = &mut self.tilt_disagreement;
+        *dx += k * (ex - *dx);
+        *dy += k * (ey - *dy);
+        let (dx, dy) = (*dx, *dy);
+        let s = self.params.accel_tilt_noise;
+        let a = &mut self.p.attitude.m;
+        let (pxx, pyy) = (a[0][0], a[1][1]);
+        let nine = T::from_f64(9.0);
+        if dx * dx + dy * dy > nine * (pxx + pyy + (s + s) * s) {
+            if let Some(row) = a.get_mut(0)
+                && let Some(p) = row.get_mut(0)
+            {
+                *p = p.max(dx * dx);
+            }
+            if let Some(row) = a.get_mut(1)
+                && let Some(p) = row.get_mut(1)
+            {
+                *p = p.max(dy * dy);
+            }
+        }
     }
 
     fn tilt_variance(&self, dt: T) -> T {
@@ -1162,6 +1199,9 @@ impl<T: Real> Estimator<T> {
             return SensorUse::Disturbed;
         }
         let psi = m.x.atan2(m.y);
+        if !disturbed {
+            self.persistent_heading(psi, dt);
+        }
         let (rn, rd) = self.field.reference();
         let eps = if disturbed {
             g * ((norm - rn).abs() / rn + (dip - rd).abs()) * norm / h
@@ -1188,6 +1228,22 @@ impl<T: Real> Estimator<T> {
             SensorUse::Disturbed
         } else {
             SensorUse::Used
+        }
+    }
+
+    /// A heading disagreement that persists (as [`Self::persistent_tilt`]): the heading
+    /// innovation of undisturbed field samples averaged over the field's correlation time is
+    /// beyond three standard deviations, `ψ̄² > 9·(P_zz + σ_h²)`: the heading variance is raised
+    /// to at least `ψ̄²` (a heading learned from another field, which the filter then trusts).
+    fn persistent_heading(&mut self, psi: T, dt: T) {
+        let k = first_order_gain(dt, self.params.mag_correlation_time);
+        let d = &mut self.heading_disagreement;
+        *d += k * (psi - *d);
+        let d = *d;
+        let s = self.params.mag_heading_noise;
+        let p = self.p.attitude.m[2][2];
+        if d * d > T::from_f64(9.0) * (p + s * s) {
+            self.p.inflate_heading(d * d - p);
         }
     }
 
