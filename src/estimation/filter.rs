@@ -1105,16 +1105,8 @@ impl<T: Real> Estimator<T> {
         let (pxx, pyy) = (a[0][0], a[1][1]);
         let nine = T::from_f64(9.0);
         if dx * dx + dy * dy > nine * (pxx + pyy + (s + s) * s) {
-            if let Some(row) = a.get_mut(0)
-                && let Some(p) = row.get_mut(0)
-            {
-                *p = p.max(dx * dx);
-            }
-            if let Some(row) = a.get_mut(1)
-                && let Some(p) = row.get_mut(1)
-            {
-                *p = p.max(dy * dy);
-            }
+            a[0][0] = pxx.max(dx * dx);
+            a[1][1] = pyy.max(dy * dy);
         }
     }
 

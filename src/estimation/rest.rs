@@ -136,7 +136,7 @@ impl<T: Real> RestDetector<T> {
         }
         let up = self.accel.output();
         let n2 = up.norm_squared();
-        if !(n2 > T::ZERO) {
+        if n2 <= T::ZERO || !n2.is_finite() {
             return;
         }
         let h = m - up.scale(m.dot(up) / n2);
