@@ -473,8 +473,6 @@ pub struct Estimator<T> {
     light: light::LightState<T>,
     /// The bias before the current rest's updates (`None` when not at rest).
     rest_bias: Option<Vec3<T>>,
-    /// The averaged inclination innovation (earth `x`, `y`), rad ([`Self::persistent_tilt`]).
-    tilt_disagreement: [T; 2],
     /// The averaged heading innovation of undisturbed field samples, rad.
     heading_disagreement: T,
 }
@@ -623,7 +621,6 @@ impl<T: Real> Estimator<T> {
             lowpass_stale: false,
             light: light::LightState::default(),
             rest_bias: None,
-            tilt_disagreement: [T::ZERO; 2],
             heading_disagreement: T::ZERO,
         })
     }
@@ -1068,7 +1065,7 @@ impl<T: Real> Estimator<T> {
         } else {
             (T::ZERO, T::ZERO)
         };
-        self.persistent_tilt(ex, ey, k);
+        self.persistent_tilt(ex, ey);
         match gains {
             Gains::Kalman => {
                 let r = self.tilt_variance(dt);
@@ -1088,25 +1085,20 @@ impl<T: Real> Estimator<T> {
         SensorUse::Used
     }
 
-    /// A tilt disagreement that persists: the inclination innovation `(e_x, e_y)` (earth frame)
-    /// averaged with the accelerometer's stage gain `k` (time constant `τ_a/2`) is beyond three
-    /// standard deviations of what the filter expects of it, `|ē|² > 9·(P_xx + P_yy + 2σ_a²)`:
-    /// the attitude is off by more than its variance says (a tilt learned from a sustained
-    /// acceleration, which the filter then trusts). Each tilt variance is raised to at least
-    /// `ē_i²`, so the next updates correct the error at once instead of at the steady-state
-    /// gain (about 25 s per e-fold at 20 Hz).
-    fn persistent_tilt(&mut self, ex: T, ey: T, k: T) {
-        let [dx, dy] = &mut self.tilt_disagreement;
-        *dx += k * (ex - *dx);
-        *dy += k * (ey - *dy);
-        let (dx, dy) = (*dx, *dy);
+    /// A tilt disagreement that persists: the inclination innovation `(e_x, e_y)` (earth frame,
+    /// of the specific force low-passed over `τ_a`, so a disagreement that shows has lasted) is
+    /// beyond three standard deviations of what the filter expects of it,
+    /// `|e|² > 9·(P_xx + P_yy + 2σ_a²)`: the attitude is off by more than its variance says (a
+    /// tilt learned from a sustained acceleration, which the filter then trusts). Each tilt
+    /// variance is raised to at least `e_i²`, so the next updates correct the error at once
+    /// instead of at the steady-state gain (about 25 s per e-fold at 20 Hz).
+    fn persistent_tilt(&mut self, ex: T, ey: T) {
         let s = self.params.accel_tilt_noise;
         let a = &mut self.p.attitude.m;
         let (pxx, pyy) = (a[0][0], a[1][1]);
-        let nine = T::from_f64(9.0);
-        if dx * dx + dy * dy > nine * (pxx + pyy + (s + s) * s) {
-            a[0][0] = pxx.max(dx * dx);
-            a[1][1] = pyy.max(dy * dy);
+        if ex * ex + ey * ey > T::from_f64(9.0) * (pxx + pyy + (s + s) * s) {
+            a[0][0] = pxx.max(ex * ex);
+            a[1][1] = pyy.max(ey * ey);
         }
     }
 
