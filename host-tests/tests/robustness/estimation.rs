@@ -333,7 +333,7 @@ fn garbage_burst<T: Tolerance>(q: Q, w: [f64; 3], burst: usize, seed: u64, p: Pa
 /// field `40·size·dir` added; 1: another homogeneous field; 2: a sustained push, an earth-frame
 /// specific force `size·dir` added), then [`recovery`], with its error bound when `error_bound`
 /// (the family has none: an open finding, ROBUSTNESS.md: a bias learned during a sustained push
-/// while the sensor turns, a heading after another field).
+/// while the sensor turns).
 fn long_disturbance<T: Tolerance>(
     q: Q,
     w: [f64; 3],
