@@ -110,6 +110,10 @@ pub struct Estimator<T> {
     lowpass_stale: bool,
     /// The light mode's accumulators ([`Mode::Light`]).
     light: light::LightState<T>,
+    /// The bias before the current rest's updates (`None` when not at rest).
+    rest_bias: Option<Vec3<T>>,
+    /// The averaged heading innovation of undisturbed field samples, rad.
+    heading_disagreement: T,
 }
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
@@ -191,6 +195,8 @@ impl<T: Real> Estimator<T> {
             hard_iron_clock: T::ZERO,
             lowpass_stale: false,
             light: light::LightState::default(),
+            rest_bias: None,
+            heading_disagreement: T::ZERO,
         })
     }
 
@@ -353,9 +359,7 @@ impl<T: Real> Estimator<T> {
 
         if accel_use == SensorUse::Used {
             out.at_rest = self.rest.update(gyro, accel, dt, &self.params.rest);
-            if out.at_rest {
-                self.rest_update(&mut x);
-            }
+            self.rest_correction(out.at_rest, &mut x);
             out.accel = self.accel_update(accel, dt, &mut x);
         } else {
             out.accel = accel_use;
@@ -363,7 +367,14 @@ impl<T: Real> Estimator<T> {
         self.inject(&x);
 
         out.mag = match (mag, mag_use) {
-            (Some(m), SensorUse::Used) => self.mag_update(m, gyro, dt),
+            (Some(m), SensorUse::Used) => {
+                let u = self.mag_update(m, gyro, dt);
+                if u == SensorUse::Used {
+                    let pr = &self.params;
+                    self.rest.update_field(m, dt, pr.field.dip, &pr.rest);
+                }
+                u
+            }
             (_, u) => u,
         };
         self.last = out;
@@ -405,7 +416,7 @@ impl<T: Real> Estimator<T> {
         p.attitude.m[2][2] = s_head * s_head;
         self.p = p;
         if let Some(m) = mag {
-            let (norm, dip) = norm_dip(q.rotate(m));
+            let (norm, dip, _) = norm_dip(q.rotate(m));
             self.field = FieldMonitor::new(norm, dip);
             self.field_started = true;
         }
@@ -557,8 +568,53 @@ impl<T: Real> Estimator<T> {
         }
     }
 
-    /// At rest, the mean rate measures the bias: `z = ω̄ − b̂ = δb + noise`.
+    /// At rest, the rest update; after a rest that the specific force or the field showed to
+    /// be a slow turn ([`RestDetector::turning`]), what it taught undone: the bias back to its
+    /// value before that rest, its variance widened by the change the rest made (per axis), the
+    /// attitude variance by `(th_a/g)²` and the heading variance by the field monitor's
+    /// direction threshold squared (the turn the attitude missed while the bias cancelled it:
+    /// the specific force moved by `th_a` at most, the field's horizontal direction by that
+    /// angle at most, before the rest ended).
+    fn rest_correction(&mut self, at_rest: bool, x: &mut [T; 6]) {
+        if at_rest {
+            self.rest_update(x);
+        } else if self.rest_bias.is_some() {
+            self.rest_ended();
+        }
+    }
+
+    /// The end of a rest ([`Self::rest_correction`]).
+    #[inline(never)]
+    fn rest_ended(&mut self) {
+        let Some(b) = self.rest_bias.take() else {
+            return;
+        };
+        if !self.rest.turning() {
+            return;
+        }
+        let d = self.bias - b;
+        self.bias = b;
+        for (i, di) in d.to_array().into_iter().enumerate() {
+            if let Some(row) = self.p.bias.m.get_mut(i)
+                && let Some(v) = row.get_mut(i)
+            {
+                *v += di * di;
+            }
+        }
+        let pr = &self.params;
+        let a = pr.rest.accel / T::from_f64(GRAVITY);
+        let h = pr.field.dip;
+        self.p.inflate_attitude(a * a);
+        self.p.inflate_heading(h * h);
+        self.p.bound(T::PI * T::PI, self.bias_variance_max());
+    }
+
+    /// At rest, the mean rate measures the bias: `z = ω̄ − b̂ = δb + noise` (the bias before
+    /// the rest kept, see [`Self::rest_correction`]).
     fn rest_update(&mut self, x: &mut [T; 6]) {
+        if self.rest_bias.is_none() {
+            self.rest_bias = Some(self.bias);
+        }
         let z = self.rest.mean_rate() - self.bias;
         let s = self.params.rest_bias_noise;
         let r = s * s;
@@ -579,12 +635,12 @@ impl<T: Real> Estimator<T> {
             self.accel_lp = LowPass::at(a_gyro);
             self.lowpass_stale = false;
         }
-        let v = if tau_a > T::ZERO {
-            let k = LowPass::gain(tau_a, dt);
-            self.accel_lp.update(a_gyro, k)
+        let k = if tau_a > T::ZERO {
+            LowPass::gain(tau_a, dt)
         } else {
-            a_gyro
+            T::ONE
         };
+        let v = self.accel_lp.update(a_gyro, k);
         // What the low-pass filter left of non-gravitational acceleration shows in its norm.
         let g = T::from_f64(GRAVITY);
         let residual = (length(v) - g).abs() / g;
@@ -600,6 +656,7 @@ impl<T: Real> Estimator<T> {
         } else {
             (T::ZERO, T::ZERO)
         };
+        self.persistent_tilt(ex, ey);
         match gains {
             Gains::Kalman => {
                 let r = self.tilt_variance(dt);
@@ -617,6 +674,23 @@ impl<T: Real> Estimator<T> {
             }
         }
         SensorUse::Used
+    }
+
+    /// A tilt disagreement that persists: the inclination innovation `(e_x, e_y)` (earth frame,
+    /// of the specific force low-passed over `τ_a`, so a disagreement that shows has lasted) is
+    /// beyond three standard deviations of what the filter expects of it,
+    /// `|e|² > 9·(P_xx + P_yy + 2σ_a²)`: the attitude is off by more than its variance says (a
+    /// tilt learned from a sustained acceleration, which the filter then trusts). Each tilt
+    /// variance is raised to at least `e_i²`, so the next updates correct the error at once
+    /// instead of at the steady-state gain (about 25 s per e-fold at 20 Hz).
+    fn persistent_tilt(&mut self, ex: T, ey: T) {
+        let s = self.params.accel_tilt_noise;
+        let a = &mut self.p.attitude.m;
+        let (pxx, pyy) = (a[0][0], a[1][1]);
+        if ex * ex + ey * ey > T::from_f64(9.0) * (pxx + pyy + (s + s) * s) {
+            a[0][0] = pxx.max(ex * ex);
+            a[1][1] = pyy.max(ey * ey);
+        }
     }
 
     fn tilt_variance(&self, dt: T) -> T {
@@ -656,16 +730,16 @@ impl<T: Real> Estimator<T> {
         };
         let lag = lag.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX));
         let mut m = self.q_corr.rotate(self.field_at(mag, lag));
-        let (mut norm, mut dip) = norm_dip(m);
+        let (mut norm, mut dip, mut h_field) = norm_dip(m);
         // The offered hard-iron offset is subtracted when the corrected field is closer to
         // the reference (relative norm plus dip) than the raw one.
         self.hard_iron_applied = Vec3::ZERO;
         let h = self.hard_iron_offer;
         if self.field_started && h != Vec3::ZERO {
             let mc = self.q_corr.rotate(self.field_at(mag - h, lag));
-            let (nc, dc) = norm_dip(mc);
+            let (nc, dc, hc) = norm_dip(mc);
             if self.field.deviation(nc, dc) < self.field.deviation(norm, dip) {
-                (m, norm, dip) = (mc, nc, dc);
+                (m, norm, dip, h_field) = (mc, nc, dc, hc);
                 self.hard_iron_applied = h;
             }
         }
@@ -695,11 +769,14 @@ impl<T: Real> Estimator<T> {
         if disturbed && g <= T::ZERO {
             return SensorUse::Disturbed;
         }
-        let h = horizontal(m);
+        let h = h_field;
         if h <= T::ZERO {
             return SensorUse::Disturbed;
         }
         let psi = m.x.atan2(m.y);
+        if !disturbed {
+            self.persistent_heading(psi, dt);
+        }
         let (rn, rd) = self.field.reference();
         let eps = if disturbed {
             g * ((norm - rn).abs() / rn + (dip - rd).abs()) * norm / h
@@ -726,6 +803,22 @@ impl<T: Real> Estimator<T> {
             SensorUse::Disturbed
         } else {
             SensorUse::Used
+        }
+    }
+
+    /// A heading disagreement that persists (as [`Self::persistent_tilt`]): the heading
+    /// innovation of undisturbed field samples averaged over the field's correlation time is
+    /// beyond three standard deviations, `ψ̄² > 9·(P_zz + σ_h²)`: the heading variance is raised
+    /// to at least `ψ̄²` (a heading learned from another field, which the filter then trusts).
+    fn persistent_heading(&mut self, psi: T, dt: T) {
+        let k = first_order_gain(dt, self.params.mag_correlation_time);
+        let d = &mut self.heading_disagreement;
+        *d += k * (psi - *d);
+        let d = *d;
+        let s = self.params.mag_heading_noise;
+        let p = self.p.attitude.m[2][2];
+        if d * d > T::from_f64(9.0) * (p + s * s) {
+            self.p.inflate_heading(d * d - p);
         }
     }
 
@@ -947,9 +1040,11 @@ impl<T: Copy> MagParams<T> {
     }
 }
 
-/// The norm and dip angle (rad, positive below the horizontal) of an earth-frame (ENU) field.
-fn norm_dip<T: Real>(m: Vec3<T>) -> (T, T) {
-    (length(m), (-m.z).atan2(horizontal(m)))
+/// The norm, dip angle (rad, positive below the horizontal) and horizontal magnitude
+/// `√(x² + y²)` of an earth-frame (ENU) field (as [`length`] and [`horizontal`]).
+fn norm_dip<T: Real>(m: Vec3<T>) -> (T, T, T) {
+    let h = horizontal(m);
+    (length(m), (-m.z).atan2(h), h)
 }
 
 /// `|v| = √(x² + y² + z²)` for the estimator's vectors, whose squares are finite (the checked

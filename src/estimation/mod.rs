@@ -62,7 +62,11 @@
 //!    for each step ([`first_order_gain`]). A filtered vector whose norm still differs
 //!    from gravity by more than [`Params::accel_reject`] (a sustained acceleration) is not used.
 //! 4. **Rest** — [`RestDetector`]: at rest the mean rate is a direct measurement of the bias
-//!    (three scalar updates of `δb`).
+//!    (three scalar updates of `δb`). A steady turn slower than the largest bias is not rest:
+//!    the specific force (or the field's horizontal direction) drifts, the detector then calls
+//!    it a turn, and what that rest taught the bias is undone. A tilt or heading innovation
+//!    that persists beyond three standard deviations raises its variance (a tilt learned from
+//!    a sustained acceleration, a heading from another field, is then corrected at once).
 //! 5. **Heading** (9D) — the field in the earth frame, `m = R̂ B`, gives the heading error
 //!    `ψ = atan2(m_x, m_y)`. The measurement model `ψ = δθ_z + tan(dip)·δθ_y` includes the
 //!    heading error a tilt error causes (the field's vertical part turned into the horizontal

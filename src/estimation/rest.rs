@@ -3,8 +3,21 @@
 //!
 //! Both signals are low-pass filtered ([`LowPass`], time constant `τ_rest`); the sensor counts
 //! as moving whenever `|ω − ω̄| ≥ th_ω`, `|a − ā| ≥ th_a`, or `|ω̄|` exceeds the largest
-//! plausible bias (a slow steady turn is not rest). After `t_min` seconds without motion it is
-//! at rest, and `ω̄` is then a measurement of the gyroscope bias, averaged over `τ_rest`.
+//! plausible bias (a steady turn faster than any bias is not rest). After `t_min` seconds
+//! without motion it is at rest, and `ω̄` is then a measurement of the gyroscope bias, averaged
+//! over `τ_rest`.
+//!
+//! A steady turn slower than the largest bias passes those tests (the gyroscope cannot tell it
+//! from a bias, and the deviation of `a` from its lagging mean is only `|ω × a|·τ_rest`), but it
+//! turns the specific force: the sensor is also moving when `ā` has moved `th_a` or more from
+//! the sample `a₀` that started the still period, `|ā − a₀| ≥ th_a`. That steady rate is then
+//! a turn, and stays one (no rest) until the gyroscope moves (`|ω − ω̄| ≥ th_ω`): a slow turn
+//! would otherwise be still again for `t_min` after each restart. [`RestDetector::turning`]
+//! says so, and the estimator undoes what a rest that ended this way taught its bias. A turn
+//! about the vertical leaves `a` alone; the field's horizontal direction shows it
+//! ([`RestDetector::update_field`], fed by the estimator with undisturbed field samples and the
+//! field monitor's direction threshold: a smaller angle ended true rests on BROAD's magnetically
+//! disturbed trials).
 
 use super::lowpass::LowPass;
 use crate::{Real, Vec3};
@@ -14,8 +27,17 @@ use crate::{Real, Vec3};
 pub struct RestDetector<T> {
     gyro: LowPass<T>,
     accel: LowPass<T>,
+    /// `a₀`: the specific force at the start of the still period (a sample, not the mean: the
+    /// mean may still be settling after the motion, within `th_a` of the sample).
+    anchor: Vec3<T>,
     still_for: T,
     at_rest: bool,
+    /// A steady rate found to be a turn (the specific force drifted), until the gyroscope moves.
+    turning: bool,
+    /// The mean field over the still period (`None` until its first field sample).
+    field: Option<LowPass<T>>,
+    /// The horizontal direction of the mean field when the rest began (unit; zero until then).
+    field_anchor: Vec3<T>,
 }
 
 /// The rest detector's thresholds, declared with the estimator's parameters.
@@ -27,8 +49,12 @@ impl<T: Real> RestDetector<T> {
         Self {
             gyro: LowPass::at(gyro),
             accel: LowPass::at(accel),
+            anchor: accel,
             still_for: T::ZERO,
             at_rest: false,
+            turning: false,
+            field: None,
+            field_anchor: Vec3::ZERO,
         }
     }
 
@@ -39,8 +65,16 @@ impl<T: Real> RestDetector<T> {
         let g = self.gyro.update(gyro, k);
         let a = self.accel.update(accel, k);
         let b = th.max_bias;
-        let moving = (gyro - g).norm_squared() >= th.gyro * th.gyro
-            || (accel - a).norm_squared() >= th.accel * th.accel
+        let th_a2 = th.accel * th.accel;
+        let gyro_moving = (gyro - g).norm_squared() >= th.gyro * th.gyro;
+        if gyro_moving {
+            self.turning = false;
+        } else if self.still_for > T::ZERO && (a - self.anchor).norm_squared() >= th_a2 {
+            self.turning = true;
+        }
+        let moving = gyro_moving
+            || self.turning
+            || (accel - a).norm_squared() >= th_a2
             || g.x.abs() > b
             || g.y.abs() > b
             || g.z.abs() > b;
@@ -48,6 +82,11 @@ impl<T: Real> RestDetector<T> {
             self.still_for = T::ZERO;
             self.at_rest = false;
         } else {
+            if self.still_for <= T::ZERO {
+                self.anchor = accel;
+                self.field = None;
+                self.field_anchor = Vec3::ZERO;
+            }
             self.still_for += dt;
             if self.still_for >= th.min_duration {
                 self.at_rest = true;
@@ -56,10 +95,67 @@ impl<T: Real> RestDetector<T> {
         self.at_rest
     }
 
+    /// Feeds one magnetometer sample (any unit, sensor frame) taken `dt` after the previous
+    /// sample. A steady turn about the vertical leaves the specific force alone but turns the
+    /// field's horizontal direction `ĥ` (the mean field `m̄`, time constant `τ_rest`, less its
+    /// component along `ā`, normalised). When, during a rest, `ĥ` has turned by `angle` (rad)
+    /// or more from its direction when the rest began (the mean then settled for `t_min`), the
+    /// steady rate is a turn, as for the specific force ([`RestDetector::turning`]). Outside a
+    /// still period it does nothing.
+    #[inline]
+    pub fn update_field(&mut self, mag: Vec3<T>, dt: T, angle: T, th: &RestThresholds<T>) {
+        if self.still_for > T::ZERO {
+            self.field_still(mag, dt, angle, th);
+        }
+    }
+
+    /// [`RestDetector::update_field`] in a still period.
+    #[inline(never)]
+    fn field_still(&mut self, mag: Vec3<T>, dt: T, angle: T, th: &RestThresholds<T>) {
+        let m = match &mut self.field {
+            Some(lp) => lp.update(mag, LowPass::gain(th.time_constant, dt)),
+            None => {
+                self.field = Some(LowPass::at(mag));
+                return;
+            }
+        };
+        if !self.at_rest {
+            return;
+        }
+        let up = self.accel.output();
+        let n2 = up.norm_squared();
+        if n2 <= T::ZERO || !n2.is_finite() {
+            return;
+        }
+        let h = m - up.scale(m.dot(up) / n2);
+        let h2 = h.norm_squared();
+        if !(h2 > T::ZERO && h2.is_finite()) {
+            return;
+        }
+        let h = h.scale(T::ONE / h2.sqrt());
+        if self.field_anchor == Vec3::ZERO {
+            self.field_anchor = h;
+            return;
+        }
+        if (h - self.field_anchor).norm_squared() >= angle * angle {
+            self.turning = true;
+            self.still_for = T::ZERO;
+            self.at_rest = false;
+        }
+    }
+
     /// Whether the last sample was at rest.
     #[inline]
     pub fn at_rest(&self) -> bool {
         self.at_rest
+    }
+
+    /// Whether the steady rate is a turn: the specific force drifted `th_a` from its value at
+    /// the start of the still period while the gyroscope stayed steady (see the module docs);
+    /// until the gyroscope moves.
+    #[inline]
+    pub fn turning(&self) -> bool {
+        self.turning
     }
 
     /// The mean rate `ω̄` (rad/s): the bias measurement while at rest.
