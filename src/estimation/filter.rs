@@ -787,11 +787,6 @@ impl<T: Real> Estimator<T> {
         }
         self.inject(&x);
 
-        // The hard-iron fit's clock runs on every sample: a magnetometer slower than the
-        // gyroscope is fed at the same pace in seconds at any gyroscope rate.
-        if self.params.mag_hard_iron_time > T::ZERO {
-            self.hard_iron_clock += dt;
-        }
         out.mag = match (mag, mag_use) {
             (Some(m), SensorUse::Used) => self.mag_update(m, gyro, dt),
             (_, u) => u,
@@ -1044,6 +1039,7 @@ impl<T: Real> Estimator<T> {
         let rate = (gyro - self.bias).norm();
         // (The light mode feeds the fit on every sample itself: `light.rs`.)
         if pr.mag_hard_iron_time > T::ZERO && self.params.mode == Mode::Full {
+            self.hard_iron_clock += dt;
             let turning = rate >= pr.field.new_field_min_rate;
             if self.hard_iron_clock >= T::from_f64(HARD_IRON_FEED_STEP) {
                 if turning {
