@@ -8,6 +8,7 @@
     python3 benches/synthetic/grid.py --estimator 'mine=path/to/filter {log} > {out}'
     python3 benches/synthetic/grid.py --set rest.gyro=0.05   # estimate with a parameter changed
     python3 benches/synthetic/grid.py --estimate-bin ../other/target/release/estimate  # another build
+    python3 benches/synthetic/grid.py --params-from-sensor   # estimate with each sensor's parameters
 
 Grid: sample rate (--rates, default 25, 50, 100, 285.714285714 (BROAD's), 1000 Hz) x sensor
 grade (--sensors, the presets of `synthesize --sensor`: consumer, industrial, tactical) x
@@ -30,6 +31,12 @@ Disturbances (the flags given to synthesize):
     taps            --taps 30                (a 60 Hz pulse decaying in 10 ms, peak 20 m/s^2,
                                               every 1.5-3 s)
     steel           --steel 10,-8,12         (the field changes by up to 18 uT near steel)
+
+Parameters: `estimate` runs with its defaults (a consumer MEMS IMU's figures) unless
+--params-from-sensor: then, per sensor and rate, a 300 s rest log of that sensor (`synthesize
+--motion rest`, seed 1000: not a seed of the grid) is characterised (`characterize --params`:
+the gyroscope's noise density and bias stability from its Allan deviation) and every cell of
+that sensor and rate is estimated with `--params FILE` (before any --set).
 
 Scoring: BROAD's metric (total / heading / inclination RMSE in degrees over the movement phases,
 score.py's definition). gyrostat's `estimate` is scored by its own `--truth` (the same metric,
@@ -193,8 +200,9 @@ def cell(args, score, rate, sensor, dist, seed, check_score):
         raise RuntimeError(f"{shlex.join(synth)}: {p.stderr.strip()}")
     results = []
     est_out = logs / f"{name}.estimate.csv"
-    est = [str(args.estimate_bin), "--truth", *sum((["--set", s] for s in args.set), []),
-           str(log)]
+    params = ["--params", str(args.params[(sensor, rate)])] if args.params else []
+    est = [str(args.estimate_bin), "--truth", *params,
+           *sum((["--set", s] for s in args.set), []), str(log)]
     with open(est_out, "w") as f:
         p = subprocess.run(est, stdout=f, stderr=subprocess.PIPE, text=True)
     if p.returncode != 0:
@@ -231,6 +239,23 @@ def cell(args, score, rate, sensor, dist, seed, check_score):
         est_out.unlink()
     return [dict(estimator=e, rate=rate, sensor=sensor, disturbance=dist, seed=seed, **r)
             for e, r in results]
+
+
+def sensor_params(args, sensor, rate):
+    """The parameter file `characterize --params` writes from a 300 s rest log of the sensor."""
+    d = OUT / "params"
+    d.mkdir(parents=True, exist_ok=True)
+    log = d / f"{sensor}_{rate_label(rate)}Hz_rest.csv"
+    path = d / f"{sensor}_{rate_label(rate)}Hz.params"
+    synth = [str(args.bin / "synthesize"), "--sensor", sensor, "--rate", repr(rate), "--motion",
+             "rest", "--rest", "300", "--phases", "1", "--duration", "1", "--seed", "1000"]
+    with open(log, "w") as f:
+        p = subprocess.run(synth, stdout=f, stderr=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        raise RuntimeError(f"{shlex.join(synth)}: {p.stderr.strip()}")
+    run([str(args.bin / "characterize"), "--params", str(path), str(log)])
+    log.unlink()
+    return path
 
 
 def table(rows, estimator, args):
@@ -275,6 +300,9 @@ def main(argv):
                     help="the estimate binary to score (default: BIN/estimate), e.g. another "
                          "checkout's target/release/estimate")
     ap.add_argument("--score", type=Path, default=ROOT.parent / "shared" / "real-data" / "broad" / "score.py")
+    ap.add_argument("--params-from-sensor", action="store_true",
+                    help="estimate with the parameters characterize --params finds on a rest "
+                         "log of each sensor (per rate)")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--keep", action="store_true", help="keep the logs and estimates")
     ap.add_argument("--markdown", type=Path, default=OUT / "grid.md")
@@ -302,6 +330,17 @@ def main(argv):
         if not exe.exists():
             ap.error(f"{exe} not found: cargo build --release -p gyrostat-tools "
                      "--bin synthesize --bin estimate")
+    args.params = {}
+    if args.params_from_sensor:
+        if not (args.bin / "characterize").exists():
+            ap.error(f"{args.bin / 'characterize'} not found: cargo build --release -p "
+                     "gyrostat-tools --bin characterize")
+        try:
+            args.params = {(s, r): sensor_params(args, s, r) for s in args.sensors
+                           for r in args.rates}
+        except RuntimeError as e:
+            print(f"error: {e}", file=sys.stderr)
+            return 1
     score = load_score(args.score)
     if score is None and (args.peers or args.estimator):
         print(f"note: {args.score} not found: the other estimators are skipped", file=sys.stderr)
@@ -321,7 +360,9 @@ def main(argv):
     text = "\n\n".join(table(rows, e, args) for e in estimators)
     head = (f"Synthetic grid: {len(cells)} logs ({len(args.rates)} rates x {len(args.sensors)} "
             f"sensors x {len(args.disturbances)} disturbances x {args.seeds} seeds; hand-held "
-            f"motion, {args.phases} x {args.duration:g} s), {time.time() - start:.0f} s")
+            f"motion, {args.phases} x {args.duration:g} s), {time.time() - start:.0f} s"
+            + ("; estimate with each sensor's characterised parameters"
+               if args.params else ""))
     print(head + "\n\n" + text)
     for path in (args.markdown, args.json, args.csv):
         path.parent.mkdir(parents=True, exist_ok=True)

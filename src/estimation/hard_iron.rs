@@ -9,11 +9,16 @@
 //! field's) so that the numbers stay near 1 in f32. Its covariance says what the rotation has
 //! made observable: turning about one axis only leaves `h` along that axis unknown, and its
 //! variance stays large; a slow random walk (1 % of the norm per `τ_h`) follows a drifting
-//! offset. A mean normalised innovation far above 1 means the samples are not on one sphere
-//! (a magnet attached or removed, the field changed in the earth frame, a gradient met while
-//! moving): the covariance is reset to the prior and the estimate is not offered until it has
-//! converged again. The fit is fed only while the device turns (the filter's gate): samples
-//! of a still sensor differ by noise alone, and a sphere fitted to noise about one point is a
+//! offset. The measurement's noise is measured online: from the innovations `ν` within 2σ
+//! while the fit is settled (`HPHᵀ` below 4 R), `R = E[ν²]/0.774 − E[HPHᵀ]` (0.774 the variance
+//! of a unit normal truncated at ±2σ), between 0.2 % and 8 % of the squared norm: a fixed `R`
+//! that suits one magnetometer is 10–100 times the variance of a quieter one, whose fit then
+//! converges slowly and whose innovations cannot show a jump. A mean normalised innovation
+//! squared (1 s) above 25, or above 4 times its long-run mean (30 s) and above 1, means the
+//! samples are not on one sphere (a magnet attached or removed, the field changed in the earth
+//! frame, a gradient met while moving): the covariance is reset to the prior and the estimate
+//! is not offered until it has converged again. The fit is fed only while the device turns
+//! (the filter's gate): samples of a still sensor differ by noise alone, and a sphere fitted to noise about one point is a
 //! small one centred on that point (the regressor's own noise would pass for information).
 //!
 //! A field that changes in the earth frame without translation (a stationary magnet seen from
@@ -26,17 +31,37 @@ use crate::{Real, Vec3};
 const PRIOR_OFFSET: f64 = 2.0;
 /// The prior standard deviation of `c`, in squared reference norms.
 const PRIOR_C: f64 = 4.0;
-/// Standard deviation of one sample's `|B|²` (squared reference norms): sensor noise and the
-/// model's error (soft iron, a field not quite homogeneous, axes sampled at slightly different
-/// times in fast rotation), about 4 % of the norm.
+/// Standard deviation of one sample's `|B|²` (squared reference norms) until the fit has
+/// measured it: sensor noise and the model's error (soft iron, a field not quite homogeneous,
+/// axes sampled at slightly different times in fast rotation), about 4 % of the norm.
 const MEASUREMENT_STD: f64 = 0.08;
+/// The least standard deviation the measured noise may take (0.1 % of the norm: the model's
+/// error is never smaller).
+const MEASUREMENT_STD_MIN: f64 = 0.002;
+/// Time constant (s of fed samples) of the measured noise.
+const NOISE_TIME: f64 = 3.0;
+/// The noise is measured from innovations within 2σ …
+const NOISE_GATE: f64 = 4.0;
+/// … whose mean square is this fraction of the variance (a unit normal variable truncated at
+/// ±2σ: `1 − 4φ(2)/(2Φ(2) − 1)`) …
+const NOISE_GATE_VARIANCE: f64 = 0.774;
+/// … while the fit's own variance `HPHᵀ` is below this multiple of the noise's.
+const NOISE_SETTLED: f64 = 4.0;
 /// How far (reference norms) the offset may drift within the random-walk time `τ_h`; `c`
 /// twice as far.
 const DRIFT: f64 = 0.01;
 /// Time constant (s) of the mean normalised innovation squared.
 const NIS_TIME: f64 = 1.0;
-/// A mean normalised innovation squared above this resets the covariance.
+/// A mean normalised innovation squared above this resets the covariance …
 const NIS_RESET: f64 = 25.0;
+/// … and so does one above this multiple of its long-run mean (the noise model's `σ` fits no
+/// sensor exactly: a quiet magnetometer's innovations are far below it, and a jump of the
+/// offset must be judged against the sensor's own level) …
+const NIS_RESET_RATIO: f64 = 4.0;
+/// … when it is above this (a ratio of two small numbers is no evidence).
+const NIS_RESET_MIN: f64 = 1.0;
+/// Time constant (s of fed samples) of the long-run mean normalised innovation squared.
+const NIS_BASE_TIME: f64 = 30.0;
 /// The estimate is offered when the mean normalised innovation squared is below this …
 const NIS_READY: f64 = 3.0;
 /// … and each offset component's standard deviation below this (reference norms).
@@ -51,6 +76,15 @@ pub struct HardIron<T> {
     x: [T; 4],
     p: [[T; 4]; 4],
     nis: T,
+    /// The long-run mean normalised innovation squared (time constant 30 s; 0 before the
+    /// first sample).
+    nis_base: T,
+    /// The variance of one sample's `|B|²` (squared reference norms, squared) in use.
+    r: T,
+    /// The running means of `ν²/0.774` and of `HPHᵀ` over the settled samples within 2σ;
+    /// `r` is their difference.
+    nu2: T,
+    hph: T,
 }
 
 impl<T: Real> HardIron<T> {
@@ -68,6 +102,8 @@ impl<T: Real> HardIron<T> {
             ..Self::default()
         };
         s.x = [T::ZERO, T::ZERO, T::ZERO, T::ONE];
+        s.r = T::from_f64(MEASUREMENT_STD * MEASUREMENT_STD);
+        s.nu2 = s.r;
         s.reset();
         s
     }
@@ -117,18 +153,40 @@ impl<T: Real> HardIron<T> {
         }
         // One raw sample's error, however long the time it stands for: the fit sees single
         // samples, not averages.
-        let r = T::from_f64(MEASUREMENT_STD * MEASUREMENT_STD);
-        let s = hv[0] * ph[0] + hv[1] * ph[1] + hv[2] * ph[2] + hv[3] * ph[3] + r;
+        let hph = hv[0] * ph[0] + hv[1] * ph[1] + hv[2] * ph[2] + hv[3] * ph[3];
+        let s = hph + self.r;
         if !(s > T::ZERO && s.is_finite() && innov.is_finite()) {
             self.reset();
             return;
         }
+        let nis = innov * innov / s;
+        // The noise: E[ν²] = HPHᵀ + R.
+        if hph < T::from_f64(NOISE_SETTLED) * self.r && nis < T::from_f64(NOISE_GATE) {
+            let k = super::lowpass::first_order_gain(dt, T::from_f64(NOISE_TIME));
+            self.nu2 += k * (innov * innov / T::from_f64(NOISE_GATE_VARIANCE) - self.nu2);
+            self.hph += k * (hph - self.hph);
+            let lo = T::from_f64(MEASUREMENT_STD_MIN * MEASUREMENT_STD_MIN);
+            let hi = T::from_f64(MEASUREMENT_STD * MEASUREMENT_STD);
+            self.r = (self.nu2 - self.hph).max(lo).min(hi);
+        }
         let k_nis = super::lowpass::first_order_gain(dt, T::from_f64(NIS_TIME));
-        self.nis += k_nis * (innov * innov / s - self.nis);
-        if self.nis > T::from_f64(NIS_RESET) {
+        self.nis += k_nis * (nis - self.nis);
+        let base = self.nis_base;
+        if self.nis > T::from_f64(NIS_RESET)
+            || (base > T::ZERO
+                && self.nis > T::from_f64(NIS_RESET_MIN)
+                && self.nis > T::from_f64(NIS_RESET_RATIO) * base)
+        {
             self.reset();
             return;
         }
+        // The long-run level, from the samples the fit accepts (a jump resets before it can
+        // raise the level much).
+        self.nis_base = if base > T::ZERO {
+            base + super::lowpass::first_order_gain(dt, T::from_f64(NIS_BASE_TIME)) * (nis - base)
+        } else {
+            nis
+        };
         let inv = T::ONE / s;
         for (xi, &phi) in self.x.iter_mut().zip(ph.iter()) {
             *xi += phi * inv * innov;
@@ -164,6 +222,12 @@ impl<T: Real> HardIron<T> {
     /// one sphere as the noise model says; time constant 1 s).
     pub fn consistency(&self) -> T {
         self.nis
+    }
+
+    /// The standard deviation of one sample's `|B|²` as measured by the fit, relative to the
+    /// squared reference norm (about `2σ/|B|` for white noise of `σ` per axis).
+    pub fn noise(&self) -> T {
+        self.r.max(T::ZERO).sqrt()
     }
 
     /// The offset estimate (input units) and each component's standard deviation, converged
