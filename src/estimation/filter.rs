@@ -112,8 +112,6 @@ pub struct Estimator<T> {
     light: light::LightState<T>,
     /// The bias before the current rest's updates (`None` when not at rest).
     rest_bias: Option<Vec3<T>>,
-    /// The averaged heading innovation of undisturbed field samples, rad.
-    heading_disagreement: T,
 }
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
@@ -196,7 +194,6 @@ impl<T: Real> Estimator<T> {
             lowpass_stale: false,
             light: light::LightState::default(),
             rest_bias: None,
-            heading_disagreement: T::ZERO,
         })
     }
 
@@ -683,13 +680,26 @@ impl<T: Real> Estimator<T> {
     /// tilt learned from a sustained acceleration, which the filter then trusts). Each tilt
     /// variance is raised to at least `e_i²`, so the next updates correct the error at once
     /// instead of at the steady-state gain (about 25 s per e-fold at 20 Hz).
+    ///
+    /// The heading learned meanwhile is suspect too: it came from the field seen through the
+    /// wrong tilt, and a tilt error `ε` turns the field's horizontal direction by up to
+    /// `ε·tan δ` (`δ` the reference dip). The heading variance is raised by `|e|²·tan²δ`
+    /// (at most [`UNKNOWN_HEADING_VARIANCE`]; nothing without a field reference).
     fn persistent_tilt(&mut self, ex: T, ey: T) {
         let s = self.params.accel_tilt_noise;
         let a = &mut self.p.attitude.m;
         let (pxx, pyy) = (a[0][0], a[1][1]);
-        if ex * ex + ey * ey > T::from_f64(9.0) * (pxx + pyy + (s + s) * s) {
+        let e2 = ex * ex + ey * ey;
+        if e2 > T::from_f64(9.0) * (pxx + pyy + (s + s) * s) {
             a[0][0] = pxx.max(ex * ex);
             a[1][1] = pyy.max(ey * ey);
+            let (sn, cs) = self.field.reference().1.sin_cos();
+            let (num, den) = (e2 * sn * sn, cs * cs);
+            let cap = T::from_f64(UNKNOWN_HEADING_VARIANCE);
+            let v = if num < cap * den { num / den } else { cap };
+            if v > T::ZERO {
+                self.p.inflate_heading(v);
+            }
         }
     }
 
@@ -774,9 +784,6 @@ impl<T: Real> Estimator<T> {
             return SensorUse::Disturbed;
         }
         let psi = m.x.atan2(m.y);
-        if !disturbed {
-            self.persistent_heading(psi, dt);
-        }
         let (rn, rd) = self.field.reference();
         let eps = if disturbed {
             g * ((norm - rn).abs() / rn + (dip - rd).abs()) * norm / h
@@ -803,22 +810,6 @@ impl<T: Real> Estimator<T> {
             SensorUse::Disturbed
         } else {
             SensorUse::Used
-        }
-    }
-
-    /// A heading disagreement that persists (as [`Self::persistent_tilt`]): the heading
-    /// innovation of undisturbed field samples averaged over the field's correlation time is
-    /// beyond three standard deviations, `ψ̄² > 9·(P_zz + σ_h²)`: the heading variance is raised
-    /// to at least `ψ̄²` (a heading learned from another field, which the filter then trusts).
-    fn persistent_heading(&mut self, psi: T, dt: T) {
-        let k = first_order_gain(dt, self.params.mag_correlation_time);
-        let d = &mut self.heading_disagreement;
-        *d += k * (psi - *d);
-        let d = *d;
-        let s = self.params.mag_heading_noise;
-        let p = self.p.attitude.m[2][2];
-        if d * d > T::from_f64(9.0) * (p + s * s) {
-            self.p.inflate_heading(d * d - p);
         }
     }
 
