@@ -189,19 +189,6 @@ pub fn heading_flag<T: Real>(filter: &Estimator<T>, six_d: bool) -> &'static str
     }
 }
 
-/// The name of a sensor's use in the tool's output (`used`, `absent`, `nonfinite`,
-/// `saturated`, `disturbed`, `zero`).
-pub fn use_name(u: SensorUse) -> &'static str {
-    match u {
-        SensorUse::Used => "used",
-        SensorUse::Absent => "absent",
-        SensorUse::NonFinite => "nonfinite",
-        SensorUse::Saturated => "saturated",
-        SensorUse::Disturbed => "disturbed",
-        SensorUse::Zero => "zero",
-    }
-}
-
 impl<T: Real + Debug> Run<T> {
     /// A run with the estimator's parameters and the loop's options.
     ///
@@ -331,12 +318,13 @@ impl<T: Real + Debug> Run<T> {
                 "{},{},{},{}",
                 u8::from(o.at_rest),
                 if o.gyro_saturated {
-                    "saturated"
+                    SensorUse::Saturated
                 } else {
-                    "used"
-                },
-                use_name(o.accel),
-                use_name(o.mag),
+                    SensorUse::Used
+                }
+                .name(),
+                o.accel.name(),
+                o.mag.name(),
             ),
             Step::Skipped => "0,skipped,skipped,skipped".into(),
         };
