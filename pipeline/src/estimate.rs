@@ -342,6 +342,49 @@ impl<T: Real + Debug> Run<T> {
 /// The header of [`Run::row_text`]'s rows.
 pub const HEADER: &str = "t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag,heading";
 
+/// Sets one estimator parameter from a command line's `NAME=VALUE` (the `estimate` tool's
+/// `--set`, the BROAD runner's, the research probes'): every name [`Params::set_by_name`] takes
+/// (the field names of [`Params`], `field.norm`, `rest.gyro`, … for the nested ones,
+/// `heading_time_constant` for fixed gains, `light_period` for the light mode) with a finite
+/// value in SI units, where a value ending in `deg` or `deg/s` is converted to rad or rad/s; and
+/// `gains=kalman`. Name and value are trimmed.
+///
+/// # Errors
+/// One line naming the reason: `gains` other than `kalman`, a value that is not a finite
+/// number, an unknown name.
+pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), String> {
+    let (name, value) = (name.trim(), value.trim());
+    if name == "gains" {
+        return match value {
+            "kalman" => {
+                p.gains = Gains::Kalman;
+                Ok(())
+            }
+            _ => Err(format!(
+                "gains: only 'kalman' (set heading_time_constant for complementary gains), got '{value}'"
+            )),
+        };
+    }
+    let (number, factor) = match value
+        .strip_suffix("deg/s")
+        .or_else(|| value.strip_suffix("deg"))
+    {
+        Some(n) => (n.trim(), core::f64::consts::PI / 180.0),
+        None => (value, 1.0),
+    };
+    let x: f64 = number
+        .parse()
+        .map_err(|_| format!("{name}: invalid number '{number}'"))?;
+    if !x.is_finite() {
+        return Err(format!("{name}: not a finite number '{number}'"));
+    }
+    if p.set_by_name(name, x * factor) {
+        Ok(())
+    } else {
+        Err(format!("unknown parameter '{name}' (see --help)"))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -504,48 +547,5 @@ mod tests {
             assert_eq!(set_param(&mut p, name, value), Err(error.to_string()));
         }
         assert_eq!(p, before);
-    }
-}
-
-/// Sets one estimator parameter from a command line's `NAME=VALUE` (the `estimate` tool's
-/// `--set`, the BROAD runner's, the research probes'): every name [`Params::set_by_name`] takes
-/// (the field names of [`Params`], `field.norm`, `rest.gyro`, … for the nested ones,
-/// `heading_time_constant` for fixed gains, `light_period` for the light mode) with a finite
-/// value in SI units, where a value ending in `deg` or `deg/s` is converted to rad or rad/s; and
-/// `gains=kalman`. Name and value are trimmed.
-///
-/// # Errors
-/// One line naming the reason: `gains` other than `kalman`, a value that is not a finite
-/// number, an unknown name.
-pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), String> {
-    let (name, value) = (name.trim(), value.trim());
-    if name == "gains" {
-        return match value {
-            "kalman" => {
-                p.gains = Gains::Kalman;
-                Ok(())
-            }
-            _ => Err(format!(
-                "gains: only 'kalman' (set heading_time_constant for complementary gains), got '{value}'"
-            )),
-        };
-    }
-    let (number, factor) = match value
-        .strip_suffix("deg/s")
-        .or_else(|| value.strip_suffix("deg"))
-    {
-        Some(n) => (n.trim(), core::f64::consts::PI / 180.0),
-        None => (value, 1.0),
-    };
-    let x: f64 = number
-        .parse()
-        .map_err(|_| format!("{name}: invalid number '{number}'"))?;
-    if !x.is_finite() {
-        return Err(format!("{name}: not a finite number '{number}'"));
-    }
-    if p.set_by_name(name, x * factor) {
-        Ok(())
-    } else {
-        Err(format!("unknown parameter '{name}' (see --help)"))
     }
 }
