@@ -10,13 +10,6 @@ use gyrostat::dynamics::{
 use gyrostat::{Mat3, Real, UnitQuat, Vec3};
 use std::hint::black_box;
 
-const INTEGRATORS: [(&str, Integrator); 4] = [
-    ("rk4", Integrator::Rk4),
-    ("strang", Integrator::Strang),
-    ("yoshida4", Integrator::Yoshida4),
-    ("suzuki4", Integrator::Suzuki4),
-];
-
 fn v<T: Real>(a: [f64; 3]) -> Vec3<T> {
     Vec3::new(T::from_f64(a[0]), T::from_f64(a[1]), T::from_f64(a[2]))
 }
@@ -34,7 +27,8 @@ fn bench_type<T: Real>(c: &mut Criterion, ty: &str) {
     let s0 = State::new(UnitQuat::IDENTITY, v::<T>([0.3, 4.0, 0.05]));
     let dt = T::from_f64(0.01);
     let mut g = c.benchmark_group(format!("dynamics_step_{ty}"));
-    for (name, integ) in INTEGRATORS {
+    for integ in Integrator::ALL {
+        let name = integ.name();
         g.bench_function(format!("rigid_diag/{name}"), |b| {
             let mut s = s0;
             b.iter(|| {
@@ -70,7 +64,8 @@ fn bench_type<T: Real>(c: &mut Criterion, ty: &str) {
     let gyro = Gyrostat::new(*full.model(), wheels);
     let cmd = WheelCommand::Torque([0.001, -0.002, 0.0005, 0.0].map(T::from_f64));
     let tau = v::<T>([0.01, 0.0, -0.005]);
-    for (name, integ) in INTEGRATORS {
+    for integ in Integrator::ALL {
+        let name = integ.name();
         g.bench_function(format!("gyrostat4_torque/{name}"), |b| {
             let mut s = gyro
                 .try_state_from_omega(UnitQuat::IDENTITY, v([0.1, 0.5, 0.2]), [T::ZERO; 4])

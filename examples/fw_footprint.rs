@@ -67,14 +67,15 @@ mod firmware {
     const ESTIMATE: u8 = 32;
     const ESTIMATE_LIGHT: u8 = 64;
 
-    /// The capabilities `GYROSTAT_FOOTPRINT` can name, with the parts each links.
+    /// The capabilities `GYROSTAT_FOOTPRINT` can name, with the parts each links (`strang` is
+    /// the integrator's own name; `gyro2`, `euler`, … name capabilities, not library enums).
     const CAPABILITIES: [(&str, u8); 10] = [
         ("baseline", 0),
         ("gyro2", GYRO2),
         ("gyro2_q30", GYRO2_Q30),
         ("euler", EULER),
         ("gyro2_euler", GYRO2 | EULER),
-        ("strang", STRANG),
+        (gyrostat::dynamics::Integrator::Strang.name(), STRANG),
         ("exact", EXACT),
         ("all", GYRO2 | EULER | STRANG | EXACT),
         ("estimate", ESTIMATE),

@@ -254,24 +254,5 @@ pub fn use_counts(rows: &[EstimateRow]) -> UseCounts {
     c
 }
 
-/// Sets one parameter by name from a value in SI units (angles in rad), for research runs and
-/// tools: the field names of [`Params`] (`field.norm`, `rest.gyro`, … for the nested ones), and
-/// `gains=kalman` or `heading_time_constant=τ` (fixed gains).
-///
-/// # Errors
-/// An unknown name or a value that is not a number.
-pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), String> {
-    use gyrostat::estimation::Gains;
-    if name == "gains" && value == "kalman" {
-        p.gains = Gains::Kalman;
-        return Ok(());
-    }
-    let v: f64 = value
-        .parse()
-        .map_err(|_| format!("{name}: not a number: {value:?}"))?;
-    if p.set_by_name(name, v) {
-        Ok(())
-    } else {
-        Err(format!("unknown parameter {name:?}"))
-    }
-}
+/// One `NAME=VALUE` parser for every face: the `estimate` tool's `--set` and the runners here.
+pub use gyrostat_pipeline::estimate::set_param;

@@ -23,7 +23,7 @@
 
 use core::fmt::{self, Debug};
 
-use gyrostat::estimation::{Estimator, MAX_STEP, Outcome, Params, SensorUse};
+use gyrostat::estimation::{Estimator, Gains, MAX_STEP, Outcome, Params, SensorUse};
 use gyrostat::sensor::{InertialCalibration, Interval, MagnetometerCalibration, SampleClock};
 use gyrostat::{Error, Real, Vec3};
 
@@ -189,19 +189,6 @@ pub fn heading_flag<T: Real>(filter: &Estimator<T>, six_d: bool) -> &'static str
     }
 }
 
-/// The name of a sensor's use in the tool's output (`used`, `absent`, `nonfinite`,
-/// `saturated`, `disturbed`, `zero`).
-pub fn use_name(u: SensorUse) -> &'static str {
-    match u {
-        SensorUse::Used => "used",
-        SensorUse::Absent => "absent",
-        SensorUse::NonFinite => "nonfinite",
-        SensorUse::Saturated => "saturated",
-        SensorUse::Disturbed => "disturbed",
-        SensorUse::Zero => "zero",
-    }
-}
-
 impl<T: Real + Debug> Run<T> {
     /// A run with the estimator's parameters and the loop's options.
     ///
@@ -331,12 +318,13 @@ impl<T: Real + Debug> Run<T> {
                 "{},{},{},{}",
                 u8::from(o.at_rest),
                 if o.gyro_saturated {
-                    "saturated"
+                    SensorUse::Saturated
                 } else {
-                    "used"
-                },
-                use_name(o.accel),
-                use_name(o.mag),
+                    SensorUse::Used
+                }
+                .name(),
+                o.accel.name(),
+                o.mag.name(),
             ),
             Step::Skipped => "0,skipped,skipped,skipped".into(),
         };
@@ -353,6 +341,49 @@ impl<T: Real + Debug> Run<T> {
 
 /// The header of [`Run::row_text`]'s rows.
 pub const HEADER: &str = "t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag,heading";
+
+/// Sets one estimator parameter from a command line's `NAME=VALUE` (the `estimate` tool's
+/// `--set`, the BROAD runner's, the research probes'): every name [`Params::set_by_name`] takes
+/// (the field names of [`Params`], `field.norm`, `rest.gyro`, … for the nested ones,
+/// `heading_time_constant` for fixed gains, `light_period` for the light mode) with a finite
+/// value in SI units, where a value ending in `deg` or `deg/s` is converted to rad or rad/s; and
+/// `gains=kalman`. Name and value are trimmed.
+///
+/// # Errors
+/// One line naming the reason: `gains` other than `kalman`, a value that is not a finite
+/// number, an unknown name.
+pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), String> {
+    let (name, value) = (name.trim(), value.trim());
+    if name == "gains" {
+        return match value {
+            "kalman" => {
+                p.gains = Gains::Kalman;
+                Ok(())
+            }
+            _ => Err(format!(
+                "gains: only 'kalman' (set heading_time_constant for complementary gains), got '{value}'"
+            )),
+        };
+    }
+    let (number, factor) = match value
+        .strip_suffix("deg/s")
+        .or_else(|| value.strip_suffix("deg"))
+    {
+        Some(n) => (n.trim(), core::f64::consts::PI / 180.0),
+        None => (value, 1.0),
+    };
+    let x: f64 = number
+        .parse()
+        .map_err(|_| format!("{name}: invalid number '{number}'"))?;
+    if !x.is_finite() {
+        return Err(format!("{name}: not a finite number '{number}'"));
+    }
+    if p.set_by_name(name, x * factor) {
+        Ok(())
+    } else {
+        Err(format!("unknown parameter '{name}' (see --help)"))
+    }
+}
 
 #[cfg(test)]
 mod tests {
@@ -475,5 +506,46 @@ mod tests {
             ..Options::default()
         };
         assert!(matches!(run::<f64>(&s, ms)[1], Err(RowError::TooLong { dt }) if dt == 1500.0));
+    }
+
+    /// The `NAME=VALUE` parser of every face: degrees converted, names and values trimmed,
+    /// `gains=kalman`, and one-line errors for the rest.
+    #[test]
+    fn set_param_by_name() {
+        let mut p = Params::<f64>::default();
+        set_param(&mut p, " gyro_range ", " 1000 deg/s").unwrap();
+        let want = 1000.0 * core::f64::consts::PI / 180.0;
+        assert!(
+            (p.gyro_range - want).abs() <= 1e-15 * want,
+            "{}",
+            p.gyro_range
+        );
+        set_param(&mut p, "gyro_range", "3.5").unwrap();
+        assert_eq!(p.gyro_range, 3.5);
+        set_param(&mut p, "heading_time_constant", "20").unwrap();
+        assert!(
+            matches!(p.gains, Gains::Fixed { heading_time_constant } if heading_time_constant == 20.0)
+        );
+        set_param(&mut p, "gains", "kalman").unwrap();
+        assert!(matches!(p.gains, Gains::Kalman));
+        let before = p;
+        for (name, value, error) in [
+            (
+                "gains",
+                "fixed",
+                "gains: only 'kalman' (set heading_time_constant for complementary gains), got 'fixed'",
+            ),
+            ("gyro_range", "fast", "gyro_range: invalid number 'fast'"),
+            (
+                "gyro_range",
+                "inf deg",
+                "gyro_range: not a finite number 'inf'",
+            ),
+            ("gyro_range", "NaN", "gyro_range: not a finite number 'NaN'"),
+            ("bogus", "1", "unknown parameter 'bogus' (see --help)"),
+        ] {
+            assert_eq!(set_param(&mut p, name, value), Err(error.to_string()));
+        }
+        assert_eq!(p, before);
     }
 }

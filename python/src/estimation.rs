@@ -26,13 +26,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The parameter of `p` with the Python name `name`: one of [`Params::FLAT_NAMES`]
-/// (`field.norm` is `field_norm`: keyword-argument names have no dots).
-fn slot<'a, T>(p: &'a mut Params<T>, name: &str) -> Option<&'a mut T> {
-    let i = Params::<T>::FLAT_NAMES.iter().position(|n| *n == name)?;
-    p.values_mut().into_iter().nth(i)
-}
-
 /// The estimator's default parameters (SI units, angles in rad) by name.
 #[pyfunction]
 fn estimator_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
@@ -68,7 +61,7 @@ fn params<T: Real>(
         };
     }
     for (name, v) in overrides {
-        *slot(&mut p, name).ok_or_else(|| {
+        *p.flat_parameter_mut(name).ok_or_else(|| {
             RowError::call(format!(
                 "unknown estimator parameter {name:?} (estimator_defaults() lists them)"
             ))

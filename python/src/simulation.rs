@@ -8,7 +8,7 @@ use pyo3::types::PyDict;
 use gyrostat::Real;
 use gyrostat::dynamics::State;
 use gyrostat_tools::simulation::{
-    self, Config, Fail, Method, Outcome, Spec, TorqueSchedule, WheelSpec, setup, widen,
+    self, Config, Fail, Outcome, Spec, TorqueSchedule, WheelSpec, setup, widen,
 };
 use gyrostat_tools::torque::Schedule;
 use gyrostat_tools::with_wheels;
@@ -231,10 +231,7 @@ fn simulate<'py>(
     };
     d.set_item("wheel_speeds", wheel_rows)?;
     d.set_item("error", r.error.map(|m| keywords(&m)))?;
-    let integ = match cfg.method {
-        Method::Step(i) => i.name(),
-        Method::Exact => "exact",
-    };
+    let integ = cfg.method.name();
     d.set_item("integrator", integ)?;
     if let Some(o) = r.outcome {
         let m = PyDict::new(py);
@@ -267,7 +264,7 @@ fn default_scenario(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("every", every)?;
     d.set_item("inertia", simulation::DEFAULT_MOMENTS)?;
     d.set_item("omega0", simulation::DEFAULT_OMEGA0)?;
-    d.set_item("integrator", "yoshida4")?;
+    d.set_item("integrator", simulation::DEFAULT_INTEGRATOR.name())?;
     let t: Vec<f64> = (1..=steps / every)
         .map(|k| (k * every) as f64 * dt)
         .collect();

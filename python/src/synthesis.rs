@@ -92,11 +92,9 @@ fn synthesize<'py>(
                 RowError::call("motion='rows' needs motion_t, motion_q and motion_omega").into(),
             );
         }
-        (_, None, None, None) => match motion.as_str() {
-            "handheld" => MotionChoice::Handheld,
-            "axes" => MotionChoice::Axes,
-            "rest" => MotionChoice::Rest,
-            other => {
+        (_, None, None, None) => match MotionChoice::named(&motion).ok_or(motion.as_str()) {
+            Ok(named) => named,
+            Err(other) => {
                 let w = other
                     .strip_prefix("spin:")
                     .map(|v| {

@@ -37,6 +37,21 @@ pub enum SensorUse {
     Zero,
 }
 
+impl SensorUse {
+    /// The name in the `estimate` tool's output and the other faces: `used`, `absent`,
+    /// `nonfinite`, `saturated`, `disturbed`, `zero`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            SensorUse::Used => "used",
+            SensorUse::Absent => "absent",
+            SensorUse::NonFinite => "nonfinite",
+            SensorUse::Saturated => "saturated",
+            SensorUse::Disturbed => "disturbed",
+            SensorUse::Zero => "zero",
+        }
+    }
+}
+
 /// The report of one update: what each sensor's sample did. The state is valid whatever it
 /// says.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -516,6 +516,14 @@ impl<T> Params<T> {
         self.values_mut().into_iter().nth(i)
     }
 
+    /// The numeric parameter whose flat name is `flat` (one of [`Params::FLAT_NAMES`]: the C
+    /// fields' and Python keywords' spelling), as [`Params::parameter_mut`]; `None` for any other
+    /// name.
+    pub fn flat_parameter_mut(&mut self, flat: &str) -> Option<&mut T> {
+        let i = Self::FLAT_NAMES.iter().position(|n| *n == flat)?;
+        self.values_mut().into_iter().nth(i)
+    }
+
     /// Sets the numeric parameter `name` to `value`: one of [`Params::NAMES`];
     /// `heading_time_constant`, which selects [`Gains::Fixed`] with that time constant; or
     /// `light_period`, which selects [`Mode::Light`] with that correction period. `false`

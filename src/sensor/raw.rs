@@ -22,6 +22,13 @@
 //! | [`ClipPolicy::Saturate`] | each clipped axis set to `±limit` (no state: [`ClipLimit::saturate`]) | a value beyond the sensor's range, read in physical units (the estimator's gyroscope samples) |
 //! | [`ClipPolicy::HoldLast`] | each clipped axis replaced by that axis's last unclipped reading (a rate hold); a clip before any unclipped reading is passed | a gyro that clips briefly while rotating steadily |
 //! | [`ClipPolicy::Reject`] | nothing: [`Error::Clipped`] | the caller must re-initialise from an absolute reference |
+//!
+//! Rates and increments hold differently when the intervals are unequal. Holding a rate reading
+//! holds the rate, which is the steady-rotation assumption of [`ClipPolicy::HoldLast`]. An
+//! increment `θ = ω·h` over its own interval `h` holds the rate too: the clipped axis becomes
+//! `(θ_last / h_last)·h` ([`ClipGuard::filter_increment`]), not `θ_last`, which would scale the
+//! held rate by `h_last / h` on a jittered clock. At a fixed interval the two agree and
+//! [`ClipGuard::filter`] serves increments as well.
 
 use crate::fixed::IncrementQuantizer;
 use crate::fixed::quantizer::QUANTIZER_WIDE;
@@ -220,6 +227,16 @@ impl<T: Reading> ClipGuard<T> {
         }
     }
 
+    /// The limit.
+    pub fn limit(&self) -> ClipLimit<T> {
+        self.limit
+    }
+
+    /// The policy.
+    pub fn policy(&self) -> ClipPolicy {
+        self.policy
+    }
+
     /// The reading the core gets and the flags of the original reading.
     ///
     /// # Errors
@@ -237,6 +254,48 @@ impl<T: Reading> ClipGuard<T> {
                 match (self.policy, *last) {
                     (ClipPolicy::HoldLast, Some(l)) => *o = l,
                     (ClipPolicy::Saturate, _) => *o = T::saturated(*o, self.limit.limit),
+                    _ => {}
+                }
+            }
+        }
+        Ok((out, clipped))
+    }
+}
+
+impl<T: Real> ClipGuard<T> {
+    /// An increment `θ` over its own interval `h` (> 0): the reading is checked against the
+    /// limit as it is (an angle per sample), and [`ClipPolicy::HoldLast`] holds the last
+    /// unclipped *rate*: a clipped axis becomes `(θ_last · (1/h_last)) · h` (see the
+    /// [module docs](self)); the other policies are those of [`ClipGuard::filter`]. A guard is fed
+    /// either by this method or by [`ClipGuard::filter`], not both (the held value is a rate
+    /// here, a reading there).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for `h` not positive and finite (the guard is unchanged);
+    /// [`Error::Clipped`] under [`ClipPolicy::Reject`] when an axis is clipped.
+    pub fn filter_increment(
+        &mut self,
+        increment: [T; 3],
+        h: T,
+    ) -> Result<([T; 3], Clipped), Error> {
+        if !(h > T::ZERO && h.is_finite()) {
+            return Err(Error::InvalidArgument);
+        }
+        let clipped = self.limit.check(increment);
+        if clipped.any() && self.policy == ClipPolicy::Reject {
+            return Err(Error::Clipped);
+        }
+        let per_s = T::ONE / h;
+        let mut out = increment;
+        for ((o, last), c) in out.iter_mut().zip(self.last.iter_mut()).zip(clipped.axes) {
+            if !c {
+                *last = Some(*o * per_s);
+            } else {
+                match (self.policy, *last) {
+                    (ClipPolicy::HoldLast, Some(rate)) => *o = rate * h,
+                    (ClipPolicy::Saturate, _) => {
+                        *o = clip_sealed::Reading::saturated(*o, self.limit.limit)
+                    }
                     _ => {}
                 }
             }

@@ -54,6 +54,16 @@ pub enum Method {
     Exact,
 }
 
+impl Method {
+    /// The name `--integrator` takes: the integrator's [`Integrator::name`], or `exact`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Method::Step(i) => i.name(),
+            Method::Exact => "exact",
+        }
+    }
+}
+
 /// The initial condition: the body rate or the total body momentum.
 #[derive(Debug, Clone, Copy)]
 pub enum Initial {
@@ -170,7 +180,7 @@ pub fn quartic(flag: &str, kind: &str, t: f64) -> Result<(bool, f64), String> {
 /// A message starting with `flag` for any other name.
 pub fn integrator(flag: &str, value: &str) -> Result<Method, String> {
     match value.trim() {
-        "exact" => Ok(Method::Exact),
+        e if e == Method::Exact.name() => Ok(Method::Exact),
         other => other.parse().map(Method::Step).map_err(|_| {
             let names = Integrator::ALL.map(Integrator::name).join(", ");
             format!("{flag}: unknown {other:?} ({names}, exact)")
@@ -1022,6 +1032,9 @@ pub const DEFAULT_MOMENTS: [f64; 3] = [6.0, 4.0, 3.0];
 /// The default scenario's step (s), number of steps and sample interval (steps).
 pub const DEFAULT_RUN: (f64, usize, usize) = (0.01, 20_000, 10);
 
+/// The integrator of the built-in scenario.
+pub const DEFAULT_INTEGRATOR: Integrator = Integrator::Yoshida4;
+
 /// One run of the default scenario in one scalar type, in f64.
 #[derive(Clone, Debug)]
 pub struct Run {
@@ -1136,7 +1149,7 @@ pub struct DefaultScenario {
 /// The library's error (none: the scenario is fixed and tested).
 pub fn default_scenario() -> Result<DefaultScenario, String> {
     let (dt, steps, every) = DEFAULT_RUN;
-    let integ = Integrator::Yoshida4;
+    let integ = DEFAULT_INTEGRATOR;
     let e = |e: Error| e.to_string();
     let r32 = simulate_default::<f32>(integ, dt, steps, every, false).map_err(e)?;
     let r32c = simulate_default::<f32>(integ, dt, steps, every, true).map_err(e)?;

@@ -311,6 +311,19 @@ pub enum MotionChoice {
     File(MotionFile),
 }
 
+impl MotionChoice {
+    /// The built-in motions by name: `handheld`, `axes`, `rest` (`--motion`, Python's
+    /// `motion=`); `None` for any other text (`spin:…`, a file).
+    pub fn named(name: &str) -> Option<Self> {
+        match name {
+            "handheld" => Some(MotionChoice::Handheld),
+            "axes" => Some(MotionChoice::Axes),
+            "rest" => Some(MotionChoice::Rest),
+            _ => None,
+        }
+    }
+}
+
 /// A log as `synthesize`'s flags describe it (each optional as on the command line), checked
 /// into a [`Synth`] by [`Options::build`]; the Python package builds the same. Error messages
 /// name the flags.

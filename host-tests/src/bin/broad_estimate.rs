@@ -13,7 +13,7 @@
 //!   --params FILE    parameters from a parameter file (gyrostat::estimation::params_text),
 //!                    applied where it stands among the --set options
 //!   --set NAME=VALUE a parameter (SI units; a value ending in `deg` is converted to rad,
-//!                    `deg/s` too); repeatable. Names: host_tests::broad::set_param
+//!                    `deg/s` too); repeatable. Names: gyrostat_pipeline::estimate::set_param
 //!   --out DIR        write each estimate as DIR/NN.csv (t,qw,qx,qy,qz,bx,by,bz)
 //!   --every N        keep every Nth row (rows 0, N, 2N, …; nothing else changed): the trial
 //!                    at 1/N of its rate, the rows `run_peers.py --every N` gives the peers
@@ -39,16 +39,6 @@ struct Job {
     name: String,
     disturbed: bool,
     path: PathBuf,
-}
-
-fn parse_value(v: &str) -> String {
-    let deg = core::f64::consts::PI / 180.0;
-    for suffix in ["deg/s", "deg"] {
-        if let Some(x) = v.strip_suffix(suffix).and_then(|x| x.parse::<f64>().ok()) {
-            return format!("{}", x * deg);
-        }
-    }
-    v.to_string()
 }
 
 fn main() -> ExitCode {
@@ -111,7 +101,7 @@ fn main() -> ExitCode {
                     eprintln!("error: --set needs NAME=VALUE, got {kv:?}");
                     return ExitCode::from(2);
                 };
-                if let Err(e) = broad::set_param(&mut params, k, &parse_value(v)) {
+                if let Err(e) = broad::set_param(&mut params, k, v) {
                     eprintln!("error: {e}");
                     return ExitCode::from(2);
                 }

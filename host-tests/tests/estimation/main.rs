@@ -847,6 +847,22 @@ fn parameters_by_name_and_between_precisions() {
     }
     assert!(p.parameter_mut("field_norm").is_none());
     assert!(p.parameter_mut("heading_time_constant").is_none());
+    // The flat names (C fields, Python keywords) reach the same fields, in the same order.
+    for (k, (flat, name)) in Params::<f64>::FLAT_NAMES
+        .iter()
+        .zip(Params::<f64>::NAMES)
+        .enumerate()
+    {
+        assert_eq!(flat.replace('_', "."), name.replace('_', "."), "{flat}");
+        assert_eq!(
+            *p.flat_parameter_mut(flat).unwrap(),
+            k as f64 + 0.5,
+            "{flat}"
+        );
+    }
+    let norm = p.field.norm;
+    assert_eq!(p.flat_parameter_mut("field_norm").copied(), Some(norm));
+    assert!(p.flat_parameter_mut("field.norm").is_none());
     // `set_by_name`: every numeric name, and the heading time constant as a choice of gains.
     let mut r = p;
     assert!(r.set_by_name("rest.gyro", 0.25));

@@ -211,3 +211,53 @@ fn clipping_is_generic_over_the_reading() {
     let (out, c) = l16.saturate([31000, i16::MIN, 5]);
     assert_eq!((out, c.axes), ([30000, -30000, 5], [true, true, false]));
 }
+
+/// Increments over their own intervals hold the rate, not the reading: a steady 2 rad/s about x
+/// read as `θ = 2·h` over h = 1/4 s, then clipped at 1 rad over h = 3/4 s, is held at
+/// `2·(3/4) = 3/2` rad (the steady rotation), where holding the reading gives the 1/2 rad of the
+/// shorter interval. Dyadic values: every product is exact.
+#[test]
+fn clipped_increments_hold_the_rate() {
+    let limit = ClipLimit::<f64>::try_new(1.0).unwrap();
+    let stream = [([0.5, 0.25, 0.0], 0.25), ([1.0, 0.75, -0.5], 0.75)];
+    let mut g = ClipGuard::new(limit, ClipPolicy::HoldLast);
+    let out = stream.map(|(r, h)| g.filter_increment(r, h));
+    assert_eq!(out[0].map(|o| o.0), Ok([0.5, 0.25, 0.0]));
+    let (held, c) = out[1].unwrap();
+    assert_eq!(c.axes, [true, false, false]);
+    assert_eq!(held, [1.5, 0.75, -0.5]);
+    // Holding the reading is the fixed-interval answer, wrong here by h_last / h = 1/3.
+    let mut reading = ClipGuard::new(limit, ClipPolicy::HoldLast);
+    let out = stream.map(|(r, _)| reading.filter(r).map(|o| o.0));
+    assert_eq!(out[1], Ok([0.5, 0.75, -0.5]));
+    // At a fixed interval the two agree.
+    let mut a = ClipGuard::new(limit, ClipPolicy::HoldLast);
+    let mut b = ClipGuard::new(limit, ClipPolicy::HoldLast);
+    for r in [[0.5, 0.25, 0.0], [1.0, 0.75, -0.5], [0.25, 1.5, 0.0]] {
+        assert_eq!(a.filter_increment(r, 0.25), b.filter(r));
+    }
+    // Reject, Saturate and Pass as for readings; an interval that is not positive and finite
+    // is an error and leaves the guard as it was.
+    let mut reject = ClipGuard::new(limit, ClipPolicy::Reject);
+    assert_eq!(
+        reject.filter_increment([0.0, -1.0, 0.0], 0.5),
+        Err(Error::Clipped)
+    );
+    let mut sat = ClipGuard::new(limit, ClipPolicy::Saturate);
+    assert_eq!(
+        sat.filter_increment([-3.0, 0.5, 0.0], 0.5).map(|o| o.0),
+        Ok([-1.0, 0.5, 0.0])
+    );
+    for h in [0.0, -0.25, f64::NAN, f64::INFINITY] {
+        assert_eq!(
+            g.filter_increment([0.5, 0.0, 0.0], h),
+            Err(Error::InvalidArgument)
+        );
+    }
+    assert_eq!(
+        g.filter_increment([2.0, 0.0, 0.0], 0.5).map(|o| o.0),
+        Ok([1.0, 0.0, 0.0])
+    );
+    assert_eq!(g.limit(), limit);
+    assert_eq!(g.policy(), ClipPolicy::HoldLast);
+}

@@ -25,7 +25,10 @@ use gyrostat::propagation::{
     CompensatedAttitude, ConingRule, Normalization, PropagatedAttitude, RateMethod,
 };
 use gyrostat::real::Q30;
-use gyrostat::sensor::{AxisRemap, InertialCalibration, Interval, MicrosClock, SampleClock};
+use gyrostat::sensor::{
+    AxisRemap, ClipGuard, ClipLimit, ClipPolicy, InertialCalibration, Interval, MicrosClock,
+    SampleClock,
+};
 use gyrostat::step_limit::MAX_STEP_ANGLE;
 use gyrostat::{Quat, Real, Ring, UnitQuat, Vec3};
 use gyrostat_pipeline::propagate::{self, PropagateError, TURN_RESOLUTION};
@@ -266,53 +269,51 @@ struct Timed {
     t0: Option<f64>,
     gap_factor: f64,
     wrap: bool,
-    clip: Option<Clip>,
+    clip: Option<(ClipLimit<f64>, ClipPolicy)>,
 }
 
-/// What the time-column mode does with a sample at the gyro's full scale.
-#[derive(Clone, Copy, PartialEq)]
-enum OnClip {
-    Error,
-    Pass,
-    Hold,
-}
-
-/// The clipping check of the time-column mode: an axis whose raw reading (in --gyro-unit)
-/// reaches the full scale is clipped; the policy chooses what the propagation gets.
+/// The clipping check of the time-column mode: the library's guard on the raw readings (in
+/// --gyro-unit) against the full scale, its policy from `--on-clip` (`error`: Reject, `pass`:
+/// Pass, `hold`: HoldLast, which for increments holds the last unclipped rate times the row's
+/// own interval, [`ClipGuard::filter_increment`]), and the count of clipped rows.
 struct Clip {
-    full_scale: f64,
-    policy: OnClip,
-    last_rate: [Option<f64>; 3],
+    guard: ClipGuard<f64>,
     count: u64,
 }
 
 impl Clip {
+    fn new(limit: ClipLimit<f64>, policy: ClipPolicy) -> Self {
+        Self {
+            guard: ClipGuard::new(limit, policy),
+            count: 0,
+        }
+    }
+
     /// The raw sample the propagation gets (`h` the interval of an increment, `None` for a
     /// rate), or the row error under `--on-clip error`.
     fn filter(&mut self, raw: Vec3<f64>, h: Option<f64>) -> Result<Vec3<f64>, String> {
-        let mut out = raw.to_array();
-        let mut clipped = false;
-        for (i, (v, last)) in out.iter_mut().zip(self.last_rate.iter_mut()).enumerate() {
-            let per_s = h.map_or(1.0, |h| 1.0 / h);
-            if v.abs() < self.full_scale {
-                *last = Some(*v * per_s);
-                continue;
+        let raw = raw.to_array();
+        let filtered = match h {
+            Some(h) => self.guard.filter_increment(raw, h),
+            None => self.guard.filter(raw),
+        };
+        match filtered {
+            Ok((out, clipped)) => {
+                self.count += u64::from(clipped.any());
+                Ok(Vec3::from_array(out))
             }
-            clipped = true;
-            match (self.policy, *last) {
-                (OnClip::Error, _) => {
-                    return Err(format!(
-                        "gyro axis {} clipped: |{v}| reaches the full scale {} (--on-clip error)",
-                        ["x", "y", "z"][i],
-                        self.full_scale
-                    ));
-                }
-                (OnClip::Hold, Some(rate)) => *v = rate * h.unwrap_or(1.0),
-                _ => {}
+            Err(gyrostat::Error::Clipped) => {
+                let limit = self.guard.limit();
+                let axis = limit.check(raw).axes.iter().position(|&c| c).unwrap_or(0);
+                let v = raw[axis];
+                Err(format!(
+                    "gyro axis {} clipped: |{v}| reaches the full scale {} (--on-clip error)",
+                    ["x", "y", "z"][axis],
+                    limit.limit()
+                ))
             }
+            Err(e) => Err(format!("interval not positive and finite: {e}")),
         }
-        self.count += u64::from(clipped);
-        Ok(Vec3::from_array(out))
     }
 }
 
@@ -375,9 +376,9 @@ fn arguments(f: &Flags) -> Result<Args, String> {
         }
         let full_scale = f.get("--gyro-full-scale", flags::positive)?;
         let policy = match f.value("--on-clip") {
-            None | Some("error") => OnClip::Error,
-            Some("pass") => OnClip::Pass,
-            Some("hold") => OnClip::Hold,
+            None | Some("error") => ClipPolicy::Reject,
+            Some("pass") => ClipPolicy::Pass,
+            Some("hold") => ClipPolicy::HoldLast,
             Some(o) => {
                 return Err(format!(
                     "--on-clip: expected error, pass or hold, got '{o}'"
@@ -392,12 +393,13 @@ fn arguments(f: &Flags) -> Result<Args, String> {
             t0,
             gap_factor,
             wrap,
-            clip: full_scale.map(|full_scale| Clip {
-                full_scale,
-                policy,
-                last_rate: [None; 3],
-                count: 0,
-            }),
+            clip: full_scale
+                .map(|full_scale| {
+                    ClipLimit::try_new(full_scale)
+                        .map(|limit| (limit, policy))
+                        .map_err(|_| format!("--gyro-full-scale: must be > 0, got {full_scale}"))
+                })
+                .transpose()?,
         })
     } else {
         for (given, name) in [
@@ -992,12 +994,7 @@ fn run_timed(args: &Args) -> Result<(), Failure> {
     let Some(timed) = &args.timed else {
         return Err(Failure::Usage("--time-column expected".into()));
     };
-    let mut clip = timed.clip.as_ref().map(|c| Clip {
-        full_scale: c.full_scale,
-        policy: c.policy,
-        last_rate: [None; 3],
-        count: 0,
-    });
+    let mut clip = timed.clip.map(|(limit, policy)| Clip::new(limit, policy));
     let [w, x, y, z] = args.q0;
     let q0 = UnitQuat::try_from_near_unit(Quat::new(w, x, y, z), 1e-3)
         .map_err(|e| Failure::Usage(format!("--q0: {e}: its norm must be within 1e-3 of 1")))?;
@@ -1094,14 +1091,15 @@ fn run_timed(args: &Args) -> Result<(), Failure> {
     if let Some(c) = &clip
         && c.count > 0
     {
-        let what = if c.policy == OnClip::Hold {
+        let what = if c.guard.policy() == ClipPolicy::HoldLast {
             "each clipped axis held at its last unclipped rate"
         } else {
             "passed as read"
         };
         eprintln!(
             "note: {} samples had an axis at the full scale {} ({what})",
-            c.count, c.full_scale
+            c.count,
+            c.guard.limit().limit()
         );
     }
     finish(result, &mut p)

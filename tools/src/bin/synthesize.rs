@@ -183,14 +183,12 @@ fn arguments(f: &Flags) -> Result<(Synth, String), String> {
         return Ok((placeholder(sensor), text));
     }
     let motion_arg = f.value("--motion").map(str::trim).unwrap_or("handheld");
-    let motion = match motion_arg {
-        "handheld" => MotionChoice::Handheld,
-        "axes" => MotionChoice::Axes,
-        "rest" => MotionChoice::Rest,
-        spin if spin.starts_with("spin:") => {
+    let motion = match MotionChoice::named(motion_arg).ok_or(motion_arg) {
+        Ok(named) => named,
+        Err(spin) if spin.starts_with("spin:") => {
             MotionChoice::Spin(three("--motion", &spin["spin:".len()..], "WX,WY,WZ")?)
         }
-        path => {
+        Err(path) => {
             let text = if path == "-" {
                 let mut s = String::new();
                 io::stdin()

@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use gyrostat::Real;
-use gyrostat::estimation::{EarthFrame, Estimator, Gains, Mode, Params, SensorUse};
+use gyrostat::estimation::{EarthFrame, Estimator, Mode, Params, SensorUse};
 use gyrostat_pipeline::broad::{Metric, Score, errors};
 use gyrostat_pipeline::estimate::{self as pipeline, Calibration, HEADER, Options, Run, Step};
 use gyrostat_tools::calibration::{self, CalibrationFile};
@@ -239,7 +239,7 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         let (name, value) = kv
             .split_once('=')
             .ok_or_else(|| format!("--set: expected NAME=VALUE, got '{kv}'"))?;
-        set_param(&mut params, name.trim(), value.trim()).map_err(|e| format!("--set: {e}"))?;
+        pipeline::set_param(&mut params, name, value).map_err(|e| format!("--set: {e}"))?;
     }
     // The parameters are checked here, so that a bad one is a usage error before any input.
     Estimator::try_new(params)
@@ -267,35 +267,6 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         time: f.get("--time-unit", TimeUnit::parse)?,
         params,
     })
-}
-
-/// Sets one parameter of [`Params`] by its field name (SI units; a value ending in `deg` or
-/// `deg/s` is converted to rad or rad/s).
-fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), String> {
-    if name == "gains" {
-        return match value {
-            "kalman" => {
-                p.gains = Gains::Kalman;
-                Ok(())
-            }
-            _ => Err(format!(
-                "gains: only 'kalman' (set heading_time_constant for complementary gains), got '{value}'"
-            )),
-        };
-    }
-    let (number, factor) = match value
-        .strip_suffix("deg/s")
-        .or_else(|| value.strip_suffix("deg"))
-    {
-        Some(n) => (n.trim(), core::f64::consts::PI / 180.0),
-        None => (value, 1.0),
-    };
-    let v = flags::number(name, number)? * factor;
-    if p.set_by_name(name, v) {
-        Ok(())
-    } else {
-        Err(format!("unknown parameter '{name}' (see --help)"))
-    }
 }
 
 enum Failure {

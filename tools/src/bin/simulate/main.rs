@@ -528,10 +528,7 @@ fn fmt3(v: [f64; 3]) -> String {
 /// The monitors of a run with wheels or torques (stderr).
 fn summary<const N: usize>(cfg: &Config, o: &Outcome) -> String {
     let mut s = String::new();
-    let integ = match cfg.method {
-        Method::Step(i) => i.name(),
-        Method::Exact => "exact",
-    };
+    let integ = cfg.method.name();
     let what = match (N, cfg.torque.is_some()) {
         (0, _) => format!("external torque from {}", cfg.torque_source),
         (n, false) => format!("{n} wheel(s), no external torque"),
@@ -681,10 +678,7 @@ fn csv_figure<const N: usize>(cfg: &Config, tr: &Trajectory) -> Result<Figure, S
     let inertia = *build::<f64>(cfg)?.hamiltonian.inertia();
     let m = inertia.principal_moments();
     let precision = cfg.precision();
-    let integ = match cfg.method {
-        Method::Step(i) => i.name(),
-        Method::Exact => "exact",
-    };
+    let integ = cfg.method.name();
     Ok(Figure {
         title: format!(
             "simulate: {}{}, {integ}, dt = {} s, {} steps, {precision}{}",
