@@ -351,6 +351,7 @@ impl<T: Real> Estimator<T> {
                 gyro
             }
         };
+        self.lead_rate = self.lead_rate(gyro, dt, out.gyro_saturated);
         self.last_gyro = gyro;
         self.last_saturated = out.gyro_saturated;
         if let Mode::Light { correction_period } = self.params.mode {
@@ -366,7 +367,6 @@ impl<T: Real> Estimator<T> {
             ));
         }
         self.predict(mean_rate, dt, out.gyro_saturated);
-        self.lead_rate = gyro - self.bias;
         let mut x = [T::ZERO; 6];
 
         if accel_use == SensorUse::Used {
@@ -450,6 +450,22 @@ impl<T: Real> Estimator<T> {
             (increment_rate - b).scale(dt),
         );
         terms.rotation_vector().scale(T::ONE / dt) + b
+    }
+
+    /// The mean rate (bias removed) over the output's lead `d` = [`Params::gyro_delay`]
+    /// after the last sample: the rate extrapolated to `d/2` by the last two samples,
+    /// `ω + (ω − ω_prev)·d/(2Δt)` (the lead's rotation `∫ω = ω·d + ω̇·d²/2` to second
+    /// order). The factor `d/(2Δt)` is at most 1 (steps shorter than half the lead would
+    /// amplify the samples' noise); a saturated sample at either end, or an extrapolation
+    /// that is not finite, gives the last rate alone.
+    fn lead_rate(&self, gyro: Vec3<T>, dt: T, saturated: bool) -> Vec3<T> {
+        let w = gyro - self.bias;
+        if saturated || self.last_saturated {
+            return w;
+        }
+        let factor = (self.params.gyro_delay * T::HALF / dt).min(T::ONE);
+        let lead = w + (gyro - self.last_gyro).scale(factor);
+        if lead.is_finite() { lead } else { w }
     }
 
     fn predict(&mut self, gyro: Vec3<T>, dt: T, saturated: bool) {
@@ -946,7 +962,8 @@ impl<T: Real> Estimator<T> {
 
     /// The attitude, sensor → earth, in the frame of [`Params::frame`], at the time of the
     /// motion the last samples describe: the filter's attitude carried forward by
-    /// [`Params::gyro_delay`] at the last rate. The identity before the first usable sample.
+    /// [`Params::gyro_delay`] at the rate extrapolated to the middle of that time (the last
+    /// two samples' slope). The identity before the first usable sample.
     pub fn attitude(&self) -> UnitQuat<T> {
         let q = self.attitude_enu();
         let d = self.params.gyro_delay;

@@ -103,7 +103,6 @@ impl<T: Real> Estimator<T> {
         self.q_gyro = self
             .q_gyro
             .mul_exp_unchecked(w.scale(dt), Normalization::Fast);
-        self.lead_rate = gyro - self.bias;
         let pr = self.params;
         let s = &mut self.light;
         s.elapsed += dt;

@@ -36,7 +36,8 @@
 //!    [`crate::sensor::raw`] (the gyroscope saturated at [`Params::gyro_range`],
 //!    [`crate::sensor::ClipPolicy::Saturate`]). The
 //!    output, [`Estimator::attitude`], is carried forward by the gyroscope's own delay
-//!    ([`Params::gyro_delay`]).
+//!    ([`Params::gyro_delay`]) at the rate extrapolated to the middle of that delay from the
+//!    last two samples (the carried rotation `∫ω` to second order).
 //! 2. **Error covariance** — an error-state (multiplicative) Kalman filter over
 //!    `x = (δθ, δb)`: `δθ` the attitude error in the earth frame (`q = exp(δθ) ⊗ q̂`), `δb` the
 //!    bias error. Its closed-form transition over a step is `Φ = [[I, −R̂Δt], [0, I]]` (an

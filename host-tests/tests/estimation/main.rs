@@ -378,6 +378,32 @@ host_tests::per_type! {
         }
     }
 
+    /// The output's lead over `gyro_delay` at the extrapolated rate: a level sensor spun up
+    /// about the vertical at a constant 20 rad/s² for 1 s (point samples `ω = α·t` at 200 Hz, below
+    /// the gyroscope's range; exact
+    /// specific force), `gyro_delay` 4 ms. The output's turn since the start must equal the
+    /// true turn at `t + d`, `α(t + d)²/2`: the rate extrapolated to the lead's middle carries a
+    /// linear rate exactly, where the last rate alone falls short by `α·d²/2` = 1.6e-4 rad.
+    #[test]
+    fn output_lead_follows_the_rate_slope() {
+        let (dt, d, alpha) = (0.005, 0.004, 20.0);
+        let params = Params::<T> { gyro_delay: T::from_f64(d), ..Params::default() };
+        let mut f = Estimator::<T>::try_new(params).unwrap();
+        let up = vec3::<T>([0.0, 0.0, 9.81]);
+        f.update_6d(vec3([0.0; 3]), up, T::from_f64(dt)).unwrap();
+        let q0 = q64(f.attitude());
+        let mut worst = 0.0f64;
+        for k in 1..=200 {
+            let t = k as f64 * dt;
+            f.update_6d(vec3([0.0, 0.0, alpha * t]), up, T::from_f64(dt)).unwrap();
+            let turned = qmul(qconj(q0), q64(f.attitude()));
+            let want = qexp([0.0, 0.0, alpha * (t + d) * (t + d) / 2.0]);
+            worst = worst.max(quat_angle(turned, want));
+        }
+        eprintln!("{}: worst {worst:.3e} rad", T::NAME);
+        assert!(worst < T::per_type(2e-5, 1e-8), "{}: {worst} rad", T::NAME);
+    }
+
     /// The online hard iron: a sensor turning continuously (non-repeating rates up to about
     /// 100 °/s, point-sampled, steps of 5 ms) whose field sample carries a constant offset of
     /// (20, −10, 15) µT (57 % of the 43.7 µT field) from t = 20 s on (0.3 µT of noise per
