@@ -273,7 +273,7 @@ mod firmware {
             // are converted before the timed loop, as a fixed-point path would get them from
             // the sensor's integers.
             use gyrostat::Ring;
-            use gyrostat::fixed::Q24;
+            use gyrostat::real::Q24;
             let mut motion = Motion::new();
             let mut a32 = [Vec3::<f32>::ZERO; N];
             let mut a24 = [Vec3::new(Q24::ZERO, Q24::ZERO, Q24::ZERO); N];
