@@ -58,8 +58,8 @@ pub(super) struct LightState<T> {
 
 /// What the light mode's per-sample work computes from the step `Δt` alone, kept for the next
 /// sample with the same `Δt` (a fixed sample rate): two divisions and an exponential or its
-/// series fewer per sample (and the magnetometer delay computed once), which is most of a soft-float core's cost of a sample (the values
-/// are the same numbers as computed afresh).
+/// series fewer per sample, which is most of a soft-float core's cost of a sample, and the
+/// magnetometer delay computed once (the values are the same numbers as computed afresh).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct StepFactors<T> {
     /// The step these are for; 0 (no valid step) before the first.
@@ -250,7 +250,8 @@ impl<T: Real> Estimator<T> {
 
 /// The light mode's magnetometer delay `d` (s) for the sample step `dt` (module docs):
 /// [`Params::mag_delay`] (at most `MAG_DELAY_MAX`) when a fixed delay is asked for, else
-/// `max(d₀ − c·Δt, 0)` with `d₀` = [`Mode::LIGHT_MAG_DELAY`], `c` = [`Mode::LIGHT_MAG_DELAY_PER_STEP`].
+/// `max(d₀ − c·Δt, 0)` with `d₀` = [`Mode::LIGHT_MAG_DELAY`] and
+/// `c` = [`Mode::LIGHT_MAG_DELAY_PER_STEP`].
 fn mag_delay<T: Real>(dt: T, pr: &Params<T>) -> T {
     if pr.mag_delay_estimation_time > T::ZERO {
         let per_step = T::from_f64(Mode::<T>::LIGHT_MAG_DELAY_PER_STEP);

@@ -270,7 +270,7 @@ pub enum Mode<T> {
     /// (`Φ = [[I, −R̂·T_c], [0, I]]`, `R̂` at its end) and the rest, inclination and heading
     /// updates (variances for one measurement per `T_c`) once per `correction_period` `T_c`
     /// (s, sample time). No magnetometer-delay estimate: the field sample is carried back by a
-    /// fixed delay `d` to first order, `m − d·(ω × m)`, `d` = [`Params::mag_delay`] when
+    /// delay `d` to first order, `m − d·(ω × m)`, `d` = [`Params::mag_delay`] when
     /// [`Params::mag_delay_estimation_time`] is 0, else [`Mode::LIGHT_MAG_DELAY`] less
     /// [`Mode::LIGHT_MAG_DELAY_PER_STEP`] times the sample step. Between
     /// corrections the [`Outcome`](super::Outcome) reports a valid magnetometer sample as the
