@@ -351,7 +351,14 @@ impl<T: Real> Estimator<T> {
                 gyro
             }
         };
-        self.lead_rate = self.lead_rate(gyro, dt, out.gyro_saturated);
+        // The light mode carries the output at the last rate alone: the slope's division per
+        // sample is most of a correction's saving on a soft-float core (M0 light 9D 39 836 →
+        // 41 033 instructions with it), and it gains the light mode nothing on BROAD.
+        self.lead_rate = if self.params.mode == Mode::Full {
+            self.lead_rate(gyro, dt, out.gyro_saturated)
+        } else {
+            gyro - self.bias
+        };
         self.last_gyro = gyro;
         self.last_saturated = out.gyro_saturated;
         if let Mode::Light { correction_period } = self.params.mode {
@@ -963,7 +970,8 @@ impl<T: Real> Estimator<T> {
     /// The attitude, sensor → earth, in the frame of [`Params::frame`], at the time of the
     /// motion the last samples describe: the filter's attitude carried forward by
     /// [`Params::gyro_delay`] at the rate extrapolated to the middle of that time (the last
-    /// two samples' slope). The identity before the first usable sample.
+    /// two samples' slope; the light mode: the last rate). The identity before the first
+    /// usable sample.
     pub fn attitude(&self) -> UnitQuat<T> {
         let q = self.attitude_enu();
         let d = self.params.gyro_delay;
