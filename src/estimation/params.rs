@@ -73,7 +73,8 @@ macro_rules! estimator_parameters {
             /// digital low-pass filter and of the sampling chain. The filter integrates the
             /// samples as they come and the output attitude is carried forward by this time at
             /// the rate extrapolated to its middle, `q̂ ⊗ exp(ω̄·d_g)`, `ω̄ = ω − b̂ +
-            /// (ω − ω_prev)·min(d_g/(2Δt), 1)`; the corrections are unaffected. 0
+            /// (ω − ω_prev)·min(d_g/(2Δt), 1)` (the light mode: `ω − b̂`, the last rate);
+            /// the corrections are unaffected. 0
             /// outputs the attitude of the samples' own time. Default: the digital low-pass
             /// delay at its common setting (MPU-9250: 184 Hz bandwidth, 2.9 ms).
             gyro_delay: 0.0029, NonNegative;
