@@ -262,11 +262,23 @@ pub fn magnus4_step_unequal<T: Real, const M: usize>(
     t0: T,
     t1: T,
 ) -> UnitQuat<T> {
+    let (w1, w2, h) = gauss_node_rates(times, rates, t0, t1);
+    magnus4_step(q, w1, w2, h)
+}
+
+/// The rates at the two Gauss nodes of `[t0, t1]` from the Lagrange interpolant through the `M`
+/// samples, and the step `h = t1 − t0`: the inputs of the fourth-order steps on unequal times.
+#[inline]
+fn gauss_node_rates<T: Real, const M: usize>(
+    times: &[T; M],
+    rates: &[Vec3<T>; M],
+    t0: T,
+    t1: T,
+) -> (Vec3<T>, Vec3<T>, T) {
     let h = t1 - t0;
     let g1 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_1);
     let g2 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_2);
-    magnus4_step(
-        q,
+    (
         lagrange_at(times, rates, g1),
         lagrange_at(times, rates, g2),
         h,
@@ -285,15 +297,8 @@ pub fn cf4_step_unequal<T: Real, const M: usize>(
     t0: T,
     t1: T,
 ) -> UnitQuat<T> {
-    let h = t1 - t0;
-    let g1 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_1);
-    let g2 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_2);
-    cf4_step(
-        q,
-        lagrange_at(times, rates, g1),
-        lagrange_at(times, rates, g2),
-        h,
-    )
+    let (w1, w2, h) = gauss_node_rates(times, rates, t0, t1);
+    cf4_step(q, w1, w2, h)
 }
 
 /// One classical RK4 step on rate samples at unequal times: [`rk4_step`] from `t0` to `t1` with
