@@ -9,9 +9,10 @@ For each decimation N (every Nth row, the rows `run_peers.py --every N` gives th
 --out DIR` (with every `--set` passed on) and VQF 2.1.2 with its defaults (`run_peers.run_vqf`,
 cached by `run_peers.py`'s cache), and scores every estimate with BROAD's `score.py` (movement
 phase; `run_peers.score_file` / `score_estimate`). Prints, per group (run_peers.GROUPS) and half
-(A = 01 05 09 14 21 26 30 34, B = 03 07 11 16 24 28 32 36, as `broad_estimate`), the mean
-inclination RMSE (°) as `gyrostat / VQF`, with `<` where gyrostat is behind (worse by more than
-0.0005°), then the list of those cells, then the per-trial 6D inclination.
+(A = 01 05 09 14 21 26 30 34, B = 03 07 11 16 24 28 32 36, as `broad_estimate`), the mean 6D
+inclination RMSE (°) as `gyrostat / VQF`, in bold where gyrostat is behind (worse by more than
+0.0005°), how far each one's 9D inclination is from its 6D, then the list of every 6D and 9D
+cell where gyrostat is behind, then the per-trial 6D inclination.
 """
 import argparse
 import json
@@ -74,7 +75,7 @@ def main():
 
     stems = [p.name[: -len(".csv.gz")] for p in paths]
     everies = sorted({k[0] for k in res})
-    head = ["group (trials)", "half"] + [f"{dim} {RATE / e:.1f} Hz" for e in everies for dim, _ in dims]
+    head = ["group (trials)", "half"] + [f"{RATE / e:.1f} Hz" for e in everies]
     rows, losses = [], []
     for gname, f in GROUPS:
         members = [s[:2] for s in stems if f(s)]
@@ -88,14 +89,21 @@ def main():
                     a = sum(res[(e, "gyrostat", dim)][n] for n in nums) / len(nums)
                     b = sum(res[(e, "VQF", dim)][n] for n in nums) / len(nums)
                     lose = a > b + 0.0005
-                    row.append(f"{'**' if lose else ''}{a:.3f} / {b:.3f}{'**' if lose else ''}")
+                    if dim == "6D":
+                        row.append(f"{'**' if lose else ''}{a:.3f} / {b:.3f}{'**' if lose else ''}")
                     if lose:
                         losses.append(f"{gname} {half} {dim} {RATE / e:.1f} Hz: {a:.3f} against "
                                       f"VQF {b:.3f} (+{a - b:.3f}; trials {' '.join(nums)})")
             rows.append(row)
-    print("Inclination RMSE (°), mean over the group's trials in the half: gyrostat / VQF "
+    print("6D inclination RMSE (°), mean over the group's trials in the half: gyrostat / VQF "
           "(bold: gyrostat behind)\n")
     print(rp.md_table(head, rows))
+    if not args.no_9d:
+        for est in ("gyrostat", "VQF"):
+            d = max(abs(res[(e, est, "9D")][n] - res[(e, est, "6D")][n])
+                    for e in everies for n in res[(e, est, "6D")])
+            print(f"\n{est}: 9D inclination within {d:.4f}° of 6D on every trial at every rate "
+                  "(the losses below list both)")
     print("\nCells where gyrostat is behind:" + ("" if losses else " none"))
     for line in losses:
         print("- " + line)
