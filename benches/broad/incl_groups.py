@@ -16,6 +16,7 @@ cell where gyrostat is behind, then the per-trial 6D inclination.
 """
 import argparse
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -32,7 +33,10 @@ RATE = 2000.0 / 7.0
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--data", default=str(rp.ROOT.parent / "shared" / "real-data" / "broad"))
+    ap.add_argument("--data", default=os.environ.get("GYROSTAT_BROAD_DIR",
+                                                     str(rp.ROOT.parent / "shared" / "real-data" / "broad")),
+                    help="BROAD folder with score.py (default: $GYROSTAT_BROAD_DIR, else "
+                         "../shared/real-data/broad beside the repository)")
     ap.add_argument("--every", default="1,2,3,6")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE")
     ap.add_argument("--no-9d", action="store_true", help="6D only (gyrostat and VQF)")
@@ -56,7 +60,7 @@ def main():
         trials = [rp.Trial(p, score, every) for p in paths]
         for dim, nine in dims:
             out = pathlib.Path(args.out) / f"every{every}_{dim}"
-            cmd = [args.bin, "--quiet", "--every", str(every), "--out", str(out)]
+            cmd = [args.bin, "--quiet", "--every", str(every), "--out", str(out), "--data", str(data)]
             cmd += [] if nine else ["--6d"]
             for s in args.set:
                 cmd += ["--set", s]
