@@ -31,6 +31,7 @@ and 1/s), used unchanged at every rate and on every data set: not re-tuned for t
 trials or the synthetic grid. The ahrs filters are pure Python (about 150-350 us per update).
 """
 import math
+from functools import partial
 
 import numpy as np
 
@@ -233,21 +234,22 @@ def run_mahony(tr, nine):
 
 
 def peer_table():
-    """(label, nine, description, fn(log) -> quats) of every filter above, in the tables' order."""
+    """(label, nine, description, fn(log) -> quats) of every filter above, in the tables' order
+    (fn picklable: the grid runs cells in processes)."""
     vqf_v, fus_v, ahrs_v = pkg_version("vqf"), pkg_version("imufusion"), pkg_version("ahrs")
     mg = f"ahrs {ahrs_v} Madgwick gain {MADGWICK_GAIN:g}"
     mh = f"ahrs {ahrs_v} Mahony kP {MAHONY_KP:g} kI {MAHONY_KI:g}"
     fus = f"imufusion {fus_v} defaults, set_quaternion+skip_startup"
     fusd = f"imufusion {fus_v} gain .5 range 2000 rej 10/10 timeout 5 + Bias"
     return [
-        ("VQF 9D", True, f"vqf {vqf_v} VQF(Ts) defaults", lambda t: run_vqf(t, True)),
-        ("VQF 6D", False, f"vqf {vqf_v} VQF(Ts) defaults", lambda t: run_vqf(t, False)),
-        ("Fusion 9D", True, fus, lambda t: run_fusion(t, True, False)),
-        ("Fusion 6D", False, fus, lambda t: run_fusion(t, False, False)),
-        ("Fusion doc. 9D", True, fusd, lambda t: run_fusion(t, True, True)),
-        ("Fusion doc. 6D", False, fusd, lambda t: run_fusion(t, False, True)),
-        ("Madgwick 9D", True, mg, lambda t: run_madgwick(t, True)),
-        ("Madgwick 6D", False, mg, lambda t: run_madgwick(t, False)),
-        ("Mahony 9D", True, mh, lambda t: run_mahony(t, True)),
-        ("Mahony 6D", False, mh, lambda t: run_mahony(t, False)),
+        ("VQF 9D", True, f"vqf {vqf_v} VQF(Ts) defaults", partial(run_vqf, nine=True)),
+        ("VQF 6D", False, f"vqf {vqf_v} VQF(Ts) defaults", partial(run_vqf, nine=False)),
+        ("Fusion 9D", True, fus, partial(run_fusion, nine=True)),
+        ("Fusion 6D", False, fus, partial(run_fusion, nine=False)),
+        ("Fusion doc. 9D", True, fusd, partial(run_fusion, nine=True, documented=True)),
+        ("Fusion doc. 6D", False, fusd, partial(run_fusion, nine=False, documented=True)),
+        ("Madgwick 9D", True, mg, partial(run_madgwick, nine=True)),
+        ("Madgwick 6D", False, mg, partial(run_madgwick, nine=False)),
+        ("Mahony 9D", True, mh, partial(run_mahony, nine=True)),
+        ("Mahony 6D", False, mh, partial(run_mahony, nine=False)),
     ]
