@@ -5,6 +5,7 @@
     python3 benches/synthetic/grid.py                        # the whole grid, gyrostat's estimate
     python3 benches/synthetic/grid.py --quick                # a slice (seconds)
     python3 benches/synthetic/grid.py --vqf                  # + VQF (PyPI vqf: pip install vqf)
+    python3 benches/synthetic/grid.py --peers vqf,fusion,madgwick:9d,mahony:9d --jobs 2
     python3 benches/synthetic/grid.py --estimator 'mine=path/to/filter {log} > {out}'
     python3 benches/synthetic/grid.py --set rest.gyro=0.05   # estimate with a parameter changed
     python3 benches/synthetic/grid.py --estimate-bin ../other/target/release/estimate  # another build
@@ -49,9 +50,21 @@ Plugging in an estimator: --estimator 'LABEL=CMD' (repeatable) runs CMD through 
 repository root for every cell, {log} the log's path (CSV, BROAD's columns: t_s, gyr_*_rad_s,
 acc_*_m_s2, mag_*_uT, opt_q*, movement; rows without a new magnetometer sample have empty mag
 fields), {out} the CSV to write, {rate} the nominal rate (Hz). A LABEL ending in "6D" is scored
-on inclination only. In Python, add a function to PEERS below (arrays in, quaternions out): VQF
-is the example (`--vqf`: vqf.VQF(1/rate) with default parameters, online (updateBatch), 9D and
-6D; an empty magnetometer row repeats the last sample).
+on inclination only.
+
+Python peers (--peers LIST; --vqf is --peers vqf): vqf, fusion, madgwick, mahony, each 9D and 6D
+(`madgwick:9d`: 9D only), from benches/peers.py: the code, settings and frame mappings
+benches/broad/run_peers.py uses on BROAD (VQF 2.1.2 and Fusion with their defaults; Madgwick
+beta 0.12 and Mahony kP 0.74 / kI 0.0012, BROAD's best common gains: the same gains here, not
+re-tuned for the grid), online from the first sample with BROAD's initialisation rule, the
+nominal period 1/rate, an empty magnetometer row repeating the last sample. To add one, add an
+entry to PEERS below (arrays in, quaternions out, sensor -> ENU). The ahrs filters (Madgwick,
+Mahony) are pure Python, 150-400 us per update: the whole default grid takes them about 8 (9D)
+and 5 (6D) core-minutes each. Peers' scores are cached under target/synthetic-grid/peer-cache/
+against the log's bytes and the peer's settings (--force-peers reruns them). Frames: every peer
+(and with --check-frames `estimate`) is also scored over each log's initial rest phase, the
+worst log printed per estimator, and above 20 deg the run fails (a wrong frame gives about 90).
+Cells run in --jobs processes (the Python peers hold the GIL); the rows come in the cells' order.
 
 Output: a markdown table per estimator (rows: sensor x disturbance; columns: rates; cells: total
 RMSE mean over seeds, inclination in brackets) on stdout and in --markdown FILE, every cell and
