@@ -260,7 +260,8 @@ def cell(args, rate, sensor, dist, seed, check_score):
     name = f"{sensor}_{dist}_{rate_label(rate)}Hz_seed{seed}"
     logs = OUT / "logs"
     logs.mkdir(parents=True, exist_ok=True)
-    log = logs / f"{name}.csv"
+    # The process id keeps two runs at the same time (another --duration, say) apart.
+    log = logs / f"{name}.{os.getpid()}.csv"
     synth = [str(args.bin / "synthesize"), "--sensor", sensor, "--rate", repr(rate),
              "--seed", str(seed), "--duration", str(args.duration), "--phases", str(args.phases),
              "--rest", str(args.rest), *DISTURBANCES[dist]]
@@ -269,7 +270,7 @@ def cell(args, rate, sensor, dist, seed, check_score):
     if p.returncode != 0:
         raise RuntimeError(f"{shlex.join(synth)}: {p.stderr.strip()}")
     results = []
-    est_out = logs / f"{name}.estimate.csv"
+    est_out = log.with_suffix(".estimate.csv")
     params = ["--params", str(args.params[(sensor, rate)])] if args.params else []
     est = [str(args.estimate_bin), "--truth", *params,
            *sum((["--set", s] for s in args.set), []), str(log)]
@@ -296,7 +297,7 @@ def cell(args, rate, sensor, dist, seed, check_score):
         if args.peer_list:
             results.extend(peer_results(args, score, log, rate, name))
         for label, cmd in args.estimator:
-            out = logs / f"{name}.{re.sub(r'[^A-Za-z0-9]+', '_', label)}.csv"
+            out = log.with_suffix(f".{re.sub(r'[^A-Za-z0-9]+', '_', label)}.csv")
             t0 = time.time()
             run(cmd.format(log=shlex.quote(str(log)), out=shlex.quote(str(out)), rate=rate),
                 shell=True, cwd=ROOT)
