@@ -289,6 +289,62 @@ def change(g, p, six):
     return 100.0 * (g[k] - p[k]) / p[k]
 
 
+def runs_of(dump, every_list):
+    """Per-run scores, per data set: {set: {label: {run: (total, inclination)}}}."""
+    out = {}
+    if "broad" in dump:
+        def take(res):
+            return {s.split("_")[0]: (r["main"]["total"], r["main"]["inclination"])
+                    for s, r in res.items()
+                    if r is not None and not r["main"]["missing"]}
+        out["BROAD"] = {lab: take(res) for lab, res in dump["broad"]["1"].items()}
+        dec = {}
+        for e in every_list:
+            for lab, res in dump["broad"][str(e)].items():
+                dec.setdefault(lab, {}).update({f"{k} at {BROAD_RATE / e:.1f} Hz": v
+                                                for k, v in take(res).items()})
+        if dec:
+            out["decimated"] = dec
+    if "grid" in dump:
+        g = {}
+        for r in dump["grid"]:
+            lab = "gyrostat 9D" if r["estimator"] == "estimate" else r["estimator"]
+            run = (f"{r['sensor']} {r['disturbance']} {grid.rate_label(r['rate'])} Hz "
+                   f"seed {r['seed']}")
+            g.setdefault(lab, {})[run] = (r["total"], r["inclination"])
+        out["grid"] = g
+    return out
+
+
+def losses(runs, gyro):
+    """Per peer and data set: on how many runs gyrostat's score is above the peer's, and the
+    run where it is furthest above (9D: total, 6D: inclination)."""
+    sets = list(runs)
+    lines = ["| peer | " + " | ".join(sets) + " |", "|---|" + "---|" * len(sets)]
+    for peer in SUMMARY_PEERS:
+        six = peer.endswith("6D")
+        g_lab = gyro.replace("9D", "6D") if six else gyro
+        k = 1 if six else 0
+        cells = []
+        for name in sets:
+            p, g = runs[name].get(peer), runs[name].get(g_lab)
+            if not p or not g:
+                cells.append("—")
+                continue
+            common = [run for run in g if run in p]
+            worse = [(g[run][k] - p[run][k], run) for run in common if g[run][k] > p[run][k]]
+            cell = f"{len(worse)} of {len(common)}"
+            if worse:
+                d, run = max(worse)
+                cell += f"; worst {run}: {g[run][k]:.2f} vs {p[run][k]:.2f}"
+            cells.append(cell)
+        if all(c == "—" for c in cells):
+            continue
+        lines.append(f"| {peer} ({'inclination' if six else 'total'}) | " + " | ".join(cells)
+                     + " |")
+    return "\n".join(lines)
+
+
 def summary(sets, gyro):
     """The "all three" table: gyrostat (label gyro, or its 6D twin for 6D peers) against each
     peer on every data set and half; a row ends with where gyrostat wins or loses."""
@@ -469,6 +525,10 @@ def main(argv):
                  "inclination, gyrostat 6D) per data set and half; negative: gyrostat lower "
                  "(better).\n\ngyrostat (full):\n\n" + summary(sets, "gyrostat 9D")
                  + "\n\ngyrostat light:\n\n" + summary(sets, "gyrostat light 9D"))
+    runs = runs_of(dump, args.every)
+    texts.append("**Runs lost**: on how many single runs (BROAD trial, decimated trial, grid "
+                 "log) gyrostat (full) scores above the peer, and its largest loss (gyrostat vs "
+                 "peer, °):\n\n" + losses(runs, "gyrostat 9D"))
     flagged = []
     lines = []
     for lab in ORDER:
