@@ -59,9 +59,11 @@ beta 0.12 and Mahony kP 0.74 / kI 0.0012, BROAD's best common gains: the same ga
 re-tuned for the grid), online from the first sample with BROAD's initialisation rule, the
 nominal period 1/rate, an empty magnetometer row repeating the last sample. To add one, add an
 entry to PEERS below (arrays in, quaternions out, sensor -> ENU). The ahrs filters (Madgwick,
-Mahony) are pure Python, 150-400 us per update: the whole default grid takes them about 8 (9D)
-and 5 (6D) core-minutes each. Peers' scores are cached under target/synthetic-grid/peer-cache/
-against the log's bytes and the peer's settings (--force-peers reruns them). Frames: every peer
+Mahony) are pure Python: measured 234 and 284 us per 9D update on the 2 shared cores (their 6D
+two thirds to three quarters of that; VQF 2, Fusion 5, `estimate` 10 us with its process and
+CSV), so their 9D takes about 18 and 22 core-minutes on this script's default grid (225 logs of
+70 s), 5 and 6 on benches/evaluate.py's (150 logs of 30 s). Peers' scores are cached under
+target/synthetic-grid/peer-cache/ against the log's bytes and the peer's settings (--force-peers reruns them). Frames: every peer
 (and with --check-frames `estimate`) is also scored over each log's initial rest phase, the
 worst log printed per estimator, and above 20 deg the run fails (a wrong frame gives about 90).
 Cells run in --jobs processes (the Python peers hold the GIL); the rows come in the cells' order.
@@ -71,7 +73,8 @@ RMSE mean over seeds, inclination in brackets) on stdout and in --markdown FILE,
 seed in --json FILE and --csv FILE (defaults under target/synthetic-grid/). Logs are written to
 target/synthetic-grid/logs/ and deleted after scoring unless --keep.
 
-Exit status: 0; 1 if a tool fails; 2 for a bad command line.
+Exit status: 0; 1 if a tool fails or an estimator fails the rest-phase check; 2 for a bad
+command line.
 """
 import argparse
 import csv
