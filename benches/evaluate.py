@@ -36,6 +36,11 @@ Every filter runs online, sample by sample, with BROAD's initialisation rule. Fr
 on every run: the error over each log's initial rest phase (before the first movement row) must
 stay below 20 degrees (a wrong frame is off by 90 or 180).
 
+Runtime (2 shared cores, --jobs 2): about 4.5 minutes when the peers are cached (a rerun after
+an estimator change: BROAD 2 min, the grid 2.5 min); the first run computes the peers, about 25
+minutes (the pure-Python ahrs filters: 1500 s of filter time on BROAD's four rates, 700 s on the
+grid).
+
 Caching: the peers do not change when gyrostat does, so their scores are cached (BROAD: under
 target/broad-peers/, shared with run_peers.py and keyed by the peer's settings and the trial;
 grid: under target/synthetic-grid/peer-cache/, keyed by the log's bytes and the peer's settings);
