@@ -189,7 +189,8 @@ def run_broad(args, score, paths, log):
             if not cached:
                 ran += 1
                 secs += s
-    log(f"BROAD: peers {time.time() - t0:.0f} s ({ran} of {len(everys) * len(BROAD_PEERS) * len(paths)} trial runs computed, "
+    n_runs = len(everys) * len(BROAD_PEERS) * len(paths)
+    log(f"BROAD: peers {time.time() - t0:.0f} s ({ran} of {n_runs} trial runs computed, "
         f"{secs:.0f} s of filter time; the rest cached)")
     return out
 
@@ -406,7 +407,8 @@ def per_rate_table(results, everys, stems):
 
 
 def main(argv):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--data", type=Path, default=None,
                     help="the folder of the full BROAD trials and score.py (default: "
                          "$GYROSTAT_BROAD_DIR, else ../shared/real-data/broad)")

@@ -123,7 +123,8 @@ NWU_FROM_ENU = np.array([S, 0.0, 0.0, -S])
 
 
 def hold_last(mag):
-    """Rows without a magnetometer sample (NaN) repeat the last sample; the first row must have one."""
+    """Rows without a magnetometer sample (NaN) repeat the last sample; the first row must have
+    one."""
     out = np.array(mag, dtype=float)
     bad = ~np.all(np.isfinite(out), axis=1)
     if bad[0]:
