@@ -426,6 +426,8 @@ def main(argv):
     args = ap.parse_args(argv)
     if args.jobs < 1:
         ap.error("--jobs needs a whole number >= 1")
+    if args.skip_broad and args.skip_grid:
+        ap.error("--skip-broad and --skip-grid leave nothing to run")
     try:
         args.every = sorted({int(x) for x in args.every.split(",") if x.strip()})
     except ValueError:
