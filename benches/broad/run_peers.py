@@ -19,7 +19,8 @@ initialisation rule, BROAD's: the initial attitude from the accelerometer and ma
 first sample (earth frame ENU with y towards magnetic north, the frame of BROAD's optical
 reference), then one update per sample from the first sample on, the output after update i being
 the estimate for row i. 6D runs start from the first accelerometer sample alone (their heading is
-unobservable; only inclination is scored). Peers, versions and settings:
+unobservable; only inclination is scored). The peers' code is benches/peers.py (shared with the
+synthetic grid and benches/evaluate.py). Peers, versions and settings:
 
   VQF 9D / 6D     PyPI vqf 2.1.2, class `VQF(Ts)` with default parameters (not offlineVQF). Its own
                   start-up already is BROAD's rule: after the first sample its 9D output equals the
@@ -82,8 +83,8 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "benches"))
 CACHE = ROOT / "target" / "broad-peers"
-G = 9.81  # m/s^2 per g, for imufusion's accelerometer unit (only the direction matters to it)
 
 # --- trials and groups --------------------------------------------------------------------------
 
@@ -157,182 +158,12 @@ class Trial:
         self.first_move = moving[0] if moving else len(self.rows)
 
 
-# --- quaternions (scalar first, sensor -> earth: v_earth = q v q*) ------------------------------
+# --- the peers: benches/peers.py (shared with the synthetic grid and evaluate.py) ---------------
 
-
-def qmul(a, b):
-    w1, x1, y1, z1 = a
-    w2, x2, y2, z2 = b
-    return np.array(
-        [
-            w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-            w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-            w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
-        ]
-    )
-
-
-def qmul_rows(a, Q):
-    """a * Q[i] for every row of Q."""
-    w1, x1, y1, z1 = a
-    w2, x2, y2, z2 = Q.T
-    return np.stack(
-        [
-            w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-            w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-            w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
-        ],
-        axis=1,
-    )
-
-
-def quat_from_matrix(c):
-    """Unit quaternion of the rotation matrix c (Shepperd's method: the largest pivot)."""
-    tr = c[0, 0] + c[1, 1] + c[2, 2]
-    k = int(np.argmax([tr, c[0, 0], c[1, 1], c[2, 2]]))
-    if k == 0:
-        s = 2.0 * math.sqrt(1.0 + tr)
-        q = [s / 4, (c[2, 1] - c[1, 2]) / s, (c[0, 2] - c[2, 0]) / s, (c[1, 0] - c[0, 1]) / s]
-    elif k == 1:
-        s = 2.0 * math.sqrt(1.0 + c[0, 0] - c[1, 1] - c[2, 2])
-        q = [(c[2, 1] - c[1, 2]) / s, s / 4, (c[0, 1] + c[1, 0]) / s, (c[0, 2] + c[2, 0]) / s]
-    elif k == 2:
-        s = 2.0 * math.sqrt(1.0 - c[0, 0] + c[1, 1] - c[2, 2])
-        q = [(c[0, 2] - c[2, 0]) / s, (c[0, 1] + c[1, 0]) / s, s / 4, (c[1, 2] + c[2, 1]) / s]
-    else:
-        s = 2.0 * math.sqrt(1.0 - c[0, 0] - c[1, 1] + c[2, 2])
-        q = [(c[1, 0] - c[0, 1]) / s, (c[0, 2] + c[2, 0]) / s, (c[1, 2] + c[2, 1]) / s, s / 4]
-    q = np.array(q)
-    return q / np.linalg.norm(q) * (1 if q[0] >= 0 else -1)
-
-
-def initial_enu(acc, mag=None):
-    """BROAD's initial state: the attitude (sensor -> ENU, y to magnetic north) that puts the
-    accelerometer on +z and the magnetometer's horizontal part on +y. Without a magnetometer
-    (6D), the smallest rotation that puts the accelerometer on +z."""
-    up = acc / np.linalg.norm(acc)
-    if mag is None:
-        # Shortest arc from `up` to +z.
-        q = np.array([1.0 + up[2], up[1], -up[0], 0.0])
-        return q / np.linalg.norm(q)
-    east = np.cross(mag, up)
-    east /= np.linalg.norm(east)
-    north = np.cross(up, east)
-    # Rows: the earth axes in sensor coordinates, so that v_earth = C v_sensor.
-    return quat_from_matrix(np.array([east, north, up]))
-
-
-S = math.sqrt(0.5)
-ENU_FROM_NWU = np.array([S, 0.0, 0.0, S])  # +90 deg about z: north (NWU x) -> ENU y
-NWU_FROM_ENU = np.array([S, 0.0, 0.0, -S])
-
-
-# --- the estimators -----------------------------------------------------------------------------
-
-
-def pkg_version(name):
-    try:
-        from importlib.metadata import version
-
-        return version(name)
-    except Exception:
-        return "?"
-
-
-def run_vqf(tr, nine):
-    from vqf import VQF
-
-    v = VQF(tr.ts)
-    if nine:
-        out = v.updateBatch(tr.gyr, tr.acc, tr.mag)["quat9D"]
-    else:
-        out = v.updateBatch(tr.gyr, tr.acc)["quat6D"]
-    # The batch call is the online filter looped in C++: check it against per-sample updates.
-    w = VQF(tr.ts)
-    for i in range(300):
-        if nine:
-            w.update(tr.gyr[i].copy(), tr.acc[i].copy(), tr.mag[i].copy())
-            q = w.getQuat9D()
-        else:
-            w.update(tr.gyr[i].copy(), tr.acc[i].copy())
-            q = w.getQuat6D()
-        assert np.array_equal(q, out[i]), f"VQF batch != online at {tr.stem} row {i}"
-    if nine:
-        q0 = initial_enu(tr.acc[0], tr.mag[0])
-        err = 2 * math.degrees(math.acos(min(1.0, abs(float(np.dot(q0, out[0]))))))
-        # acos near 1 resolves about sqrt(2 eps) = 2e-8 rad = 1e-6 deg.
-        assert err < 1e-5, f"VQF's first output is not BROAD's initial state ({err} deg)"
-    return out
-
-
-def run_fusion(tr, nine, documented):
-    import imufusion
-
-    ahrs = imufusion.Ahrs()
-    fs = 1.0 / tr.ts
-    if documented:
-        settings = imufusion.AhrsSettings(
-            sample_rate=fs,
-            gain=0.5,
-            gyroscope_range=2000,
-            acceleration_rejection=10,
-            magnetic_rejection=10,
-            rejection_timeout=5,
-        )
-        bias = imufusion.Bias()
-        bias.set_settings(imufusion.BiasSettings(sample_rate=fs))
-    else:
-        settings = imufusion.AhrsSettings(sample_rate=fs)
-        bias = None
-    settings.convention = imufusion.CONVENTION_NWU  # the default; the property setter is what works
-    ahrs.set_settings(settings)
-    q0 = initial_enu(tr.acc[0], tr.mag[0] if nine else None)
-    ahrs.set_quaternion(qmul(NWU_FROM_ENU, q0))
-    ahrs.skip_startup()
-    gyr = np.degrees(tr.gyr)
-    acc = tr.acc / G
-    mag = tr.mag
-    out = np.empty((len(gyr), 4))
-    for i in range(len(gyr)):
-        g = bias.update(gyr[i]) if bias is not None else gyr[i]
-        if nine:
-            ahrs.update(g, acc[i], mag[i])
-        else:
-            ahrs.update_no_magnetometer(g, acc[i])
-        out[i] = ahrs.get_quaternion()
-    return qmul_rows(ENU_FROM_NWU, out)
-
-
-def run_madgwick(tr, nine):
-    from ahrs.filters import Madgwick
-
-    f = Madgwick(frequency=1.0 / tr.ts, gain=0.12)
-    q = qmul(NWU_FROM_ENU, initial_enu(tr.acc[0], tr.mag[0] if nine else None))
-    out = np.empty((len(tr.gyr), 4))
-    for i in range(len(tr.gyr)):
-        if nine:
-            q = f.updateMARG(q, tr.gyr[i], tr.acc[i], tr.mag[i])
-        else:
-            q = f.updateIMU(q, tr.gyr[i], tr.acc[i])
-        out[i] = q
-    return qmul_rows(ENU_FROM_NWU, out)
-
-
-def run_mahony(tr, nine):
-    from ahrs.filters import Mahony
-
-    q = initial_enu(tr.acc[0], tr.mag[0] if nine else None)
-    f = Mahony(frequency=1.0 / tr.ts, k_P=0.74, k_I=0.0012, q0=q.copy())
-    out = np.empty((len(tr.gyr), 4))
-    for i in range(len(tr.gyr)):
-        if nine:
-            q = f.updateMARG(q, tr.gyr[i], tr.acc[i], tr.mag[i])
-        else:
-            q = f.updateIMU(q, tr.gyr[i], tr.acc[i])
-        out[i] = q
-    return out
+from peers import (  # noqa: E402
+    ENU_FROM_NWU, G, NWU_FROM_ENU, initial_enu, peer_table, pkg_version, qmul, qmul_rows,
+    quat_from_matrix, run_fusion, run_madgwick, run_mahony, run_vqf,
+)
 
 
 def run_strapdown(tr):
@@ -354,25 +185,9 @@ def run_strapdown(tr):
 
 
 def peers():
-    vqf_v, fus_v, ahrs_v = pkg_version("vqf"), pkg_version("imufusion"), pkg_version("ahrs")
-    p = [
-        ("VQF 9D", True, f"vqf {vqf_v} VQF(Ts) defaults", lambda t: run_vqf(t, True)),
-        ("VQF 6D", False, f"vqf {vqf_v} VQF(Ts) defaults", lambda t: run_vqf(t, False)),
-        ("Fusion 9D", True, f"imufusion {fus_v} defaults, set_quaternion+skip_startup",
-         lambda t: run_fusion(t, True, False)),
-        ("Fusion 6D", False, f"imufusion {fus_v} defaults, set_quaternion+skip_startup",
-         lambda t: run_fusion(t, False, False)),
-        ("Fusion doc. 9D", True, f"imufusion {fus_v} gain .5 range 2000 rej 10/10 timeout 5 + Bias",
-         lambda t: run_fusion(t, True, True)),
-        ("Fusion doc. 6D", False, f"imufusion {fus_v} gain .5 range 2000 rej 10/10 timeout 5 + Bias",
-         lambda t: run_fusion(t, False, True)),
-        ("Madgwick 9D", True, f"ahrs {ahrs_v} Madgwick gain 0.12", lambda t: run_madgwick(t, True)),
-        ("Madgwick 6D", False, f"ahrs {ahrs_v} Madgwick gain 0.12", lambda t: run_madgwick(t, False)),
-        ("Mahony 9D", True, f"ahrs {ahrs_v} Mahony kP 0.74 kI 0.0012", lambda t: run_mahony(t, True)),
-        ("Mahony 6D", False, f"ahrs {ahrs_v} Mahony kP 0.74 kI 0.0012", lambda t: run_mahony(t, False)),
+    return peer_table() + [
         ("strapdown", True, "gyro only from truth, bias = mean of first 10 s, exact exp", run_strapdown),
     ]
-    return p
 
 
 def slug(label):
