@@ -120,6 +120,10 @@ pub struct Estimator<T> {
     hard_iron_applied: Vec3<T>,
     /// Time (s) since the hard-iron fit was last fed.
     hard_iron_clock: T,
+    /// Time (s) since the last magnetometer sample that reached the heading update (the
+    /// initialising sample, or initialisation without one), excluding the current row; at
+    /// most [`MAG_INTERVAL_MAX`]. See [`Estimator::update`] for the magnetometer's interval.
+    mag_clock: T,
     /// Set by a saturated gyroscope sample: the rotation since the low-pass was fed is unknown,
     /// so its gyroscope-frame average mixes frames; it restarts from the next usable sample.
     lowpass_stale: bool,
@@ -152,6 +156,15 @@ const LAG_FEED_STEP: f64 = 0.02;
 
 /// The hard-iron fit takes a sample at most once per this time (s) while turning.
 const HARD_IRON_FEED_STEP: f64 = 0.02;
+
+/// The longest interval (s) one magnetometer sample stands for in the magnetometer's time
+/// scales (the disturbance monitor's times, the hard-iron fit's clock and random walk, the rest
+/// detector's field low-pass, the delay statistics, the heading measurement's variance): a
+/// sample after a longer gap (no samples, or rejected ones) counts for this long, since the
+/// field during the gap was not seen. 0.25 s: a magnetometer at 4 Hz or faster (consumer parts
+/// run at 8–100 Hz) is taken at its own interval, and the disturbance monitor's
+/// `field.min_undisturbed` (0.5 s by default) still takes two samples after a gap.
+pub const MAG_INTERVAL_MAX: f64 = 0.25;
 
 /// The longest step [`Estimator::update`] takes, s: a longer gap is an error (restart the
 /// estimator after it).
@@ -206,6 +219,7 @@ impl<T: Real> Estimator<T> {
             hard_iron_offer: Vec3::ZERO,
             hard_iron_applied: Vec3::ZERO,
             hard_iron_clock: T::ZERO,
+            mag_clock: T::ZERO,
             lowpass_stale: false,
             light: light::LightState::default(),
             rest_bias: None,
@@ -278,6 +292,14 @@ impl<T: Real> Estimator<T> {
     /// value (NaN included), and a log that starts while the sensor turns fast is accepted.
     /// From the sample after the initialising one on, `dt` is the time since the previous
     /// sample and is checked as below.
+    ///
+    /// **The magnetometer's interval.** `mag` may be `None` on rows without a new field
+    /// sample (a magnetometer slower than the gyroscope). Every magnetometer time scale runs on
+    /// the magnetometer's own interval: the time since the previous field sample that reached
+    /// the heading update (in the light mode: that was taken to a correction), or since
+    /// initialisation for the first one, at most [`MAG_INTERVAL_MAX`]. An absent sample and a
+    /// rejected one (not finite, saturated, zero) add their rows' time to the next sample's
+    /// interval, within that bound.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite gyroscope component; once initialised,
@@ -385,16 +407,24 @@ impl<T: Real> Estimator<T> {
         }
         self.inject(&x);
 
+        // The magnetometer's time scales run on its own interval: the time since the previous
+        // sample that reached the heading update (a magnetometer slower than the gyroscope
+        // leaves rows without a sample).
         out.mag = match (mag, mag_use) {
             (Some(m), SensorUse::Used) => {
-                let u = self.mag_update(m, gyro, dt);
+                let mag_dt = (self.mag_clock + dt).min(T::from_f64(MAG_INTERVAL_MAX));
+                self.mag_clock = T::ZERO;
+                let u = self.mag_update(m, gyro, mag_dt);
                 if u == SensorUse::Used {
                     let pr = &self.params;
-                    self.rest.update_field(m, dt, pr.field.dip, &pr.rest);
+                    self.rest.update_field(m, mag_dt, pr.field.dip, &pr.rest);
                 }
                 u
             }
-            (_, u) => u,
+            (_, u) => {
+                self.mag_clock = (self.mag_clock + dt).min(T::from_f64(MAG_INTERVAL_MAX));
+                u
+            }
         };
         self.last = out;
         Ok(out)
@@ -424,6 +454,7 @@ impl<T: Real> Estimator<T> {
         self.q_corr = UnitQuat::IDENTITY;
         self.accel_lp = LowPass::at(q.rotate(accel));
         self.rest = RestDetector::new(gyro, accel);
+        self.mag_clock = T::ZERO;
         self.last_gyro = gyro;
         self.lead_rate = Vec3::ZERO;
         // The first sample's direction errors: the inclination from one accelerometer sample
