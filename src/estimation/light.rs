@@ -167,7 +167,7 @@ impl<T: Real> Estimator<T> {
                 rate: w,
                 q_gyro: self.q_gyro,
             });
-            self.light_hard_iron(m, gyro, interval);
+            self.light_hard_iron(m, gyro, dt);
         } else {
             self.mag_clock = (self.mag_clock + dt).min(T::from_f64(MAG_INTERVAL_MAX));
         }
@@ -214,7 +214,7 @@ impl<T: Real> Estimator<T> {
             Some(p) => {
                 self.light.field = Some(p);
                 let interval = s.field_interval.min(T::from_f64(MAG_INTERVAL_MAX));
-                let u = self.mag_update(p.mag, p.gyro, interval);
+                let u = self.mag_update(p.mag, p.gyro, interval, tc);
                 self.light.field = None;
                 u
             }
@@ -242,7 +242,7 @@ impl<T: Real> Estimator<T> {
     /// The full mode's hard-iron feed (`mag_update`) on every sample rather than at the
     /// corrections: the fit's information grows with the samples it is fed (measured on BROAD
     /// trial 36: fed at the 25 ms corrections 1.86°, on every sample 1.2°, as the full mode).
-    /// `dt` is the magnetometer's interval.
+    /// `dt` is the row's step (the fit's clock: [`HARD_IRON_FEED_STEP`]).
     fn light_hard_iron(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) {
         let pr = &self.params;
         if pr.mag_hard_iron_time <= T::ZERO {
