@@ -799,12 +799,18 @@ impl<T: Real> Estimator<T> {
                 if turning {
                     self.hard_iron
                         .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
-                    // A converged offset larger than the disturbance monitor's norm threshold
-                    // (a smaller one leaves a field the monitor accepts, and is of the size of
-                    // the model's own errors: soft iron, calibration, a field that varies over
-                    // the room) is offered to the heading update.
+                    // A converged offset is offered to the heading update when it is larger
+                    // than the disturbance monitor's norm threshold, or when it explains most of
+                    // the field norm's variation (`HardIron::explains_norm`): a smaller offset
+                    // that does not is of the size of the model's other errors (soft iron, a
+                    // field that varies over the room), which it would not remove.
                     self.hard_iron_offer = match self.hard_iron.offset() {
-                        Some(h) if h.norm() > pr.field.norm * self.field.reference().0 => h,
+                        Some(h)
+                            if h.norm() > pr.field.norm * self.field.reference().0
+                                || self.hard_iron.explains_norm() =>
+                        {
+                            h
+                        }
                         _ => Vec3::ZERO,
                     };
                 }

@@ -256,6 +256,9 @@ impl<T: Real> Estimator<T> {
         if (gyro - self.bias).norm_squared() >= min_rate * min_rate {
             self.hard_iron
                 .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
+            // Offered above the disturbance monitor's norm threshold only: the full mode's second
+            // condition (`HardIron::explains_norm`) loses in the light mode on BROAD (trial 26:
+            // 1.840° → 1.979°, mean 1.190° → 1.199°; BENCHMARKS.md).
             self.hard_iron_offer = match self.hard_iron.offset() {
                 Some(h) if h.norm() > pr.field.norm * self.field.reference().0 => h,
                 _ => Vec3::ZERO,
