@@ -143,6 +143,17 @@ impl<T: Real> HardIron<T> {
     /// One field sample `b` (input units) standing for `dt` seconds of samples; `tau` (s) the
     /// random-walk time of the offset (it may drift by 1 % of the norm over `tau`).
     pub fn update(&mut self, b: Vec3<T>, dt: T, tau: T) {
+        self.step(b, dt, tau, true);
+    }
+
+    /// [`HardIron::update`] without the norm's steadiness statistics
+    /// ([`HardIron::norm_variances`] stay as they were): the light mode, which does not use
+    /// them, saves their cost on a soft-float core.
+    pub(crate) fn update_fit_only(&mut self, b: Vec3<T>, dt: T, tau: T) {
+        self.step(b, dt, tau, false);
+    }
+
+    fn step(&mut self, b: Vec3<T>, dt: T, tau: T, steadiness: bool) {
         if self.scale <= T::ZERO {
             *self = Self::new(b);
             return;
@@ -177,13 +188,14 @@ impl<T: Real> HardIron<T> {
             return;
         }
         let nis = innov * innov / s;
+        let k_base = super::lowpass::first_order_gain(dt, T::from_f64(NIS_BASE_TIME));
         // The norm's steadiness with and without the offset (out of sample: `h` before this
         // sample).
-        {
+        if steadiness {
             let h = Vec3::new(self.x[0], self.x[1], self.x[2]);
             let corr = (u - h).norm_squared();
             if self.steadiness_started {
-                let k = super::lowpass::first_order_gain(dt, T::from_f64(NIS_BASE_TIME));
+                let k = k_base;
                 let (dr, dc) = (z - self.raw_mean, corr - self.corr_mean);
                 self.raw_mean += k * dr;
                 self.raw_var += k * (dr * dr - self.raw_var);
@@ -218,7 +230,7 @@ impl<T: Real> HardIron<T> {
         // The long-run level, from the samples the fit accepts (a jump resets before it can
         // raise the level much).
         self.nis_base = if base > T::ZERO {
-            base + super::lowpass::first_order_gain(dt, T::from_f64(NIS_BASE_TIME)) * (nis - base)
+            base + k_base * (nis - base)
         } else {
             nis
         };

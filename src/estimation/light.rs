@@ -56,9 +56,8 @@ pub(super) struct LightState<T> {
     /// The latest valid field sample since the last correction, taken to the next one (and
     /// set during that correction's heading update only).
     field: Option<PendingField<T>>,
-    /// The magnetometer's time (s) since the field sample taken to the last correction, up to
-    /// the latest valid sample since then (the sum of the samples' intervals).
-    field_interval: T,
+    /// The bias-corrected rate (rad/s) at the correction, for the field's delay.
+    rate: Vec3<T>,
     /// The per-step factors of the last step length, kept across corrections.
     steps: StepFactors<T>,
 }
@@ -84,12 +83,10 @@ struct StepFactors<T> {
 struct PendingField<T> {
     /// The sample (sensor frame, input units).
     mag: Vec3<T>,
-    /// The gyroscope sample of its row (rad/s), for the turning rate.
-    gyro: Vec3<T>,
-    /// The bias-corrected mean rate of its row (rad/s), for the field's delay.
-    rate: Vec3<T>,
     /// The strapdown attitude `q_g` after its row's prediction.
     q_gyro: UnitQuat<T>,
+    /// The time (s) from the last correction to its row.
+    elapsed: T,
 }
 
 impl<T: Real> StepFactors<T> {
@@ -155,21 +152,16 @@ impl<T: Real> Estimator<T> {
             }
             self.light.accel_fed = true;
         }
-        // The magnetometer's interval (`Estimator::update`): the time since the previous valid
-        // sample, within `MAG_INTERVAL_MAX`.
+        // The magnetometer's interval (`Estimator::update`): the time from the row of the sample
+        // taken to the last correction (`mag_clock` before the correction's interval, no
+        // arithmetic per sample) to this one's row (bounded where it is used).
         if let (Some(m), SensorUse::Used) = (mag, mag_use) {
-            let interval = (self.mag_clock + dt).min(T::from_f64(MAG_INTERVAL_MAX));
-            self.mag_clock = T::ZERO;
-            self.light.field_interval += interval;
             self.light.field = Some(PendingField {
                 mag: m,
-                gyro,
-                rate: w,
                 q_gyro: self.q_gyro,
+                elapsed: self.light.elapsed,
             });
             self.light_hard_iron(m, gyro, dt);
-        } else {
-            self.mag_clock = (self.mag_clock + dt).min(T::from_f64(MAG_INTERVAL_MAX));
         }
         out.at_rest = self.light.at_rest && accel_use == SensorUse::Used;
         out.accel = accel_use;
@@ -209,17 +201,24 @@ impl<T: Real> Estimator<T> {
         self.inject(&x);
 
         // The latest valid field sample since the last correction, in the frame of its row,
-        // standing for the magnetometer's time since the one before it.
+        // standing for the magnetometer's time since the one before it (the rate and the
+        // gyroscope sample are the correction's: they move little within a period).
+        self.light.rate = w;
         self.light.mag = match s.field {
             Some(p) => {
                 self.light.field = Some(p);
-                let interval = s.field_interval.min(T::from_f64(MAG_INTERVAL_MAX));
-                let u = self.mag_update(p.mag, p.gyro, interval, tc);
+                let interval = (self.mag_clock + p.elapsed).min(T::from_f64(MAG_INTERVAL_MAX));
+                // From its row to this correction.
+                self.mag_clock = tc - p.elapsed;
+                let u = self.mag_update(p.mag, gyro, interval, tc);
                 self.light.field = None;
                 u
             }
             // No new sample: the last report stands (for the valid samples until the next).
-            None => s.mag,
+            None => {
+                self.mag_clock = (self.mag_clock + tc).min(T::from_f64(MAG_INTERVAL_MAX));
+                s.mag
+            }
         };
         out.mag = if mag_ok { self.light.mag } else { mag_use };
         self.last = out;
@@ -233,7 +232,7 @@ impl<T: Real> Estimator<T> {
         match self.light.field {
             Some(p) => {
                 let d = self.light.steps.mag_delay;
-                p.q_gyro.rotate(mag - p.rate.cross(mag).scale(d))
+                p.q_gyro.rotate(mag - self.light.rate.cross(mag).scale(d))
             }
             None => self.q_gyro.rotate(mag),
         }
@@ -255,7 +254,7 @@ impl<T: Real> Estimator<T> {
         let min_rate = pr.field.new_field_min_rate;
         if (gyro - self.bias).norm_squared() >= min_rate * min_rate {
             self.hard_iron
-                .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
+                .update_fit_only(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
             // Offered above the disturbance monitor's norm threshold only: the full mode's second
             // condition (`HardIron::explains_norm`) loses in the light mode on BROAD (trial 26:
             // 1.840° → 1.979°, mean 1.190° → 1.199°; BENCHMARKS.md).
