@@ -266,7 +266,7 @@ impl<T: Real> HardIron<T> {
     }
 
     /// The variances (squared reference norms, squared) of the squared norm of the fed samples
-    /// without and with the offset subtracted (running over [`NIS_BASE_TIME`] of fed samples,
+    /// without and with the offset subtracted (running over 30 s of fed samples,
     /// the offset before each sample).
     pub fn norm_variances(&self) -> (T, T) {
         (self.raw_var, self.corr_var)

@@ -29,7 +29,7 @@ impl Mag {
     /// The field sample of row `k` (`m` the sensor's reading), if any.
     fn sample(self, k: usize, m: [f64; 3]) -> Option<[f64; 3]> {
         match self {
-            Mag::Every(n) => (k % n == 0).then_some(m),
+            Mag::Every(n) => k.is_multiple_of(n).then_some(m),
             Mag::EveryFifthHalfBad => match k % 10 {
                 0 => Some(m),
                 5 => Some([f64::NAN, m[1], m[2]]),
