@@ -122,7 +122,8 @@ pub struct Estimator<T> {
     hard_iron_clock: T,
     /// Time (s) since the last magnetometer sample that reached the heading update (the
     /// initialising sample, or initialisation without one), excluding the current row; at
-    /// most [`MAG_INTERVAL_MAX`]. See [`Estimator::update`] for the magnetometer's interval.
+    /// most [`MAG_INTERVAL_MAX`]. In the light mode: from that sample's row to the last
+    /// correction. See [`Estimator::update`] for the magnetometer's interval.
     mag_clock: T,
     /// Set by a saturated gyroscope sample: the rotation since the low-pass was fed is unknown,
     /// so its gyroscope-frame average mixes frames; it restarts from the next usable sample.
