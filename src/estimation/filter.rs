@@ -120,6 +120,11 @@ pub struct Estimator<T> {
     hard_iron_applied: Vec3<T>,
     /// Time (s) since the hard-iron fit was last fed.
     hard_iron_clock: T,
+    /// Time (s) since the last magnetometer sample that reached the heading update (the
+    /// initialising sample, or initialisation without one), excluding the current row; at
+    /// most [`MAG_INTERVAL_MAX`]. In the light mode: from that sample's row to the last
+    /// correction. See [`Estimator::update`] for the magnetometer's interval.
+    mag_clock: T,
     /// Set by a saturated gyroscope sample: the rotation since the low-pass was fed is unknown,
     /// so its gyroscope-frame average mixes frames; it restarts from the next usable sample.
     lowpass_stale: bool,
@@ -150,8 +155,24 @@ const LAG_MEAN_TIME: f64 = 1.0;
 /// of the updates feed them).
 const LAG_FEED_STEP: f64 = 0.02;
 
-/// The hard-iron fit takes a sample at most once per this time (s) while turning.
+/// The hard-iron fit takes a sample at most once per this time (s) while turning. Its clock
+/// (this feed, its random walk and its statistics' time constants) counts the steps of the rows
+/// with a field sample only, not the magnetometer's interval: with a magnetometer slower than
+/// the gyroscope the fit's times are longer by the ratio of the rates. On the magnetometer's
+/// interval, a fit fed at 50 Hz (the `synthesize` tests' magnetometer beside a 100 Hz
+/// gyroscope, or both at 50 Hz on the old clock) resets on its relative consistency test after
+/// converging (the 30 s level was learned with the noise model still too large) and is offered
+/// 63 s after a magnet is attached instead of 16 s (BENCHMARKS.md).
 const HARD_IRON_FEED_STEP: f64 = 0.02;
+
+/// The longest interval (s) one magnetometer sample stands for in the magnetometer's time
+/// scales (the disturbance monitor's times, the hard-iron fit's clock and random walk, the rest
+/// detector's field low-pass, the delay statistics, the heading measurement's variance): a
+/// sample after a longer gap (no samples, or rejected ones) counts for this long, since the
+/// field during the gap was not seen. 0.25 s: a magnetometer at 4 Hz or faster (consumer parts
+/// run at 8–100 Hz) is taken at its own interval, and the disturbance monitor's
+/// `field.min_undisturbed` (0.5 s by default) still takes two samples after a gap.
+pub const MAG_INTERVAL_MAX: f64 = 0.25;
 
 /// The longest step [`Estimator::update`] takes, s: a longer gap is an error (restart the
 /// estimator after it).
@@ -206,6 +227,7 @@ impl<T: Real> Estimator<T> {
             hard_iron_offer: Vec3::ZERO,
             hard_iron_applied: Vec3::ZERO,
             hard_iron_clock: T::ZERO,
+            mag_clock: T::ZERO,
             lowpass_stale: false,
             light: light::LightState::default(),
             rest_bias: None,
@@ -278,6 +300,14 @@ impl<T: Real> Estimator<T> {
     /// value (NaN included), and a log that starts while the sensor turns fast is accepted.
     /// From the sample after the initialising one on, `dt` is the time since the previous
     /// sample and is checked as below.
+    ///
+    /// **The magnetometer's interval.** `mag` may be `None` on rows without a new field
+    /// sample (a magnetometer slower than the gyroscope). Every magnetometer time scale runs on
+    /// the magnetometer's own interval: the time since the previous field sample that reached
+    /// the heading update (in the light mode: that was taken to a correction), or since
+    /// initialisation for the first one, at most [`MAG_INTERVAL_MAX`]. An absent sample and a
+    /// rejected one (not finite, saturated, zero) add their rows' time to the next sample's
+    /// interval, within that bound.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite gyroscope component; once initialised,
@@ -385,16 +415,24 @@ impl<T: Real> Estimator<T> {
         }
         self.inject(&x);
 
+        // The magnetometer's time scales run on its own interval: the time since the previous
+        // sample that reached the heading update (a magnetometer slower than the gyroscope
+        // leaves rows without a sample).
         out.mag = match (mag, mag_use) {
             (Some(m), SensorUse::Used) => {
-                let u = self.mag_update(m, gyro, dt);
+                let mag_dt = (self.mag_clock + dt).min(T::from_f64(MAG_INTERVAL_MAX));
+                self.mag_clock = T::ZERO;
+                let u = self.mag_update(m, gyro, mag_dt, dt);
                 if u == SensorUse::Used {
                     let pr = &self.params;
-                    self.rest.update_field(m, dt, pr.field.dip, &pr.rest);
+                    self.rest.update_field(m, mag_dt, pr.field.dip, &pr.rest);
                 }
                 u
             }
-            (_, u) => u,
+            (_, u) => {
+                self.mag_clock = (self.mag_clock + dt).min(T::from_f64(MAG_INTERVAL_MAX));
+                u
+            }
         };
         self.last = out;
         Ok(out)
@@ -424,6 +462,7 @@ impl<T: Real> Estimator<T> {
         self.q_corr = UnitQuat::IDENTITY;
         self.accel_lp = LowPass::at(q.rotate(accel));
         self.rest = RestDetector::new(gyro, accel);
+        self.mag_clock = T::ZERO;
         self.last_gyro = gyro;
         self.lead_rate = Vec3::ZERO;
         // The first sample's direction errors: the inclination from one accelerometer sample
@@ -747,23 +786,32 @@ impl<T: Real> Estimator<T> {
         s * s * (pr.accel_correlation_time / dt).max(T::ONE)
     }
 
-    fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
+    /// The heading update from one field sample, `dt` the magnetometer's interval
+    /// ([`Estimator::update`]); `fit_dt` the step of the sample's row, the hard-iron fit's clock
+    /// (see [`HARD_IRON_FEED_STEP`]).
+    fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T, fit_dt: T) -> SensorUse {
         let pr = MagParams::of(&self.params);
         let rate = length(gyro - self.bias);
         // (The light mode feeds the fit on every sample itself: `light.rs`.)
         if pr.mag_hard_iron_time > T::ZERO && self.params.mode == Mode::Full {
-            self.hard_iron_clock += dt;
+            self.hard_iron_clock += fit_dt;
             let turning = rate >= pr.field.new_field_min_rate;
             if self.hard_iron_clock >= T::from_f64(HARD_IRON_FEED_STEP) {
                 if turning {
                     self.hard_iron
                         .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
-                    // A converged offset larger than the disturbance monitor's norm threshold
-                    // (a smaller one leaves a field the monitor accepts, and is of the size of
-                    // the model's own errors: soft iron, calibration, a field that varies over
-                    // the room) is offered to the heading update.
+                    // A converged offset is offered to the heading update when it is larger
+                    // than the disturbance monitor's norm threshold, or when it explains most of
+                    // the field norm's variation (`HardIron::explains_norm`): a smaller offset
+                    // that does not is of the size of the model's other errors (soft iron, a
+                    // field that varies over the room), which it would not remove.
                     self.hard_iron_offer = match self.hard_iron.offset() {
-                        Some(h) if h.norm() > pr.field.norm * self.field.reference().0 => h,
+                        Some(h)
+                            if h.norm() > pr.field.norm * self.field.reference().0
+                                || self.hard_iron.explains_norm() =>
+                        {
+                            h
+                        }
                         _ => Vec3::ZERO,
                     };
                 }

@@ -21,6 +21,14 @@
 //! (the filter's gate): samples of a still sensor differ by noise alone, and a sphere fitted to noise about one point is a
 //! small one centred on that point (the regressor's own noise would pass for information).
 //!
+//! Whether a converged offset is worth subtracting is tested on the data
+//! ([`HardIron::explains_norm`]): over the last 30 s of fed samples, the variance of the squared
+//! norm corrected by the offset the fit held *before* each sample (a prediction, not a fit to
+//! the sample) against the raw squared norm's variance. An offset that removes more than half
+//! of the variation is the main reason the norm changes as the device turns; one that removes
+//! less is of the size of the model's other errors (soft iron, a field that varies over the
+//! room, the sensor's calibration) and subtracting it does not make the field one sphere.
+//!
 //! A field that changes in the earth frame without translation (a stationary magnet seen from
 //! one place) is still a sphere, about `h` and of another radius: the fit keeps `h` and only
 //! `c` moves; the heading's disturbance monitor ([`super::FieldMonitor`]) keeps rejecting it.
@@ -85,6 +93,15 @@ pub struct HardIron<T> {
     /// `r` is their difference.
     nu2: T,
     hph: T,
+    /// Running means and variances (time constant [`NIS_BASE_TIME`] of fed samples) of the
+    /// squared norm `|u|²` and of the corrected one `|u − h|²` with the offset *before* the
+    /// sample (a prediction): the norm's variation with and without the offset.
+    raw_mean: T,
+    raw_var: T,
+    corr_mean: T,
+    corr_var: T,
+    /// Whether the means above have their first sample.
+    steadiness_started: bool,
 }
 
 impl<T: Real> HardIron<T> {
@@ -126,6 +143,17 @@ impl<T: Real> HardIron<T> {
     /// One field sample `b` (input units) standing for `dt` seconds of samples; `tau` (s) the
     /// random-walk time of the offset (it may drift by 1 % of the norm over `tau`).
     pub fn update(&mut self, b: Vec3<T>, dt: T, tau: T) {
+        self.step(b, dt, tau, true);
+    }
+
+    /// [`HardIron::update`] without the norm's steadiness statistics
+    /// ([`HardIron::norm_variances`] stay as they were): the light mode, which does not use
+    /// them, saves their cost on a soft-float core.
+    pub(crate) fn update_fit_only(&mut self, b: Vec3<T>, dt: T, tau: T) {
+        self.step(b, dt, tau, false);
+    }
+
+    fn step(&mut self, b: Vec3<T>, dt: T, tau: T, steadiness: bool) {
         if self.scale <= T::ZERO {
             *self = Self::new(b);
             return;
@@ -160,6 +188,25 @@ impl<T: Real> HardIron<T> {
             return;
         }
         let nis = innov * innov / s;
+        let k_base = super::lowpass::first_order_gain(dt, T::from_f64(NIS_BASE_TIME));
+        // The norm's steadiness with and without the offset (out of sample: `h` before this
+        // sample).
+        if steadiness {
+            let h = Vec3::new(self.x[0], self.x[1], self.x[2]);
+            let corr = (u - h).norm_squared();
+            if self.steadiness_started {
+                let k = k_base;
+                let (dr, dc) = (z - self.raw_mean, corr - self.corr_mean);
+                self.raw_mean += k * dr;
+                self.raw_var += k * (dr * dr - self.raw_var);
+                self.corr_mean += k * dc;
+                self.corr_var += k * (dc * dc - self.corr_var);
+            } else {
+                self.raw_mean = z;
+                self.corr_mean = corr;
+                self.steadiness_started = true;
+            }
+        }
         // The noise: E[ν²] = HPHᵀ + R.
         if hph < T::from_f64(NOISE_SETTLED) * self.r && nis < T::from_f64(NOISE_GATE) {
             let k = super::lowpass::first_order_gain(dt, T::from_f64(NOISE_TIME));
@@ -183,7 +230,7 @@ impl<T: Real> HardIron<T> {
         // The long-run level, from the samples the fit accepts (a jump resets before it can
         // raise the level much).
         self.nis_base = if base > T::ZERO {
-            base + super::lowpass::first_order_gain(dt, T::from_f64(NIS_BASE_TIME)) * (nis - base)
+            base + k_base * (nis - base)
         } else {
             nis
         };
@@ -216,6 +263,20 @@ impl<T: Real> HardIron<T> {
             && self.p[1][1] < ready
             && self.p[2][2] < ready;
         ok.then(|| Vec3::new(self.x[0], self.x[1], self.x[2]).scale(self.scale))
+    }
+
+    /// The variances (squared reference norms, squared) of the squared norm of the fed samples
+    /// without and with the offset subtracted (running over 30 s of fed samples,
+    /// the offset before each sample).
+    pub fn norm_variances(&self) -> (T, T) {
+        (self.raw_var, self.corr_var)
+    }
+
+    /// Whether the offset explains the norm's variation: the corrected squared norm's variance
+    /// below half the raw one's (the offset removes most of the variation the rotation shows).
+    pub fn explains_norm(&self) -> bool {
+        let (raw, corr) = self.norm_variances();
+        corr + corr < raw
     }
 
     /// The mean normalised innovation squared of the recent samples (about 1 when they lie on

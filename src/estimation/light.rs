@@ -9,7 +9,9 @@
 //! earth frame, so `k` steps of the full mode collapse into one with `R̂` held at its value at
 //! the end of the interval), with `Q = diag((σ_g²·T_c + s²·Σ|ω|²Δt)·I, σ_b²T_c/τ_b·I)`; the
 //! rest, inclination and heading updates of the full mode, with their measurement variances
-//! for one measurement per `T_c` (`σ²·τ_c/T_c`); and the current field sample. The error
+//! for one measurement per `T_c` (`σ²·τ_c/T_c`); and the latest valid field sample since the
+//! last correction, in the frame of its own row (a magnetometer slower than the corrections
+//! loses no sample to them), standing for the magnetometer's interval. The error
 //! dynamics (bias, tilt and heading drift) are slow against `T_c`, so the corrections lose
 //! little by waiting (see BENCHMARKS.md for the measured accuracy on BROAD).
 //!
@@ -25,15 +27,16 @@
 //! full mode, a physical delay, does not follow (BENCHMARKS.md).
 //!
 //! Between corrections the [`Outcome`] reports the accelerometer sample as used (it fed the
-//! low-pass filter) and a valid magnetometer sample with the report of the last correction.
+//! low-pass filter) and a valid magnetometer sample with the report of the last correction
+//! that took a field sample.
 
 use super::{
-    Estimator, GRAVITY, Gains, HARD_IRON_FEED_STEP, MAG_DELAY_MAX, Mode, Outcome, Params,
-    SensorUse, horizontal, length,
+    Estimator, GRAVITY, Gains, HARD_IRON_FEED_STEP, MAG_DELAY_MAX, MAG_INTERVAL_MAX, Mode, Outcome,
+    Params, SensorUse, horizontal, length,
 };
 use crate::estimation::lowpass::LowPass;
 use crate::propagation::Normalization;
-use crate::{Real, Vec3};
+use crate::{Real, UnitQuat, Vec3};
 
 /// What the light mode accumulates between two corrections.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -50,6 +53,9 @@ pub(super) struct LightState<T> {
     at_rest: bool,
     /// The magnetometer's report at the last correction.
     mag: SensorUse,
+    /// The latest valid field sample since the last correction, taken to the next one (and
+    /// set during that correction's heading update only).
+    field: Option<PendingField<T>>,
     /// The bias-corrected rate (rad/s) at the correction, for the field's delay.
     rate: Vec3<T>,
     /// The per-step factors of the last step length, kept across corrections.
@@ -70,6 +76,17 @@ struct StepFactors<T> {
     lowpass_gain: T,
     /// The magnetometer delay `d` (s) the field sample is carried back by (module docs).
     mag_delay: T,
+}
+
+/// A valid field sample waiting for the next correction, with what its row knew.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct PendingField<T> {
+    /// The sample (sensor frame, input units).
+    mag: Vec3<T>,
+    /// The strapdown attitude `q_g` after its row's prediction.
+    q_gyro: UnitQuat<T>,
+    /// The time (s) from the last correction to its row.
+    elapsed: T,
 }
 
 impl<T: Real> StepFactors<T> {
@@ -135,7 +152,15 @@ impl<T: Real> Estimator<T> {
             }
             self.light.accel_fed = true;
         }
+        // The magnetometer's interval (`Estimator::update`): the time from the row of the sample
+        // taken to the last correction (`mag_clock` before the correction's interval, no
+        // arithmetic per sample) to this one's row (bounded where it is used).
         if let (Some(m), SensorUse::Used) = (mag, mag_use) {
+            self.light.field = Some(PendingField {
+                mag: m,
+                q_gyro: self.q_gyro,
+                elapsed: self.light.elapsed,
+            });
             self.light_hard_iron(m, gyro, dt);
         }
         out.at_rest = self.light.at_rest && accel_use == SensorUse::Used;
@@ -175,28 +200,48 @@ impl<T: Real> Estimator<T> {
         }
         self.inject(&x);
 
+        // The latest valid field sample since the last correction, in the frame of its row,
+        // standing for the magnetometer's time since the one before it (the rate and the
+        // gyroscope sample are the correction's: they move little within a period).
         self.light.rate = w;
-        self.light.mag = match (mag, mag_use) {
-            (Some(m), SensorUse::Used) => self.mag_update(m, gyro, tc),
-            (_, u) => u,
+        self.light.mag = match s.field {
+            Some(p) => {
+                self.light.field = Some(p);
+                let interval = (self.mag_clock + p.elapsed).min(T::from_f64(MAG_INTERVAL_MAX));
+                // From its row to this correction.
+                self.mag_clock = tc - p.elapsed;
+                let u = self.mag_update(p.mag, gyro, interval, tc);
+                self.light.field = None;
+                u
+            }
+            // No new sample: the last report stands (for the valid samples until the next).
+            None => {
+                self.mag_clock = (self.mag_clock + tc).min(T::from_f64(MAG_INTERVAL_MAX));
+                s.mag
+            }
         };
-        out.mag = self.light.mag;
+        out.mag = if mag_ok { self.light.mag } else { mag_use };
         self.last = out;
         out
     }
 
     /// The light mode's field sample (sensor frame; raw or hard-iron corrected) in the
-    /// gyroscope frame: the sample of `d` ago carried to the current sensor frame to first
-    /// order, `m − d·(ω × m)`, then rotated by `q_g` (see the module docs for `d`).
+    /// gyroscope frame: the sample of `d` ago carried to its row's sensor frame to first order,
+    /// `m − d·(ω × m)`, then rotated by that row's `q_g` (see the module docs for `d`).
     pub(super) fn light_field(&self, mag: Vec3<T>) -> Vec3<T> {
-        let d = self.light.steps.mag_delay;
-        self.q_gyro
-            .rotate(mag - self.light.rate.cross(mag).scale(d))
+        match self.light.field {
+            Some(p) => {
+                let d = self.light.steps.mag_delay;
+                p.q_gyro.rotate(mag - self.light.rate.cross(mag).scale(d))
+            }
+            None => self.q_gyro.rotate(mag),
+        }
     }
 
     /// The full mode's hard-iron feed (`mag_update`) on every sample rather than at the
     /// corrections: the fit's information grows with the samples it is fed (measured on BROAD
     /// trial 36: fed at the 25 ms corrections 1.86°, on every sample 1.2°, as the full mode).
+    /// `dt` is the row's step (the fit's clock: [`HARD_IRON_FEED_STEP`]).
     fn light_hard_iron(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) {
         let pr = &self.params;
         if pr.mag_hard_iron_time <= T::ZERO {
@@ -209,7 +254,10 @@ impl<T: Real> Estimator<T> {
         let min_rate = pr.field.new_field_min_rate;
         if (gyro - self.bias).norm_squared() >= min_rate * min_rate {
             self.hard_iron
-                .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
+                .update_fit_only(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
+            // Offered above the disturbance monitor's norm threshold only: the full mode's second
+            // condition (`HardIron::explains_norm`) loses in the light mode on BROAD (trial 26:
+            // 1.840° → 1.979°, mean 1.190° → 1.199°; BENCHMARKS.md).
             self.hard_iron_offer = match self.hard_iron.offset() {
                 Some(h) if h.norm() > pr.field.norm * self.field.reference().0 => h,
                 _ => Vec3::ZERO,

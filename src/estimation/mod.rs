@@ -207,7 +207,8 @@ pub mod rest;
 pub use covariance::Covariance;
 pub use field::FieldMonitor;
 pub use filter::{
-    Estimator, MAG_DELAY_MAX, MAG_HISTORY, MAG_HISTORY_STEP, MAX_STEP, Outcome, SensorUse,
+    Estimator, MAG_DELAY_MAX, MAG_HISTORY, MAG_HISTORY_STEP, MAG_INTERVAL_MAX, MAX_STEP, Outcome,
+    SensorUse,
 };
 pub use hard_iron::HardIron;
 pub use init::{attitude_from_gravity, attitude_from_gravity_and_field};
