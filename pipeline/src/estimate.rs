@@ -346,8 +346,8 @@ pub const HEADER: &str = "t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag,heading";
 /// `--set`, the BROAD runner's, the research probes'): every name [`Params::set_by_name`] takes
 /// (the field names of [`Params`], `field.norm`, `rest.gyro`, … for the nested ones,
 /// `heading_time_constant` for fixed gains, `light_period` for the light mode) with a finite
-/// value in SI units, where a value ending in `deg` or `deg/s` is converted to rad or rad/s; and
-/// `gains=kalman`. Name and value are trimmed.
+/// value in SI units, where a value ending in `deg` or `deg/s` is converted to rad or rad/s;
+/// `gains=kalman`; and `rate_rule=trapezoid|magnus4|cf4` ([`gyrostat::estimation::RateRule`]). Name and value are trimmed.
 ///
 /// # Errors
 /// One line naming the reason: `gains` other than `kalman`, a value that is not a finite
@@ -364,6 +364,12 @@ pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), Str
                 "gains: only 'kalman' (set heading_time_constant for complementary gains), got '{value}'"
             )),
         };
+    }
+    if name == "rate_rule" {
+        p.rate_rule = value
+            .parse()
+            .map_err(|_| format!("rate_rule: unknown '{value}' (trapezoid, magnus4, cf4)"))?;
+        return Ok(());
     }
     let (number, factor) = match value
         .strip_suffix("deg/s")

@@ -7,6 +7,7 @@ use super::hard_iron::HardIron;
 use super::init::{attitude_from_gravity, attitude_from_gravity_and_field};
 use super::lowpass::{LowPass, first_order_gain};
 use super::params::{EarthFrame, FieldThresholds, Gains, Mode, Params};
+use super::rate_window::{RateWindow, StepRotation};
 use super::rest::RestDetector;
 use crate::propagation::Normalization;
 use crate::propagation::coning::one_plus_previous_terms;
@@ -88,6 +89,9 @@ pub struct Estimator<T> {
     rate_is_mean: bool,
     /// Whether `last_gyro` was saturated (clipped).
     last_saturated: bool,
+    /// The 4th-order rate rules' window ([`RateRule`]): the last rate samples (clipped) and
+    /// their intervals.
+    window: RateWindow<T>,
     p: Covariance<T>,
     accel_lp: LowPass<T>,
     rest: RestDetector<T>,
@@ -187,6 +191,7 @@ impl<T: Real> Estimator<T> {
             lead_rate: Vec3::ZERO,
             rate_is_mean: false,
             last_saturated: false,
+            window: RateWindow::default(),
             p: Covariance::diagonal(T::ZERO, b0 * b0),
             accel_lp: LowPass::default(),
             rest: RestDetector::default(),
@@ -330,25 +335,40 @@ impl<T: Real> Estimator<T> {
             return Ok(out);
         }
 
-        // The mean rate over the step: the trapezoid of the two samples at its ends (an
-        // increment's rate is that mean already, and the previous increment is the coning
-        // lever of its step, unless either was saturated).
-        let mean_rate = if self.rate_is_mean {
-            if !out.gyro_saturated && !self.last_saturated {
+        // The step's rotation (bias removed): an increment's rate is the mean over the step
+        // already, and the previous increment is the coning lever of its step, unless either
+        // was saturated; rate samples take the parameters' rule (`RateRule`).
+        let step = if self.rate_is_mean {
+            self.window.restart();
+            let mean_rate = if !out.gyro_saturated && !self.last_saturated {
                 self.coned_rate(gyro, dt)
             } else {
                 gyro
-            }
+            };
+            StepRotation::at_rate(mean_rate - self.bias, dt)
         } else {
-            // Halved before the sum: two finite samples near the type's limit stay finite. A
-            // trapezoid turning by more than half a turn (a huge previous sample over a tiny
-            // step, then an ordinary step) is no mean of this step: the sample alone is used.
-            // A saturated sample at either end is no rate to average with.
-            let m = gyro.scale(T::HALF) + self.last_gyro.scale(T::HALF);
-            if !out.gyro_saturated && !self.last_saturated && within_step_limit_real(m.scale(dt)) {
-                m
-            } else {
-                gyro
+            match self.params.rate_rule.method() {
+                None => {
+                    // The trapezoid of the two samples at the step's ends. Halved before the
+                    // sum: two finite samples near the type's limit stay finite. A trapezoid
+                    // turning by more than half a turn (a huge previous sample over a tiny
+                    // step, then an ordinary step) is no mean of this step: the sample alone is
+                    // used. A saturated sample at either end is no rate to average with.
+                    let m = gyro.scale(T::HALF) + self.last_gyro.scale(T::HALF);
+                    let mean_rate = if !out.gyro_saturated
+                        && !self.last_saturated
+                        && within_step_limit_real(m.scale(dt))
+                    {
+                        m
+                    } else {
+                        gyro
+                    };
+                    StepRotation::at_rate(mean_rate - self.bias, dt)
+                }
+                Some(method) => {
+                    self.window.push(gyro, dt, out.gyro_saturated);
+                    self.window.rotation(method, gyro, self.bias, dt)
+                }
             }
         };
         // The light mode carries the output at the last rate alone: the slope's division per
@@ -363,7 +383,7 @@ impl<T: Real> Estimator<T> {
         self.last_saturated = out.gyro_saturated;
         if let Mode::Light { correction_period } = self.params.mode {
             return Ok(self.update_light(
-                mean_rate,
+                step,
                 gyro,
                 accel,
                 mag,
@@ -373,7 +393,7 @@ impl<T: Real> Estimator<T> {
                 correction_period,
             ));
         }
-        self.predict(mean_rate, dt, out.gyro_saturated);
+        self.predict(step, dt, out.gyro_saturated);
         let mut x = [T::ZERO; 6];
 
         if accel_use == SensorUse::Used {
@@ -425,6 +445,7 @@ impl<T: Real> Estimator<T> {
         self.accel_lp = LowPass::at(q.rotate(accel));
         self.rest = RestDetector::new(gyro, accel);
         self.last_gyro = gyro;
+        self.window.start(gyro);
         self.lead_rate = Vec3::ZERO;
         // The first sample's direction errors: the inclination from one accelerometer sample
         // and (with a magnetometer) the heading from one field sample.
@@ -475,12 +496,9 @@ impl<T: Real> Estimator<T> {
         if lead.is_finite() { lead } else { w }
     }
 
-    fn predict(&mut self, gyro: Vec3<T>, dt: T, saturated: bool) {
-        let w = gyro - self.bias;
+    fn predict(&mut self, step: StepRotation<T>, dt: T, saturated: bool) {
         let before = self.q_gyro;
-        self.q_gyro = self
-            .q_gyro
-            .mul_exp_unchecked(w.scale(dt), Normalization::Fast);
+        self.q_gyro = step.apply(self.q_gyro);
         self.advance_grid(before, dt);
         let r = self.attitude_enu().to_rotation_matrix();
         let f = r.scale(-dt);
@@ -489,7 +507,7 @@ impl<T: Real> Estimator<T> {
         // rotation (at most π, checked by `update`): formed from `θ`, not from `|ω|`, which
         // can overflow where `θ` is small, and bounded by `θ²` (an error as large as the
         // rotation itself, a scale factor wrong by 100 %), which only binds for `Δt < s²`.
-        let theta2 = w.scale(dt).norm_squared();
+        let theta2 = step.total().norm_squared();
         let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
         let q_scale = theta2 * (s2 / dt).min(T::ONE);
         let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * dt + q_scale;

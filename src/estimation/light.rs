@@ -32,7 +32,7 @@ use super::{
     SensorUse, horizontal, length,
 };
 use crate::estimation::lowpass::LowPass;
-use crate::propagation::Normalization;
+use crate::estimation::rate_window::StepRotation;
 use crate::{Real, Vec3};
 
 /// What the light mode accumulates between two corrections.
@@ -96,7 +96,7 @@ impl<T: Real> Estimator<T> {
     )]
     pub(super) fn update_light(
         &mut self,
-        mean_rate: Vec3<T>,
+        step: StepRotation<T>,
         gyro: Vec3<T>,
         accel: Vec3<T>,
         mag: Option<Vec3<T>>,
@@ -105,16 +105,13 @@ impl<T: Real> Estimator<T> {
         dt: T,
         period: T,
     ) -> Outcome {
-        let w = mean_rate - self.bias;
-        self.q_gyro = self
-            .q_gyro
-            .mul_exp_unchecked(w.scale(dt), Normalization::Fast);
+        self.q_gyro = step.apply(self.q_gyro);
         let pr = self.params;
         let s = &mut self.light;
         s.elapsed += dt;
         let factors = s.steps.for_step(dt, &pr);
         // The full mode's rate-proportional noise per step, `θ²·min(s²/Δt, 1)`, summed.
-        let theta2 = w.scale(dt).norm_squared();
+        let theta2 = step.total().norm_squared();
         s.q_scale += theta2 * factors.scale_noise;
         if out.gyro_saturated {
             let a = (pr.gyro_range * dt).min(T::PI);
@@ -175,7 +172,7 @@ impl<T: Real> Estimator<T> {
         }
         self.inject(&x);
 
-        self.light.rate = w;
+        self.light.rate = step.mean;
         self.light.mag = match (mag, mag_use) {
             (Some(m), SensorUse::Used) => self.mag_update(m, gyro, tc),
             (_, u) => u,

@@ -202,6 +202,7 @@ pub mod init;
 pub mod lowpass;
 pub mod params;
 pub mod params_text;
+mod rate_window;
 pub mod rest;
 
 pub use covariance::Covariance;
@@ -212,6 +213,8 @@ pub use filter::{
 pub use hard_iron::HardIron;
 pub use init::{attitude_from_gravity, attitude_from_gravity_and_field};
 pub use lowpass::{LowPass, first_order_gain};
-pub use params::{Domain, EarthFrame, FieldThresholds, Gains, Mode, Params, RestThresholds};
+pub use params::{
+    Domain, EarthFrame, FieldThresholds, Gains, Mode, Params, RateRule, RestThresholds,
+};
 pub use params_text::{ParamsTextError, ParamsTextErrorKind};
 pub use rest::RestDetector;

@@ -8,6 +8,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod increments;
+mod rates;
 
 use gyrostat::estimation::{
     Covariance, EarthFrame, Estimator, FieldMonitor, Gains, Mode as FilterMode, Params,
