@@ -9,8 +9,8 @@ use super::lowpass::{LowPass, first_order_gain};
 use super::params::{EarthFrame, FieldThresholds, Gains, Mode, Params};
 use super::rate_window::{RateWindow, StepRotation};
 use super::rest::RestDetector;
-use crate::propagation::Normalization;
 use crate::propagation::coning::one_plus_previous_terms;
+use crate::propagation::{CompensatedAttitude, Normalization, PropagatedAttitude};
 use crate::sensor::ClipLimit;
 use crate::step_limit::within_step_limit_real;
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
@@ -71,12 +71,19 @@ pub struct Outcome {
 }
 
 /// The attitude and gyroscope-bias estimator (see the module docs for the design).
+///
+/// `A` is how the strapdown attitude (sensor → gyroscope frame) is carried between
+/// corrections: the plain [`UnitQuat`] (the default, [`Estimator::try_new`]) or the
+/// [`CompensatedAttitude`] ([`Estimator::try_new_compensated`]: every prediction's rounding
+/// error carried, so an f32 filter propagating for long without corrections drifts no more
+/// than its f64 counterpart; module docs of [`crate::propagation::compensated_attitude`]).
+/// Everything else is the same filter.
 #[derive(Clone, Copy, Debug)]
-pub struct Estimator<T> {
+pub struct Estimator<T, A = UnitQuat<T>> {
     params: Params<T>,
     initialized: bool,
     /// Sensor → gyroscope frame (almost inertial): the bias-corrected strapdown attitude.
-    q_gyro: UnitQuat<T>,
+    q_gyro: A,
     /// Gyroscope frame → earth (ENU): the accumulated corrections.
     q_corr: UnitQuat<T>,
     bias: Vec3<T>,
@@ -172,19 +179,39 @@ const UNKNOWN_HEADING_VARIANCE: f64 = core::f64::consts::PI * core::f64::consts:
 const GRAVITY: f64 = 9.81;
 
 impl<T: Real> Estimator<T> {
-    /// An estimator with these parameters, waiting for its first sample.
+    /// An estimator with these parameters, waiting for its first sample; the strapdown
+    /// attitude a plain [`UnitQuat`].
     ///
     /// # Errors
     /// Those of [`Params::validate`]: [`Error::NonFinite`] when a noise, time or threshold is
     /// NaN or infinite (infinite ranges are allowed); [`Error::InvalidArgument`] when one is
     /// negative or a time constant that divides is zero.
     pub fn try_new(params: Params<T>) -> Result<Self, Error> {
+        Self::try_new_carried(params)
+    }
+}
+
+impl<T: Real> Estimator<T, CompensatedAttitude<T>> {
+    /// [`Estimator::try_new`] with the strapdown attitude carried compensated
+    /// ([`CompensatedAttitude`]: the prediction's rounding error kept in a low part; twice
+    /// the attitude's memory and the compensated update's instructions, BENCHMARKS.md).
+    ///
+    /// # Errors
+    /// Those of [`Estimator::try_new`].
+    pub fn try_new_compensated(params: Params<T>) -> Result<Self, Error> {
+        Self::try_new_carried(params)
+    }
+}
+
+impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
+    /// An estimator whose strapdown attitude is carried as `A`.
+    fn try_new_carried(params: Params<T>) -> Result<Self, Error> {
         params.validate()?;
         let b0 = params.gyro_bias_initial;
         Ok(Self {
             params,
             initialized: false,
-            q_gyro: UnitQuat::IDENTITY,
+            q_gyro: A::from_unit(UnitQuat::IDENTITY),
             q_corr: UnitQuat::IDENTITY,
             bias: Vec3::ZERO,
             last_gyro: Vec3::ZERO,
@@ -440,7 +467,7 @@ impl<T: Real> Estimator<T> {
             None => attitude_from_gravity(accel),
         };
         let q = q.unwrap_or(UnitQuat::IDENTITY);
-        self.q_gyro = q;
+        self.q_gyro = A::from_unit(q);
         self.q_corr = UnitQuat::IDENTITY;
         self.accel_lp = LowPass::at(q.rotate(accel));
         self.rest = RestDetector::new(gyro, accel);
@@ -497,7 +524,7 @@ impl<T: Real> Estimator<T> {
     }
 
     fn predict(&mut self, step: StepRotation<T>, dt: T, saturated: bool) {
-        let before = self.q_gyro;
+        let before = self.q_gyro.attitude();
         self.q_gyro = step.apply(self.q_gyro);
         self.advance_grid(before, dt);
         let r = self.attitude_enu().to_rotation_matrix();
@@ -556,7 +583,7 @@ impl<T: Real> Estimator<T> {
         if age >= span + h {
             age -= ((age - span) / h).floor() * h;
         }
-        let (a, b) = (before.into_quat(), self.q_gyro.into_quat());
+        let (a, b) = (before.into_quat(), self.q_gyro.attitude().into_quat());
         for _ in 0..=MAG_HISTORY {
             if age < h {
                 break;
@@ -578,10 +605,13 @@ impl<T: Real> Estimator<T> {
     /// does not reach that far yet.
     fn grid(&self, j: usize) -> UnitQuat<T> {
         if j >= self.filled {
-            return self.q_gyro;
+            return self.q_gyro.attitude();
         }
         let idx = (self.head + MAG_HISTORY - j.min(MAG_HISTORY - 1)) % MAG_HISTORY;
-        self.history.get(idx).copied().unwrap_or(self.q_gyro)
+        self.history
+            .get(idx)
+            .copied()
+            .unwrap_or(self.q_gyro.attitude())
     }
 
     /// The field sample mapped to the gyroscope frame by the attitude `delay` seconds ago
@@ -592,11 +622,11 @@ impl<T: Real> Estimator<T> {
             return self.light_field(mag);
         }
         if delay <= T::ZERO || self.filled == 0 {
-            return self.q_gyro.rotate(mag);
+            return self.q_gyro.attitude().rotate(mag);
         }
         let age = self.grid_age;
         if delay <= age {
-            let now = self.q_gyro.rotate(mag);
+            let now = self.q_gyro.attitude().rotate(mag);
             let u0 = self.grid(0).rotate(mag);
             return now + (u0 - now).scale(delay / age);
         }
@@ -683,7 +713,7 @@ impl<T: Real> Estimator<T> {
             self.params.gains,
         );
         // Filter in the gyroscope frame, map to the earth frame by the corrections.
-        let a_gyro = self.q_gyro.rotate(accel);
+        let a_gyro = self.q_gyro.attitude().rotate(accel);
         if self.lowpass_stale {
             self.accel_lp = LowPass::at(a_gyro);
             self.lowpass_stale = false;
@@ -885,7 +915,7 @@ impl<T: Real> Estimator<T> {
         let h = T::from_f64(MAG_HISTORY_STEP);
         let frac = T::ONE - self.grid_age / h;
         let up = self.q_corr.inverse_rotate(Vec3::Z);
-        let now = self.q_gyro.rotate(mag);
+        let now = self.q_gyro.attitude().rotate(mag);
         let mut newer = self.grid(0).rotate(mag);
         for k in 0..MAG_HISTORY {
             let m = if k == 0 {
@@ -982,7 +1012,7 @@ impl<T: Real> Estimator<T> {
     }
 
     fn attitude_enu(&self) -> UnitQuat<T> {
-        self.q_corr * self.q_gyro
+        self.q_corr * self.q_gyro.attitude()
     }
 
     /// The attitude, sensor → earth, in the frame of [`Params::frame`], at the time of the

@@ -33,6 +33,7 @@ use super::{
 };
 use crate::estimation::lowpass::LowPass;
 use crate::estimation::rate_window::StepRotation;
+use crate::propagation::PropagatedAttitude;
 use crate::{Real, Vec3};
 
 /// What the light mode accumulates between two corrections.
@@ -87,7 +88,7 @@ impl<T: Real> StepFactors<T> {
     }
 }
 
-impl<T: Real> Estimator<T> {
+impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
     /// The light mode's update after the checks and the initialisation of
     /// [`Estimator::update`]: the prediction every sample, the corrections every `period`.
     #[allow(
@@ -120,7 +121,7 @@ impl<T: Real> Estimator<T> {
         }
         if accel_use == SensorUse::Used {
             s.at_rest = self.rest.update(gyro, accel, dt, &pr.rest);
-            let a_gyro = self.q_gyro.rotate(accel);
+            let a_gyro = self.q_gyro.attitude().rotate(accel);
             if self.lowpass_stale {
                 self.accel_lp = LowPass::at(a_gyro);
                 self.lowpass_stale = false;
@@ -188,6 +189,7 @@ impl<T: Real> Estimator<T> {
     pub(super) fn light_field(&self, mag: Vec3<T>) -> Vec3<T> {
         let d = self.light.steps.mag_delay;
         self.q_gyro
+            .attitude()
             .rotate(mag - self.light.rate.cross(mag).scale(d))
     }
 

@@ -271,7 +271,8 @@ pub fn magnus4_step_unequal<T: Real, const M: usize>(
 /// (these steps and the estimator's 4th-order rate rules,
 /// [`crate::estimation::RateRule`]). The basis `lᵢ(x) = Πⱼ≠ᵢ (x − tⱼ) / Πⱼ≠ᵢ (tᵢ − tⱼ)` shares
 /// its denominators between the two nodes: `M` divisions per step (a soft-float division is
-/// some hundred instructions on a Cortex-M0). Unchecked: the times distinct.
+/// some hundred instructions on a Cortex-M0); the newest sample's basis function is not needed
+/// (difference form, `M − 1` divisions). Unchecked: the times distinct.
 #[inline]
 pub(crate) fn gauss_node_rates<T: Real, const M: usize>(
     times: &[T; M],
@@ -282,8 +283,17 @@ pub(crate) fn gauss_node_rates<T: Real, const M: usize>(
     let h = t1 - t0;
     let g1 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_1);
     let g2 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_2);
-    let (mut w1, mut w2) = (Vec3::ZERO, Vec3::ZERO);
-    for (i, (ti, wi)) in times.iter().zip(rates).enumerate() {
+    // Difference form, `ω_last + Σ lᵢ(x)(ωᵢ − ω_last)` (the basis adds up to one): a constant
+    // rate comes out exactly and a slowly varying one with the rounding of its small
+    // differences only (as `rate_samples::interp_difference`).
+    let last = rates.last().copied().unwrap_or(Vec3::ZERO);
+    let (mut w1, mut w2) = (last, last);
+    for (i, (ti, wi)) in times
+        .iter()
+        .zip(rates)
+        .enumerate()
+        .take(M.saturating_sub(1))
+    {
         let (mut den, mut n1, mut n2) = (T::ONE, T::ONE, T::ONE);
         for (j, tj) in times.iter().enumerate() {
             if i != j {
@@ -293,8 +303,9 @@ pub(crate) fn gauss_node_rates<T: Real, const M: usize>(
             }
         }
         let r = T::ONE / den;
-        w1 += *wi * (n1 * r);
-        w2 += *wi * (n2 * r);
+        let d = *wi - last;
+        w1 += d * (n1 * r);
+        w2 += d * (n2 * r);
     }
     (w1, w2, h)
 }
