@@ -295,6 +295,8 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             return Err(Error::InvalidArgument);
         }
         self.rate_is_mean = true;
+        // Means over steps are no samples to interpolate: the rate rule's window restarts.
+        self.window.restart();
         let r = self.update(dtheta.scale(T::ONE / dt), accel, mag, dt);
         self.rate_is_mean = false;
         r
@@ -362,40 +364,33 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             return Ok(out);
         }
 
-        // The step's rotation (bias removed): an increment's rate is the mean over the step
-        // already, and the previous increment is the coning lever of its step, unless either
-        // was saturated; rate samples take the parameters' rule (`RateRule`).
-        let step = if self.rate_is_mean {
-            self.window.restart();
-            let mean_rate = if !out.gyro_saturated && !self.last_saturated {
+        // The full mode's 4th-order rule on rate samples (`RateRule`; the light mode and
+        // increments take the mean rate below).
+        let fourth = match self.params.mode {
+            Mode::Full if !self.rate_is_mean => self.params.rate_rule.method(),
+            _ => None,
+        };
+        // The mean rate over the step: the trapezoid of the two samples at its ends (an
+        // increment's rate is that mean already, and the previous increment is the coning
+        // lever of its step, unless either was saturated).
+        let mean_rate = if fourth.is_some() {
+            gyro
+        } else if self.rate_is_mean {
+            if !out.gyro_saturated && !self.last_saturated {
                 self.coned_rate(gyro, dt)
             } else {
                 gyro
-            };
-            StepRotation::at_rate(mean_rate - self.bias, dt)
+            }
         } else {
-            match self.params.rate_rule.method() {
-                None => {
-                    // The trapezoid of the two samples at the step's ends. Halved before the
-                    // sum: two finite samples near the type's limit stay finite. A trapezoid
-                    // turning by more than half a turn (a huge previous sample over a tiny
-                    // step, then an ordinary step) is no mean of this step: the sample alone is
-                    // used. A saturated sample at either end is no rate to average with.
-                    let m = gyro.scale(T::HALF) + self.last_gyro.scale(T::HALF);
-                    let mean_rate = if !out.gyro_saturated
-                        && !self.last_saturated
-                        && within_step_limit_real(m.scale(dt))
-                    {
-                        m
-                    } else {
-                        gyro
-                    };
-                    StepRotation::at_rate(mean_rate - self.bias, dt)
-                }
-                Some(method) => {
-                    self.window.push(gyro, dt, out.gyro_saturated);
-                    self.window.rotation(method, gyro, self.bias, dt)
-                }
+            // Halved before the sum: two finite samples near the type's limit stay finite. A
+            // trapezoid turning by more than half a turn (a huge previous sample over a tiny
+            // step, then an ordinary step) is no mean of this step: the sample alone is used.
+            // A saturated sample at either end is no rate to average with.
+            let m = gyro.scale(T::HALF) + self.last_gyro.scale(T::HALF);
+            if !out.gyro_saturated && !self.last_saturated && within_step_limit_real(m.scale(dt)) {
+                m
+            } else {
+                gyro
             }
         };
         // The light mode carries the output at the last rate alone: the slope's division per
@@ -410,7 +405,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         self.last_saturated = out.gyro_saturated;
         if let Mode::Light { correction_period } = self.params.mode {
             return Ok(self.update_light(
-                step,
+                mean_rate,
                 gyro,
                 accel,
                 mag,
@@ -420,6 +415,13 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
                 correction_period,
             ));
         }
+        let step = match fourth {
+            Some(method) => {
+                self.window.push(gyro, dt, out.gyro_saturated);
+                self.window.rotation(method, gyro, self.bias, dt)
+            }
+            None => StepRotation::at_rate(mean_rate - self.bias, dt),
+        };
         self.predict(step, dt, out.gyro_saturated);
         let mut x = [T::ZERO; 6];
 

@@ -32,7 +32,7 @@ use super::{
     SensorUse, horizontal, length,
 };
 use crate::estimation::lowpass::LowPass;
-use crate::estimation::rate_window::StepRotation;
+use crate::propagation::Normalization;
 use crate::propagation::PropagatedAttitude;
 use crate::{Real, Vec3};
 
@@ -97,7 +97,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
     )]
     pub(super) fn update_light(
         &mut self,
-        step: StepRotation<T>,
+        mean_rate: Vec3<T>,
         gyro: Vec3<T>,
         accel: Vec3<T>,
         mag: Option<Vec3<T>>,
@@ -106,13 +106,14 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         dt: T,
         period: T,
     ) -> Outcome {
-        self.q_gyro = step.apply(self.q_gyro);
+        let w = mean_rate - self.bias;
+        self.q_gyro = self.q_gyro.mul_exp_vector(w.scale(dt), Normalization::Fast);
         let pr = self.params;
         let s = &mut self.light;
         s.elapsed += dt;
         let factors = s.steps.for_step(dt, &pr);
         // The full mode's rate-proportional noise per step, `θ²·min(s²/Δt, 1)`, summed.
-        let theta2 = step.total().norm_squared();
+        let theta2 = w.scale(dt).norm_squared();
         s.q_scale += theta2 * factors.scale_noise;
         if out.gyro_saturated {
             let a = (pr.gyro_range * dt).min(T::PI);
@@ -173,7 +174,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         }
         self.inject(&x);
 
-        self.light.rate = step.mean;
+        self.light.rate = w;
         self.light.mag = match (mag, mag_use) {
             (Some(m), SensorUse::Used) => self.mag_update(m, gyro, tc),
             (_, u) => u,

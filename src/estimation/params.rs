@@ -352,16 +352,29 @@ impl<T> fmt::Display for Mode<T> {
 /// after an interval more than twice or less than half the one before it (a gap, a clock
 /// restart), the window restarts and the rule falls back to the samples it has: three
 /// (quadratic, order 3), two (linear, order 2), one (the sample's rate alone).
+///
+/// **The full mode's default, Magnus-4**, chosen by the project's rule (it wins or ties within
+/// the noise on every benchmark, per half; BENCHMARKS.md, "The estimator's rate rule"): on the
+/// 16 BROAD trials the mean total RMSE ties at 285.7 Hz (half A 1.219 → 1.220, B 1.212 →
+/// 1.212; the per-trial differences' standard error 0.003 / 0.006) and at 142.9 Hz (A 1.220 →
+/// 1.224 ± 0.010, B 1.249 → 1.238) and wins at 95.2 Hz (A 1.248 → 1.215, B 1.294 → 1.261)
+/// and 47.6 Hz (A 1.666 → 1.260, B 1.662 → 1.321); the 6D inclination wins or ties on every
+/// half at every rate; the synthetic grid ties (differences of opposite sign on the two seeds,
+/// within ±0.04°). CF4 gives the same numbers to ±0.001° with a second exponential.
+///
+/// **The light mode always takes the trapezoid**: there Magnus-4 loses on half A at 142.9
+/// and 95.2 Hz (light 1.201 → 1.209, 1.221 → 1.234), and its interpolation (soft-float
+/// divisions and some forty products) does not fit the light mode's Cortex-M0 budget.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum RateRule {
     /// The mean of the step's two end samples, `φ = (ω_prev + ω)/2·Δt − b̂Δt`: order 2, one
-    /// exponential, no interpolation.
-    #[default]
+    /// exponential, no interpolation. The light mode's rule whatever this parameter says.
     Trapezoid,
     /// Magnus-4 on the Gauss-node rates, `φ = (h/2)(ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂`
     /// ([`crate::propagation::rate_samples::magnus4_rotation_vector`], bias removed from both
-    /// nodes): order 4, one exponential.
+    /// nodes): order 4, one exponential. The default.
+    #[default]
     Magnus4,
     /// Commutator-free CF4 on the Gauss-node rates, `q ⊗ exp(φ₁) ⊗ exp(φ₂)`
     /// ([`crate::propagation::rate_samples::cf4_rotation_vectors`]): order 4, two exponentials.
@@ -476,8 +489,8 @@ macro_rules! params_structs {
             pub gains: Gains<T>,
             /// Full or light update ([`Mode`]).
             pub mode: Mode<T>,
-            /// How rate samples become a step's rotation ([`RateRule`]; `rate_rule` in the
-            /// tools' `--set`).
+            /// How rate samples become a step's rotation in the full mode ([`RateRule`];
+            /// `rate_rule` in the tools' `--set`). Default: [`RateRule::Magnus4`].
             pub rate_rule: RateRule,
             $(
                 $(#[$tm])*

@@ -104,7 +104,6 @@ impl<T: Real> RateWindow<T> {
             _ => return StepRotation::at_rate(gyro - bias, dt),
         };
         let (w1, w2) = (w1 - bias, w2 - bias);
-        let mean = (w1 + w2).scale(T::HALF);
         let step = match method {
             RateMethod::Cf4 => {
                 // The second vector as the step's mean rotation less the first: the same
@@ -116,15 +115,13 @@ impl<T: Real> RateWindow<T> {
                 let (a, _) = cf4_rotation_vectors(w1, w2, h);
                 StepRotation {
                     first: a,
-                    second: Some(mean.scale(h) - a),
-                    mean,
+                    second: Some((w1 + w2).scale(h * T::HALF) - a),
                 }
             }
             // `RateRule` offers Magnus-4 and CF4 only.
             _ => StepRotation {
                 first: magnus4_rotation_vector(w1, w2, h),
                 second: None,
-                mean,
             },
         };
         if within_step_limit_real(step.total()) {
@@ -141,9 +138,6 @@ impl<T: Real> RateWindow<T> {
 pub(super) struct StepRotation<T> {
     pub(super) first: Vec3<T>,
     pub(super) second: Option<Vec3<T>>,
-    /// The step's mean rate (rad/s, bias removed; the 4th-order rules: the mean of the
-    /// Gauss-node rates, the step's mean to 4th order), for the light mode's field delay.
-    pub(super) mean: Vec3<T>,
 }
 
 impl<T: Real> StepRotation<T> {
@@ -153,7 +147,6 @@ impl<T: Real> StepRotation<T> {
         Self {
             first: w.scale(dt),
             second: None,
-            mean: w,
         }
     }
 
