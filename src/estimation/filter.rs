@@ -10,7 +10,7 @@ use super::params::{EarthFrame, FieldThresholds, Gains, Mode, Params};
 use super::rate_window::{RateWindow, StepRotation};
 use super::rest::RestDetector;
 use crate::propagation::coning::one_plus_previous_terms;
-use crate::propagation::{CompensatedAttitude, Normalization, PropagatedAttitude};
+use crate::propagation::{CompensatedAttitude, Normalization, PropagatedAttitude, RateMethod};
 use crate::sensor::ClipLimit;
 use crate::step_limit::within_step_limit_real;
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
@@ -96,9 +96,6 @@ pub struct Estimator<T, A = UnitQuat<T>> {
     rate_is_mean: bool,
     /// Whether `last_gyro` was saturated (clipped).
     last_saturated: bool,
-    /// The 4th-order rate rules' window ([`RateRule`]): the last rate samples (clipped) and
-    /// their intervals.
-    window: RateWindow<T>,
     p: Covariance<T>,
     accel_lp: LowPass<T>,
     rest: RestDetector<T>,
@@ -138,6 +135,9 @@ pub struct Estimator<T, A = UnitQuat<T>> {
     light: light::LightState<T>,
     /// The bias before the current rest's updates (`None` when not at rest).
     rest_bias: Option<Vec3<T>>,
+    /// The full mode's 4th-order rate rules' window ([`RateRule`]): the last rate samples
+    /// (clipped) and their intervals.
+    window: RateWindow<T>,
 }
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
@@ -416,10 +416,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             ));
         }
         let step = match fourth {
-            Some(method) => {
-                self.window.push(gyro, dt, out.gyro_saturated);
-                self.window.rotation(method, gyro, self.bias, dt)
-            }
+            Some(method) => self.fourth_order_step(method, gyro, dt, out.gyro_saturated),
             None => StepRotation::at_rate(mean_rate - self.bias, dt),
         };
         self.predict(step, dt, out.gyro_saturated);
@@ -490,6 +487,21 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             self.field_started = true;
         }
         self.initialized = true;
+    }
+
+    /// The step's rotation by a 4th-order rule: the sample `gyro` into the window, the rule's
+    /// rotation vector(s) from it ([`RateWindow::rotation`]).
+    // Out of line, as `coned_rate`: only the full mode's 4th-order rules take it.
+    #[inline(never)]
+    fn fourth_order_step(
+        &mut self,
+        method: RateMethod,
+        gyro: Vec3<T>,
+        dt: T,
+        saturated: bool,
+    ) -> StepRotation<T> {
+        self.window.push(gyro, dt, saturated);
+        self.window.rotation(method, gyro, self.bias, dt)
     }
 
     /// The mean rate of an increment's step with the previous increment's coning correction:
