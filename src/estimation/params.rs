@@ -350,8 +350,9 @@ impl<T> fmt::Display for Mode<T> {
 /// rotation vector from them, and the shared step limit
 /// ([`crate::step_limit::MAX_STEP_ANGLE`]) on it. At the start, after a saturated sample, and
 /// after an interval more than twice or less than half the one before it (a gap, a clock
-/// restart), the window restarts and the rule falls back to the samples it has: three
-/// (quadratic, order 3), two (linear, order 2), one (the sample's rate alone).
+/// restart), the window restarts and the rule falls back until it holds four samples: the
+/// linear interpolant through the step's two ends (order 2), or with one sample its rate
+/// alone.
 ///
 /// **The full mode's default, Magnus-4**, chosen by the project's rule (it wins or ties within
 /// the noise on every benchmark, per half; BENCHMARKS.md, "The estimator's rate rule"): on the
