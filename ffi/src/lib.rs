@@ -2080,9 +2080,9 @@ pub unsafe extern "C" fn gyro_gyrostat_f64_step(
 // --- Estimator ---------------------------------------------------------------------------------
 
 /// Words of `gyro_estimator_f32`'s storage.
-pub const GYRO_ESTIMATOR_F32_WORDS: usize = 120;
+pub const GYRO_ESTIMATOR_F32_WORDS: usize = 128;
 /// Words of `gyro_estimator_f64`'s storage.
-pub const GYRO_ESTIMATOR_F64_WORDS: usize = 236;
+pub const GYRO_ESTIMATOR_F64_WORDS: usize = 256;
 
 /// The attitude and gyro-bias estimator, f32 (`Estimator`, the library's default parameters).
 /// Contents private.

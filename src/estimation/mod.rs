@@ -25,19 +25,28 @@
 //! inertial "gyroscope frame") is the bias-corrected strapdown attitude and `q_c` (gyroscope
 //! frame → earth) collects every correction.
 //!
-//! 1. **Prediction** — the propagation core: `q_g ← q_g ⊗ exp((ω̄ − b̂)·Δt)`
+//! 1. **Prediction** — the propagation core: `q_g ← q_g ⊗ exp(φ)`
 //!    ([`crate::UnitQuat::mul_exp_unchecked`], the update kernel of [`crate::propagation`], with
-//!    the fast renormalisation), with the per-sample `Δt` of the time stamps, `ω̄` the mean of the
-//!    rate samples at the two ends of the step (the trapezoid: a rate sample is the rate at its
-//!    time stamp; an increment, [`Estimator::update_increment`], is a mean already, and takes
-//!    the one-plus-previous coning rule of [`crate::propagation::coning`] with the previous
-//!    increment). The samples' checks are the shared ones: the step limit of
+//!    the fast renormalisation), `φ` the step's rotation (bias removed) over the per-sample `Δt`
+//!    of the time stamps. Rate samples take [`Params::rate_rule`] ([`RateRule`]): by default
+//!    (full mode) the propagation module's unequal-interval Magnus-4, the rates at the step's
+//!    Gauss nodes from the backward cubic interpolant through the last four samples at their
+//!    own times ([`crate::propagation::kernels::magnus4_step_unequal`]'s interpolation; order
+//!    4 on a jittered clock), falling back to the linear interpolant at the start, after a
+//!    saturated sample and across a gap; CF4 or the trapezoid (`ω̄ = (ω_prev + ω)/2`, order 2,
+//!    the light mode's rule) on request. An increment, [`Estimator::update_increment`], is a
+//!    mean already, and takes the one-plus-previous coning rule of
+//!    [`crate::propagation::coning`] with the previous
+//!    increment. The samples' checks are the shared ones: the step limit of
 //!    [`crate::step_limit`] (at most half a turn per step) and the clip policy of
 //!    [`crate::sensor::raw`] (the gyroscope saturated at [`Params::gyro_range`],
 //!    [`crate::sensor::ClipPolicy::Saturate`]). The
 //!    output, [`Estimator::attitude`], is carried forward by the gyroscope's own delay
 //!    ([`Params::gyro_delay`]) at the rate extrapolated to the middle of that delay from the
-//!    last two samples (the carried rotation `∫ω` to second order).
+//!    last two samples (the carried rotation `∫ω` to second order). The strapdown attitude is
+//!    a plain [`crate::UnitQuat`] ([`Estimator::try_new`]) or, for an f32 filter propagating
+//!    for long between corrections, the [`crate::propagation::CompensatedAttitude`]
+//!    ([`Estimator::try_new_compensated`]: the updates' rounding carried).
 //! 2. **Error covariance** — an error-state (multiplicative) Kalman filter over
 //!    `x = (δθ, δb)`: `δθ` the attitude error in the earth frame (`q = exp(δθ) ⊗ q̂`), `δb` the
 //!    bias error. Its closed-form transition over a step is `Φ = [[I, −R̂Δt], [0, I]]` (an
