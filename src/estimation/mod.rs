@@ -122,7 +122,8 @@
 //! | exact gains `1 − exp(−Δt/τ)`, delay history on a time grid (candidates 0–50 ms) | 1.555 | 1.533 | 1.700 | 2.673 |
 //! | trapezoid: the mean of the two rate samples over a step | 1.691 | 1.692 | 1.741 | 2.073 |
 //! | output carried forward by the gyroscope's delay, 2.9 ms (datasheet) | 1.356 | 1.356 | 1.406 | 1.796 |
-//! | hard iron estimated online (below) | **1.223** | **1.238** | **1.279** | **1.671** |
+//! | hard iron estimated online (below) | 1.223 | 1.238 | 1.279 | 1.671 |
+//! | Magnus-4 on the Gauss-node rates ([`RateRule`], issue 27; the row above re-measured: 1.215 / 1.235 / 1.271 / 1.664) | **1.216** | **1.231** | **1.238** | **1.290** |
 //!
 //! The cause of the rate dependence, found by experiment: the estimated magnetometer delay grew
 //! with the step (about 13 ms at 285.7 Hz, 22 ms at 47.6 Hz), by half a step. A rate sample
@@ -149,7 +150,10 @@
 //! 2.700, B 2.622 / 2.613 / 2.859 / 3.587. The gyroscope delay and the hard iron each win on
 //! both halves at every rate; the trapezoid alone loses on both halves at 285.7 and 142.9 Hz,
 //! splits at 95.2 Hz and wins on both at 47.6 Hz; it is kept for the cause it removes (and
-//! with it the best gyroscope delay is the same at every rate).
+//! with it the best gyroscope delay is the same at every rate). Magnus-4 in its place (a mean
+//! centred on the step as the trapezoid's, with the step's own truncation removed) ties at
+//! 285.7 and 142.9 Hz and wins on both halves at 95.2 and 47.6 Hz (A / B 1.220 / 1.212, 1.224
+//! / 1.238, 1.215 / 1.261, 1.260 / 1.321; BENCHMARKS.md, "The estimator's rate rule").
 //!
 //! **Inclination** (mean over 16 trials, 285.7 / 142.9 / 95.2 / 47.6 Hz): 0.572 / 0.598 /
 //! 0.614 / 0.840°, VQF 0.754 / 0.676 / 0.749 / 1.521° (its 9D and 6D inclination are the
