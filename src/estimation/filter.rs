@@ -132,6 +132,9 @@ pub struct Estimator<T> {
     light: light::LightState<T>,
     /// The bias before the current rest's updates (`None` when not at rest).
     rest_bias: Option<Vec3<T>>,
+    /// The rotation (rad, sensor frame) the current rest's bias updates took out of the
+    /// propagation: `∫(b̂ − b_before) dt` over the rest ([`Self::rest_ended`]).
+    rest_turn: Vec3<T>,
 }
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
@@ -231,6 +234,7 @@ impl<T: Real> Estimator<T> {
             lowpass_stale: false,
             light: light::LightState::default(),
             rest_bias: None,
+            rest_turn: Vec3::ZERO,
         })
     }
 
@@ -408,7 +412,7 @@ impl<T: Real> Estimator<T> {
 
         if accel_use == SensorUse::Used {
             out.at_rest = self.rest.update(gyro, accel, dt, &self.params.rest);
-            self.rest_correction(out.at_rest, &mut x);
+            self.rest_correction(out.at_rest, dt, &mut x);
             out.accel = self.accel_update(accel, dt, &mut x);
         } else {
             out.accel = accel_use;
@@ -642,16 +646,22 @@ impl<T: Real> Estimator<T> {
         }
     }
 
-    /// At rest, the rest update; after a rest that the specific force or the field showed to
-    /// be a slow turn ([`RestDetector::turning`]), what it taught undone: the bias back to its
-    /// value before that rest, its variance widened by the change the rest made (per axis), the
-    /// attitude variance by `(th_a/g)²` and the heading variance by the field monitor's
-    /// direction threshold squared (the turn the attitude missed while the bias cancelled it:
-    /// the specific force moved by `th_a` at most, the field's horizontal direction by that
-    /// angle at most, before the rest ended).
-    fn rest_correction(&mut self, at_rest: bool, x: &mut [T; 6]) {
+    /// At rest, the rest update (`dt` the step the bias was last propagated over); after a
+    /// rest that the specific force or the field showed to be a slow turn
+    /// ([`RestDetector::turning`]), what it taught undone: the bias back to its value before
+    /// that rest, its variance widened by the change the rest made (per axis), and the attitude
+    /// variances by the turn the attitude missed while the bias cancelled it. That turn is the
+    /// rotation the rest's bias updates took out of the propagation, `δ = R̂ ∫(b̂ − b_before) dt`
+    /// (earth frame): the tilt variances are raised by `min(δ_x² + δ_y², (th_a/g)²)` and the
+    /// heading variance by `min(δ_z², th_δ²)` (the specific force moved by `th_a` at most, the
+    /// field's horizontal direction by the field monitor's direction threshold `th_δ` at most,
+    /// before the rest ended). A field that changed while the sensor stood still (a magnet
+    /// passing by) also turns the field's horizontal direction and ends the rest as a turn, but
+    /// the gyroscope saw no turn: `δ` is then of the size of the bias's own error times the
+    /// rest's duration, and the heading keeps the weight it had against the changing field.
+    fn rest_correction(&mut self, at_rest: bool, dt: T, x: &mut [T; 6]) {
         if at_rest {
-            self.rest_update(x);
+            self.rest_update(dt, x);
         } else if self.rest_bias.is_some() {
             self.rest_ended();
         }
@@ -675,19 +685,26 @@ impl<T: Real> Estimator<T> {
                 *v += di * di;
             }
         }
+        let turn = self.attitude_enu().rotate(self.rest_turn);
         let pr = &self.params;
         let a = pr.rest.accel / T::from_f64(GRAVITY);
         let h = pr.field.dip;
-        self.p.inflate_attitude(a * a);
-        self.p.inflate_heading(h * h);
+        let tilt = turn.x * turn.x + turn.y * turn.y;
+        self.p.inflate_attitude(tilt.min(a * a));
+        self.p.inflate_heading((turn.z * turn.z).min(h * h));
         self.p.bound(T::PI * T::PI, self.bias_variance_max());
     }
 
     /// At rest, the mean rate measures the bias: `z = ω̄ − b̂ = δb + noise` (the bias before
-    /// the rest kept, see [`Self::rest_correction`]).
-    fn rest_update(&mut self, x: &mut [T; 6]) {
-        if self.rest_bias.is_none() {
-            self.rest_bias = Some(self.bias);
+    /// the rest kept, see [`Self::rest_correction`]); `dt` the step the current bias was
+    /// propagated over, added to the rotation the rest took out of the propagation.
+    fn rest_update(&mut self, dt: T, x: &mut [T; 6]) {
+        match self.rest_bias {
+            Some(b) => self.rest_turn += (self.bias - b).scale(dt),
+            None => {
+                self.rest_bias = Some(self.bias);
+                self.rest_turn = Vec3::ZERO;
+            }
         }
         let z = self.rest.mean_rate() - self.bias;
         let s = self.params.rest_bias_noise;
