@@ -132,9 +132,8 @@ pub struct Estimator<T> {
     light: light::LightState<T>,
     /// The bias before the current rest's updates (`None` when not at rest).
     rest_bias: Option<Vec3<T>>,
-    /// The rotation (rad, sensor frame) the current rest's bias updates took out of the
-    /// propagation: `∫(b̂ − b_before) dt` over the rest ([`Self::rest_ended`]).
-    rest_turn: Vec3<T>,
+    /// How long (s) the current rest has lasted ([`Self::rest_ended`]).
+    rest_time: T,
 }
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
@@ -234,7 +233,7 @@ impl<T: Real> Estimator<T> {
             lowpass_stale: false,
             light: light::LightState::default(),
             rest_bias: None,
-            rest_turn: Vec3::ZERO,
+            rest_time: T::ZERO,
         })
     }
 
@@ -648,17 +647,26 @@ impl<T: Real> Estimator<T> {
 
     /// At rest, the rest update (`dt` the step the bias was last propagated over); after a
     /// rest that the specific force or the field showed to be a slow turn
-    /// ([`RestDetector::turning`]), what it taught undone: the bias back to its value before
-    /// that rest, its variance widened by the change the rest made (per axis), and the attitude
-    /// variances by the turn the attitude missed while the bias cancelled it. That turn is the
-    /// rotation the rest's bias updates took out of the propagation, `δ = R̂ ∫(b̂ − b_before) dt`
-    /// (earth frame): the tilt variances are raised by `min(δ_x² + δ_y², (th_a/g)²)` and the
-    /// heading variance by `min(δ_z², th_δ²)` (the specific force moved by `th_a` at most, the
-    /// field's horizontal direction by the field monitor's direction threshold `th_δ` at most,
-    /// before the rest ended). A field that changed while the sensor stood still (a magnet
-    /// passing by) also turns the field's horizontal direction and ends the rest as a turn, but
-    /// the gyroscope saw no turn: `δ` is then of the size of the bias's own error times the
-    /// rest's duration, and the heading keeps the weight it had against the changing field.
+    /// ([`RestDetector::turning`]) and that the gyroscope saw as one, what it taught undone:
+    /// the bias back to its value before that rest, its variance widened by the change the
+    /// rest made (per axis), and the attitude variances by the turn the attitude missed while
+    /// the bias cancelled it.
+    ///
+    /// The rest's bias change `Δb` (earth frame, `R̂ (b̂ − b_before)`) is the rate of the turn
+    /// it cancelled. The detector called the rest a turn when, over the still period it watched
+    /// (the rest's duration `T` plus `t_min` before it), the specific force moved by `th_a`
+    /// (a tilt of `th_a/g`) or the field's horizontal direction by the field monitor's
+    /// direction threshold `th_δ` ([`RestDetector::turned_by_field`]). A turn of the sensor
+    /// shows in the gyroscope: relative to the bias before the rest it turned by
+    /// `|Δb|·(T + t_min)`, so the rest is undone when that covers at least half the angle of
+    /// the check that called it a turn, `|Δb_xy|·(T + t_min) ≥ th_a/(2g)` for the specific
+    /// force, `|Δb_z|·(T + t_min) ≥ th_δ/2` for the field. A field that changed while the
+    /// sensor stood still (a
+    /// magnet passing by) turns the field's horizontal direction as well, but the gyroscope saw
+    /// no turn (`Δb` is then the error of the bias before the rest): the rest's bias stands and
+    /// the heading keeps its weight against the changing field. The missed turn is `Δb·T`:
+    /// the tilt variances are raised by `min(|Δb_xy|² T², (th_a/g)²)` and the heading variance
+    /// by `min(Δb_z² T², th_δ²)` (the detector's angles bound it).
     fn rest_correction(&mut self, at_rest: bool, dt: T, x: &mut [T; 6]) {
         if at_rest {
             self.rest_update(dt, x);
@@ -677,6 +685,21 @@ impl<T: Real> Estimator<T> {
             return;
         }
         let d = self.bias - b;
+        let pr = &self.params;
+        let a = pr.rest.accel / T::from_f64(GRAVITY);
+        let h = pr.field.dip;
+        let rate = self.attitude_enu().rotate(d);
+        let (tilt2, heading2) = (rate.x * rate.x + rate.y * rate.y, rate.z * rate.z);
+        let watched = self.rest_time + pr.rest.min_duration;
+        let (w2, quarter) = (watched * watched, T::from_f64(0.25));
+        let seen = if self.rest.turned_by_field() {
+            heading2 * w2 >= quarter * h * h
+        } else {
+            tilt2 * w2 >= quarter * a * a
+        };
+        if !seen {
+            return;
+        }
         self.bias = b;
         for (i, di) in d.to_array().into_iter().enumerate() {
             if let Some(row) = self.p.bias.m.get_mut(i)
@@ -685,25 +708,21 @@ impl<T: Real> Estimator<T> {
                 *v += di * di;
             }
         }
-        let turn = self.attitude_enu().rotate(self.rest_turn);
-        let pr = &self.params;
-        let a = pr.rest.accel / T::from_f64(GRAVITY);
-        let h = pr.field.dip;
-        let tilt = turn.x * turn.x + turn.y * turn.y;
-        self.p.inflate_attitude(tilt.min(a * a));
-        self.p.inflate_heading((turn.z * turn.z).min(h * h));
+        let t2 = self.rest_time * self.rest_time;
+        self.p.inflate_attitude((tilt2 * t2).min(a * a));
+        self.p.inflate_heading((heading2 * t2).min(h * h));
         self.p.bound(T::PI * T::PI, self.bias_variance_max());
     }
 
     /// At rest, the mean rate measures the bias: `z = ω̄ − b̂ = δb + noise` (the bias before
     /// the rest kept, see [`Self::rest_correction`]); `dt` the step the current bias was
-    /// propagated over, added to the rotation the rest took out of the propagation.
+    /// propagated over, added to the rest's duration.
     fn rest_update(&mut self, dt: T, x: &mut [T; 6]) {
         match self.rest_bias {
-            Some(b) => self.rest_turn += (self.bias - b).scale(dt),
+            Some(_) => self.rest_time += dt,
             None => {
                 self.rest_bias = Some(self.bias);
-                self.rest_turn = Vec3::ZERO;
+                self.rest_time = T::ZERO;
             }
         }
         let z = self.rest.mean_rate() - self.bias;
