@@ -502,9 +502,10 @@ host_tests::per_type! {
     /// sensor with a gyroscope bias of about 0.1 °/s and noise. The rest detector ends the
     /// rest as a slow turn when that direction has moved by the monitor's 10°; the gyroscope
     /// saw no turn, so the heading must keep leaning on it: 2 s after that (the field has then
-    /// turned by 13.8°) the heading error is below 6° (4.3° in f32 and f64; 11.2° when the end
-    /// of the rest raised the heading variance by the detector's 10° threshold whatever the
-    /// gyroscope saw, and the heading followed the field). A steady turn of the sensor itself
+    /// turned by 13.8°) the heading error is below 6° (3.6° in f32 and f64; 11.2° when the end
+    /// of the rest undid the rest's bias and raised the heading variance by the detector's 10°
+    /// threshold whatever the gyroscope saw, and the heading followed the field). A steady turn
+    /// of the sensor itself
     /// at the same rate (field fixed) still ends the rest (at 10.2 s) and gets its heading back
     /// from the field: within 1° 10 s after (0.3°).
     #[test]
