@@ -13,7 +13,9 @@
 //! the sample `a₀` that started the still period, `|ā − a₀| ≥ th_a`. That steady rate is then
 //! a turn, and stays one (no rest) until the gyroscope moves (`|ω − ω̄| ≥ th_ω`): a slow turn
 //! would otherwise be still again for `t_min` after each restart. [`RestDetector::turning`]
-//! says so, and the estimator undoes what a rest that ended this way taught its bias. A turn
+//! says so, and the estimator undoes what a rest that ended this way taught its bias when the
+//! gyroscope saw the turn (relative to the bias before the rest; a field that changes around a
+//! still sensor turns the field's direction too, [`RestDetector::turned_by_field`]). A turn
 //! about the vertical leaves `a` alone; the field's horizontal direction shows it
 //! ([`RestDetector::update_field`], fed by the estimator with undisturbed field samples and the
 //! field monitor's direction threshold: a smaller angle ended true rests on BROAD's magnetically
