@@ -31,7 +31,9 @@ mod firmware {
     use core::hint::black_box;
     use cortex_m_rt::entry;
     use cortex_m_semihosting::debug;
-    use gyrostat::estimation::{Covariance, Estimator, LowPass, Mode, Params, RestDetector};
+    use gyrostat::estimation::{
+        Covariance, Estimator, LowPass, Mode, Params, RateRule, RestDetector,
+    };
     use gyrostat::propagation::Normalization;
     use gyrostat::{Real, UnitQuat, Vec3};
 
@@ -195,6 +197,18 @@ mod firmware {
         })
     }
 
+    /// [`gyrostat_ticks_with`] (9D, f32) with the strapdown attitude carried compensated
+    /// ([`Estimator::try_new_compensated`]).
+    fn compensated_ticks(params: Params<f32>) -> u32 {
+        let Ok(mut f) = Estimator::try_new_compensated(params) else {
+            exit(debug::EXIT_FAILURE)
+        };
+        sequence_ticks(|s| {
+            let (g, a, m) = (vec::<f32>(s, 0), vec::<f32>(s, 3), vec::<f32>(s, 6));
+            black_box(f.update_9d(g, a, m, DT).is_ok());
+        })
+    }
+
     #[entry]
     fn main() -> ! {
         if start_systick().is_none() {
@@ -212,6 +226,19 @@ mod firmware {
         table.push("est_gyrostat_9d_f32", gyrostat_ticks::<f32>(true), n);
         table.push("est_gyrostat_6d_f32", gyrostat_ticks::<f32>(false), n);
         table.push("est_gyrostat_9d_f64", gyrostat_ticks::<f64>(true), n);
+
+        // The full mode's rate rules (the default is Magnus-4) and the compensated strapdown
+        // attitude.
+        let rule = |rate_rule: RateRule| Params::<f32> {
+            rate_rule,
+            ..Params::default()
+        };
+        let t = gyrostat_ticks_with::<f32>(true, rule(RateRule::Trapezoid));
+        table.push("est_gyrostat_9d_trapezoid_f32", t, n);
+        let t = gyrostat_ticks_with::<f32>(true, rule(RateRule::Cf4));
+        table.push("est_gyrostat_9d_cf4_f32", t, n);
+        let t = compensated_ticks(Params::default());
+        table.push("est_gyrostat_9d_compensated_f32", t, n);
 
         // The light mode (Mode::Light, default correction period 25 ms, and 50 ms).
         let light = |period: f32| Params::<f32> {

@@ -199,12 +199,12 @@
 /**
  * Words of `gyro_estimator_f32`'s storage.
  */
-#define GYRO_ESTIMATOR_F32_WORDS 122
+#define GYRO_ESTIMATOR_F32_WORDS 136
 
 /**
  * Words of `gyro_estimator_f64`'s storage.
  */
-#define GYRO_ESTIMATOR_F64_WORDS 240
+#define GYRO_ESTIMATOR_F64_WORDS 264
 
 /**
  * `gyro_sample_clock_*_interval`: the first time stamp (or the first after a restart): no

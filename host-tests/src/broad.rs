@@ -18,6 +18,7 @@ use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
 use gyrostat::estimation::{Estimator, Outcome, Params, SensorUse};
+use gyrostat::propagation::PropagatedAttitude;
 use gyrostat::{Real, Vec3};
 use gyrostat_pipeline::estimate::{Fault, Options, Run, Sample, Step};
 
@@ -54,6 +55,9 @@ pub struct Mode {
     pub six_d: bool,
     /// Run the filter in f32 (the inputs rounded to f32).
     pub f32: bool,
+    /// Carry the filter's strapdown attitude compensated
+    /// ([`Estimator::try_new_compensated`]).
+    pub compensated: bool,
 }
 
 /// Why [`estimate`] stopped: bad parameters, or a row the estimator's loop rejects.
@@ -88,23 +92,24 @@ pub fn estimate(
     params: &Params<f64>,
     mode: Mode,
 ) -> Result<Vec<EstimateRow>, EstimateError> {
-    if mode.f32 {
-        run::<f32>(log, &params.map(|x| x as f32), mode)
-    } else {
-        run::<f64>(log, params, mode)
-    }
-}
-
-fn run<T: Real + std::fmt::Debug>(
-    log: &Log,
-    params: &Params<T>,
-    mode: Mode,
-) -> Result<Vec<EstimateRow>, EstimateError> {
     let options = Options {
         six_d: mode.six_d,
         ..Options::default()
     };
-    let mut run = Run::try_new(*params, options).map_err(EstimateError::Params)?;
+    let p32 = params.map(|x| x as f32);
+    let e = EstimateError::Params;
+    match (mode.f32, mode.compensated) {
+        (true, false) => run(log, Run::try_new(p32, options).map_err(e)?),
+        (true, true) => run(log, Run::try_new_compensated(p32, options).map_err(e)?),
+        (false, false) => run(log, Run::try_new(*params, options).map_err(e)?),
+        (false, true) => run(log, Run::try_new_compensated(*params, options).map_err(e)?),
+    }
+}
+
+fn run<T: Real + std::fmt::Debug, A: PropagatedAttitude<T>>(
+    log: &Log,
+    mut run: Run<T, A>,
+) -> Result<Vec<EstimateRow>, EstimateError> {
     let mut out = Vec::with_capacity(log.rows.len());
     for (index, row) in log.rows.iter().enumerate() {
         let sample = Sample {
@@ -116,7 +121,7 @@ fn run<T: Real + std::fmt::Debug>(
         let step = run
             .push(&sample)
             .map_err(|error| EstimateError::Row(Fault { index, error }))?;
-        let f: &Estimator<T> = run.estimator();
+        let f: &Estimator<T, A> = run.estimator();
         out.push(EstimateRow {
             t_text: row.t_text.clone(),
             t: row.t,

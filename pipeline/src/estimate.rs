@@ -24,8 +24,9 @@
 use core::fmt::{self, Debug};
 
 use gyrostat::estimation::{Estimator, Gains, MAX_STEP, Outcome, Params, SensorUse};
+use gyrostat::propagation::{CompensatedAttitude, PropagatedAttitude};
 use gyrostat::sensor::{InertialCalibration, Interval, MagnetometerCalibration, SampleClock};
-use gyrostat::{Error, Real, Vec3};
+use gyrostat::{Error, Real, UnitQuat, Vec3};
 
 /// The sensor models applied to every sample before the estimator (f64, after the unit
 /// conversion): `corrected = M·diag(s)·(raw − b)` for the gyroscope and the accelerometer,
@@ -170,16 +171,20 @@ impl fmt::Display for Fault {
 
 impl std::error::Error for Fault {}
 
-/// The estimator and the state of the loop around it.
-pub struct Run<T: Real> {
-    filter: Estimator<T>,
+/// The estimator and the state of the loop around it; `A` the estimator's strapdown attitude
+/// (plain by default, [`Run::try_new_compensated`] for the compensated one).
+pub struct Run<T: Real, A = UnitQuat<T>> {
+    filter: Estimator<T, A>,
     clock: SampleClock<f64>,
     options: Options,
     skipped: usize,
 }
 
 /// The `heading` column: `ok`, `unsure` or `none` (see the `estimate` tool's help).
-pub fn heading_flag<T: Real>(filter: &Estimator<T>, six_d: bool) -> &'static str {
+pub fn heading_flag<T: Real, A: PropagatedAttitude<T>>(
+    filter: &Estimator<T, A>,
+    six_d: bool,
+) -> &'static str {
     if six_d {
         "none"
     } else if filter.heading_trusted() {
@@ -195,8 +200,25 @@ impl<T: Real + Debug> Run<T> {
     /// # Errors
     /// The estimator's ([`Estimator::try_new`]): a parameter out of its domain.
     pub fn try_new(params: Params<T>, options: Options) -> Result<Self, Error> {
+        Self::with_filter(Estimator::try_new(params)?, options)
+    }
+}
+
+impl<T: Real + Debug> Run<T, CompensatedAttitude<T>> {
+    /// [`Run::try_new`] with the estimator's strapdown attitude carried compensated
+    /// ([`Estimator::try_new_compensated`]).
+    ///
+    /// # Errors
+    /// As [`Run::try_new`].
+    pub fn try_new_compensated(params: Params<T>, options: Options) -> Result<Self, Error> {
+        Self::with_filter(Estimator::try_new_compensated(params)?, options)
+    }
+}
+
+impl<T: Real + Debug, A: PropagatedAttitude<T>> Run<T, A> {
+    fn with_filter(filter: Estimator<T, A>, options: Options) -> Result<Self, Error> {
         Ok(Self {
-            filter: Estimator::try_new(params)?,
+            filter,
             // Every forward step is a `Step` (the longest step is checked after the unit
             // conversion, against MAX_STEP): the clock gives the first-sample rule and the order.
             clock: SampleClock::try_with_gap_factor(f64::MAX, 1.0)?,
@@ -206,7 +228,7 @@ impl<T: Real + Debug> Run<T> {
     }
 
     /// The estimator.
-    pub fn estimator(&self) -> &Estimator<T> {
+    pub fn estimator(&self) -> &Estimator<T, A> {
         &self.filter
     }
 
@@ -346,8 +368,8 @@ pub const HEADER: &str = "t,qw,qx,qy,qz,bx,by,bz,rest,gyro,accel,mag,heading";
 /// `--set`, the BROAD runner's, the research probes'): every name [`Params::set_by_name`] takes
 /// (the field names of [`Params`], `field.norm`, `rest.gyro`, … for the nested ones,
 /// `heading_time_constant` for fixed gains, `light_period` for the light mode) with a finite
-/// value in SI units, where a value ending in `deg` or `deg/s` is converted to rad or rad/s; and
-/// `gains=kalman`. Name and value are trimmed.
+/// value in SI units, where a value ending in `deg` or `deg/s` is converted to rad or rad/s;
+/// `gains=kalman`; and `rate_rule=trapezoid|magnus4|cf4` ([`gyrostat::estimation::RateRule`]). Name and value are trimmed.
 ///
 /// # Errors
 /// One line naming the reason: `gains` other than `kalman`, a value that is not a finite
@@ -364,6 +386,12 @@ pub fn set_param(p: &mut Params<f64>, name: &str, value: &str) -> Result<(), Str
                 "gains: only 'kalman' (set heading_time_constant for complementary gains), got '{value}'"
             )),
         };
+    }
+    if name == "rate_rule" {
+        p.rate_rule = value
+            .parse()
+            .map_err(|_| format!("rate_rule: unknown '{value}' (trapezoid, magnus4, cf4)"))?;
+        return Ok(());
     }
     let (number, factor) = match value
         .strip_suffix("deg/s")

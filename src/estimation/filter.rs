@@ -7,9 +7,10 @@ use super::hard_iron::HardIron;
 use super::init::{attitude_from_gravity, attitude_from_gravity_and_field};
 use super::lowpass::{LowPass, first_order_gain};
 use super::params::{EarthFrame, FieldThresholds, Gains, Mode, Params};
+use super::rate_window::{RateWindow, StepRotation};
 use super::rest::RestDetector;
-use crate::propagation::Normalization;
 use crate::propagation::coning::one_plus_previous_terms;
+use crate::propagation::{CompensatedAttitude, Normalization, PropagatedAttitude, RateMethod};
 use crate::sensor::ClipLimit;
 use crate::step_limit::within_step_limit_real;
 use crate::{Error, Quat, Real, UnitQuat, Vec3};
@@ -70,12 +71,19 @@ pub struct Outcome {
 }
 
 /// The attitude and gyroscope-bias estimator (see the module docs for the design).
+///
+/// `A` is how the strapdown attitude (sensor → gyroscope frame) is carried between
+/// corrections: the plain [`UnitQuat`] (the default, [`Estimator::try_new`]) or the
+/// [`CompensatedAttitude`] ([`Estimator::try_new_compensated`]: every prediction's rounding
+/// error carried, so an f32 filter propagating for long without corrections drifts no more
+/// than its f64 counterpart; module docs of [`crate::propagation::compensated_attitude`]).
+/// Everything else is the same filter.
 #[derive(Clone, Copy, Debug)]
-pub struct Estimator<T> {
+pub struct Estimator<T, A = UnitQuat<T>> {
     params: Params<T>,
     initialized: bool,
     /// Sensor → gyroscope frame (almost inertial): the bias-corrected strapdown attitude.
-    q_gyro: UnitQuat<T>,
+    q_gyro: A,
     /// Gyroscope frame → earth (ENU): the accumulated corrections.
     q_corr: UnitQuat<T>,
     bias: Vec3<T>,
@@ -134,6 +142,9 @@ pub struct Estimator<T> {
     rest_bias: Option<Vec3<T>>,
     /// How long (s) the current rest has lasted ([`Self::rest_ended`]).
     rest_time: T,
+    /// The full mode's 4th-order rate rules' window ([`RateRule`]): the last rate samples
+    /// (clipped) and their intervals.
+    window: RateWindow<T>,
 }
 
 /// The step `h` (s) of the time grid on which the strapdown attitude is kept for the
@@ -191,25 +202,46 @@ const UNKNOWN_HEADING_VARIANCE: f64 = core::f64::consts::PI * core::f64::consts:
 const GRAVITY: f64 = 9.81;
 
 impl<T: Real> Estimator<T> {
-    /// An estimator with these parameters, waiting for its first sample.
+    /// An estimator with these parameters, waiting for its first sample; the strapdown
+    /// attitude a plain [`UnitQuat`].
     ///
     /// # Errors
     /// Those of [`Params::validate`]: [`Error::NonFinite`] when a noise, time or threshold is
     /// NaN or infinite (infinite ranges are allowed); [`Error::InvalidArgument`] when one is
     /// negative or a time constant that divides is zero.
     pub fn try_new(params: Params<T>) -> Result<Self, Error> {
+        Self::try_new_carried(params)
+    }
+}
+
+impl<T: Real> Estimator<T, CompensatedAttitude<T>> {
+    /// [`Estimator::try_new`] with the strapdown attitude carried compensated
+    /// ([`CompensatedAttitude`]: the prediction's rounding error kept in a low part; twice
+    /// the attitude's memory and the compensated update's instructions, BENCHMARKS.md).
+    ///
+    /// # Errors
+    /// Those of [`Estimator::try_new`].
+    pub fn try_new_compensated(params: Params<T>) -> Result<Self, Error> {
+        Self::try_new_carried(params)
+    }
+}
+
+impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
+    /// An estimator whose strapdown attitude is carried as `A`.
+    fn try_new_carried(params: Params<T>) -> Result<Self, Error> {
         params.validate()?;
         let b0 = params.gyro_bias_initial;
         Ok(Self {
             params,
             initialized: false,
-            q_gyro: UnitQuat::IDENTITY,
+            q_gyro: A::from_unit(UnitQuat::IDENTITY),
             q_corr: UnitQuat::IDENTITY,
             bias: Vec3::ZERO,
             last_gyro: Vec3::ZERO,
             lead_rate: Vec3::ZERO,
             rate_is_mean: false,
             last_saturated: false,
+            window: RateWindow::default(),
             p: Covariance::diagonal(T::ZERO, b0 * b0),
             accel_lp: LowPass::default(),
             rest: RestDetector::default(),
@@ -288,6 +320,8 @@ impl<T: Real> Estimator<T> {
             return Err(Error::InvalidArgument);
         }
         self.rate_is_mean = true;
+        // Means over steps are no samples to interpolate: the rate rule's window restarts.
+        self.window.restart();
         let r = self.update(dtheta.scale(T::ONE / dt), accel, mag, dt);
         self.rate_is_mean = false;
         r
@@ -363,10 +397,18 @@ impl<T: Real> Estimator<T> {
             return Ok(out);
         }
 
+        // The full mode's 4th-order rule on rate samples (`RateRule`; the light mode and
+        // increments take the mean rate below).
+        let fourth = match self.params.mode {
+            Mode::Full if !self.rate_is_mean => self.params.rate_rule.method(),
+            _ => None,
+        };
         // The mean rate over the step: the trapezoid of the two samples at its ends (an
         // increment's rate is that mean already, and the previous increment is the coning
         // lever of its step, unless either was saturated).
-        let mean_rate = if self.rate_is_mean {
+        let mean_rate = if fourth.is_some() {
+            gyro
+        } else if self.rate_is_mean {
             if !out.gyro_saturated && !self.last_saturated {
                 self.coned_rate(gyro, dt)
             } else {
@@ -406,7 +448,11 @@ impl<T: Real> Estimator<T> {
                 correction_period,
             ));
         }
-        self.predict(mean_rate, dt, out.gyro_saturated);
+        let step = match fourth {
+            Some(method) => self.fourth_order_step(method, gyro, dt, out.gyro_saturated),
+            None => StepRotation::at_rate(mean_rate - self.bias, dt),
+        };
+        self.predict(step, dt, out.gyro_saturated);
         let mut x = [T::ZERO; 6];
 
         if accel_use == SensorUse::Used {
@@ -461,12 +507,13 @@ impl<T: Real> Estimator<T> {
             None => attitude_from_gravity(accel),
         };
         let q = q.unwrap_or(UnitQuat::IDENTITY);
-        self.q_gyro = q;
+        self.q_gyro = A::from_unit(q);
         self.q_corr = UnitQuat::IDENTITY;
         self.accel_lp = LowPass::at(q.rotate(accel));
         self.rest = RestDetector::new(gyro, accel);
         self.mag_clock = T::ZERO;
         self.last_gyro = gyro;
+        self.window.start(gyro);
         self.lead_rate = Vec3::ZERO;
         // The first sample's direction errors: the inclination from one accelerometer sample
         // and (with a magnetometer) the heading from one field sample.
@@ -482,6 +529,21 @@ impl<T: Real> Estimator<T> {
             self.field_started = true;
         }
         self.initialized = true;
+    }
+
+    /// The step's rotation by a 4th-order rule: the sample `gyro` into the window, the rule's
+    /// rotation vector(s) from it ([`RateWindow::rotation`]).
+    // Out of line, as `coned_rate`: only the full mode's 4th-order rules take it.
+    #[inline(never)]
+    fn fourth_order_step(
+        &mut self,
+        method: RateMethod,
+        gyro: Vec3<T>,
+        dt: T,
+        saturated: bool,
+    ) -> StepRotation<T> {
+        self.window.push(gyro, dt, saturated);
+        self.window.rotation(method, gyro, self.bias, dt)
     }
 
     /// The mean rate of an increment's step with the previous increment's coning correction:
@@ -517,12 +579,9 @@ impl<T: Real> Estimator<T> {
         if lead.is_finite() { lead } else { w }
     }
 
-    fn predict(&mut self, gyro: Vec3<T>, dt: T, saturated: bool) {
-        let w = gyro - self.bias;
-        let before = self.q_gyro;
-        self.q_gyro = self
-            .q_gyro
-            .mul_exp_unchecked(w.scale(dt), Normalization::Fast);
+    fn predict(&mut self, step: StepRotation<T>, dt: T, saturated: bool) {
+        let before = self.q_gyro.attitude();
+        self.q_gyro = step.apply(self.q_gyro);
         self.advance_grid(before, dt);
         let r = self.attitude_enu().to_rotation_matrix();
         let f = r.scale(-dt);
@@ -531,7 +590,7 @@ impl<T: Real> Estimator<T> {
         // rotation (at most π, checked by `update`): formed from `θ`, not from `|ω|`, which
         // can overflow where `θ` is small, and bounded by `θ²` (an error as large as the
         // rotation itself, a scale factor wrong by 100 %), which only binds for `Δt < s²`.
-        let theta2 = w.scale(dt).norm_squared();
+        let theta2 = step.total().norm_squared();
         let s2 = pr.gyro_scale_noise * pr.gyro_scale_noise;
         let q_scale = theta2 * (s2 / dt).min(T::ONE);
         let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * dt + q_scale;
@@ -580,7 +639,7 @@ impl<T: Real> Estimator<T> {
         if age >= span + h {
             age -= ((age - span) / h).floor() * h;
         }
-        let (a, b) = (before.into_quat(), self.q_gyro.into_quat());
+        let (a, b) = (before.into_quat(), self.q_gyro.attitude().into_quat());
         for _ in 0..=MAG_HISTORY {
             if age < h {
                 break;
@@ -602,10 +661,13 @@ impl<T: Real> Estimator<T> {
     /// does not reach that far yet.
     fn grid(&self, j: usize) -> UnitQuat<T> {
         if j >= self.filled {
-            return self.q_gyro;
+            return self.q_gyro.attitude();
         }
         let idx = (self.head + MAG_HISTORY - j.min(MAG_HISTORY - 1)) % MAG_HISTORY;
-        self.history.get(idx).copied().unwrap_or(self.q_gyro)
+        self.history
+            .get(idx)
+            .copied()
+            .unwrap_or(self.q_gyro.attitude())
     }
 
     /// The field sample mapped to the gyroscope frame by the attitude `delay` seconds ago
@@ -616,11 +678,11 @@ impl<T: Real> Estimator<T> {
             return self.light_field(mag);
         }
         if delay <= T::ZERO || self.filled == 0 {
-            return self.q_gyro.rotate(mag);
+            return self.q_gyro.attitude().rotate(mag);
         }
         let age = self.grid_age;
         if delay <= age {
-            let now = self.q_gyro.rotate(mag);
+            let now = self.q_gyro.attitude().rotate(mag);
             let u0 = self.grid(0).rotate(mag);
             return now + (u0 - now).scale(delay / age);
         }
@@ -740,7 +802,7 @@ impl<T: Real> Estimator<T> {
             self.params.gains,
         );
         // Filter in the gyroscope frame, map to the earth frame by the corrections.
-        let a_gyro = self.q_gyro.rotate(accel);
+        let a_gyro = self.q_gyro.attitude().rotate(accel);
         if self.lowpass_stale {
             self.accel_lp = LowPass::at(a_gyro);
             self.lowpass_stale = false;
@@ -951,7 +1013,7 @@ impl<T: Real> Estimator<T> {
         let h = T::from_f64(MAG_HISTORY_STEP);
         let frac = T::ONE - self.grid_age / h;
         let up = self.q_corr.inverse_rotate(Vec3::Z);
-        let now = self.q_gyro.rotate(mag);
+        let now = self.q_gyro.attitude().rotate(mag);
         let mut newer = self.grid(0).rotate(mag);
         for k in 0..MAG_HISTORY {
             let m = if k == 0 {
@@ -1048,7 +1110,7 @@ impl<T: Real> Estimator<T> {
     }
 
     fn attitude_enu(&self) -> UnitQuat<T> {
-        self.q_corr * self.q_gyro
+        self.q_corr * self.q_gyro.attitude()
     }
 
     /// The attitude, sensor → earth, in the frame of [`Params::frame`], at the time of the

@@ -36,6 +36,7 @@ use super::{
 };
 use crate::estimation::lowpass::LowPass;
 use crate::propagation::Normalization;
+use crate::propagation::PropagatedAttitude;
 use crate::{Real, UnitQuat, Vec3};
 
 /// What the light mode accumulates between two corrections.
@@ -104,7 +105,7 @@ impl<T: Real> StepFactors<T> {
     }
 }
 
-impl<T: Real> Estimator<T> {
+impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
     /// The light mode's update after the checks and the initialisation of
     /// [`Estimator::update`]: the prediction every sample, the corrections every `period`.
     #[allow(
@@ -123,9 +124,7 @@ impl<T: Real> Estimator<T> {
         period: T,
     ) -> Outcome {
         let w = mean_rate - self.bias;
-        self.q_gyro = self
-            .q_gyro
-            .mul_exp_unchecked(w.scale(dt), Normalization::Fast);
+        self.q_gyro = self.q_gyro.mul_exp_vector(w.scale(dt), Normalization::Fast);
         let pr = self.params;
         let s = &mut self.light;
         s.elapsed += dt;
@@ -140,7 +139,7 @@ impl<T: Real> Estimator<T> {
         }
         if accel_use == SensorUse::Used {
             s.at_rest = self.rest.update(gyro, accel, dt, &pr.rest);
-            let a_gyro = self.q_gyro.rotate(accel);
+            let a_gyro = self.q_gyro.attitude().rotate(accel);
             if self.lowpass_stale {
                 self.accel_lp = LowPass::at(a_gyro);
                 self.lowpass_stale = false;
@@ -158,7 +157,7 @@ impl<T: Real> Estimator<T> {
         if let (Some(m), SensorUse::Used) = (mag, mag_use) {
             self.light.field = Some(PendingField {
                 mag: m,
-                q_gyro: self.q_gyro,
+                q_gyro: self.q_gyro.attitude(),
                 elapsed: self.light.elapsed,
             });
             self.light_hard_iron(m, gyro, dt);
@@ -234,7 +233,7 @@ impl<T: Real> Estimator<T> {
                 let d = self.light.steps.mag_delay;
                 p.q_gyro.rotate(mag - self.light.rate.cross(mag).scale(d))
             }
-            None => self.q_gyro.rotate(mag),
+            None => self.q_gyro.attitude().rotate(mag),
         }
     }
 

@@ -25,19 +25,28 @@
 //! inertial "gyroscope frame") is the bias-corrected strapdown attitude and `q_c` (gyroscope
 //! frame → earth) collects every correction.
 //!
-//! 1. **Prediction** — the propagation core: `q_g ← q_g ⊗ exp((ω̄ − b̂)·Δt)`
+//! 1. **Prediction** — the propagation core: `q_g ← q_g ⊗ exp(φ)`
 //!    ([`crate::UnitQuat::mul_exp_unchecked`], the update kernel of [`crate::propagation`], with
-//!    the fast renormalisation), with the per-sample `Δt` of the time stamps, `ω̄` the mean of the
-//!    rate samples at the two ends of the step (the trapezoid: a rate sample is the rate at its
-//!    time stamp; an increment, [`Estimator::update_increment`], is a mean already, and takes
-//!    the one-plus-previous coning rule of [`crate::propagation::coning`] with the previous
-//!    increment). The samples' checks are the shared ones: the step limit of
+//!    the fast renormalisation), `φ` the step's rotation (bias removed) over the per-sample `Δt`
+//!    of the time stamps. Rate samples take [`Params::rate_rule`] ([`RateRule`]): by default
+//!    (full mode) the propagation module's unequal-interval Magnus-4, the rates at the step's
+//!    Gauss nodes from the backward cubic interpolant through the last four samples at their
+//!    own times ([`crate::propagation::kernels::magnus4_step_unequal`]'s interpolation; order
+//!    4 on a jittered clock), falling back to the linear interpolant at the start, after a
+//!    saturated sample and across a gap; CF4 or the trapezoid (`ω̄ = (ω_prev + ω)/2`, order 2,
+//!    the light mode's rule) on request. An increment, [`Estimator::update_increment`], is a
+//!    mean already, and takes the one-plus-previous coning rule of
+//!    [`crate::propagation::coning`] with the previous
+//!    increment. The samples' checks are the shared ones: the step limit of
 //!    [`crate::step_limit`] (at most half a turn per step) and the clip policy of
 //!    [`crate::sensor::raw`] (the gyroscope saturated at [`Params::gyro_range`],
 //!    [`crate::sensor::ClipPolicy::Saturate`]). The
 //!    output, [`Estimator::attitude`], is carried forward by the gyroscope's own delay
 //!    ([`Params::gyro_delay`]) at the rate extrapolated to the middle of that delay from the
-//!    last two samples (the carried rotation `∫ω` to second order).
+//!    last two samples (the carried rotation `∫ω` to second order). The strapdown attitude is
+//!    a plain [`crate::UnitQuat`] ([`Estimator::try_new`]) or, for an f32 filter propagating
+//!    for long between corrections, the [`crate::propagation::CompensatedAttitude`]
+//!    ([`Estimator::try_new_compensated`]: the updates' rounding carried).
 //! 2. **Error covariance** — an error-state (multiplicative) Kalman filter over
 //!    `x = (δθ, δb)`: `δθ` the attitude error in the earth frame (`q = exp(δθ) ⊗ q̂`), `δb` the
 //!    bias error. Its closed-form transition over a step is `Φ = [[I, −R̂Δt], [0, I]]` (an
@@ -115,7 +124,8 @@
 //! | exact gains `1 − exp(−Δt/τ)`, delay history on a time grid (candidates 0–50 ms) | 1.555 | 1.533 | 1.700 | 2.673 |
 //! | trapezoid: the mean of the two rate samples over a step | 1.691 | 1.692 | 1.741 | 2.073 |
 //! | output carried forward by the gyroscope's delay, 2.9 ms (datasheet) | 1.356 | 1.356 | 1.406 | 1.796 |
-//! | hard iron estimated online (below) | **1.223** | **1.238** | **1.279** | **1.671** |
+//! | hard iron estimated online (below) | 1.223 | 1.238 | 1.279 | 1.671 |
+//! | Magnus-4 on the Gauss-node rates ([`RateRule`], issue 27; the row above re-measured: 1.215 / 1.235 / 1.271 / 1.664) | **1.216** | **1.231** | **1.238** | **1.290** |
 //!
 //! The cause of the rate dependence, found by experiment: the estimated magnetometer delay grew
 //! with the step (about 13 ms at 285.7 Hz, 22 ms at 47.6 Hz), by half a step. A rate sample
@@ -142,7 +152,10 @@
 //! 2.700, B 2.622 / 2.613 / 2.859 / 3.587. The gyroscope delay and the hard iron each win on
 //! both halves at every rate; the trapezoid alone loses on both halves at 285.7 and 142.9 Hz,
 //! splits at 95.2 Hz and wins on both at 47.6 Hz; it is kept for the cause it removes (and
-//! with it the best gyroscope delay is the same at every rate).
+//! with it the best gyroscope delay is the same at every rate). Magnus-4 in its place (a mean
+//! centred on the step as the trapezoid's, with the step's own truncation removed) ties at
+//! 285.7 and 142.9 Hz and wins on both halves at 95.2 and 47.6 Hz (A / B 1.220 / 1.212, 1.224
+//! / 1.238, 1.215 / 1.261, 1.260 / 1.321; BENCHMARKS.md, "The estimator's rate rule").
 //!
 //! **Inclination** (mean over 16 trials, 285.7 / 142.9 / 95.2 / 47.6 Hz): 0.572 / 0.598 /
 //! 0.614 / 0.840°, VQF 0.754 / 0.676 / 0.749 / 1.521° (its 9D and 6D inclination are the
@@ -204,6 +217,7 @@ pub mod init;
 pub mod lowpass;
 pub mod params;
 pub mod params_text;
+mod rate_window;
 pub mod rest;
 
 pub use covariance::Covariance;
@@ -215,6 +229,8 @@ pub use filter::{
 pub use hard_iron::HardIron;
 pub use init::{attitude_from_gravity, attitude_from_gravity_and_field};
 pub use lowpass::{LowPass, first_order_gain};
-pub use params::{Domain, EarthFrame, FieldThresholds, Gains, Mode, Params, RestThresholds};
+pub use params::{
+    Domain, EarthFrame, FieldThresholds, Gains, Mode, Params, RateRule, RestThresholds,
+};
 pub use params_text::{ParamsTextError, ParamsTextErrorKind};
 pub use rest::RestDetector;

@@ -10,12 +10,13 @@
 //! of [`Params::validate`], the parameter file ([`super::params_text`]) and, in `gyrostat-ffi`,
 //! the C structs `gyro_estimator_params_f32/_f64`. Adding a parameter is one row of the table.
 //!
-//! The choices that are not numbers ([`EarthFrame`], [`Gains`], [`Mode`]) are fields of
-//! [`Params`] beside the table's.
+//! The choices that are not numbers ([`EarthFrame`], [`Gains`], [`Mode`], [`RateRule`]) are
+//! fields of [`Params`] beside the table's.
 
 use core::fmt;
 use core::str::FromStr;
 
+use crate::propagation::RateMethod;
 use crate::{Error, Real};
 
 /// The table of the estimator's numeric parameters: invokes `$callback! { rows }`, each row
@@ -340,6 +341,91 @@ impl<T> fmt::Display for Mode<T> {
     }
 }
 
+/// How the prediction turns a step's rate samples into its rotation (the rate path; gyroscope
+/// increments always take the one-plus-previous coning rule, [`super::Estimator::update_increment`]).
+/// The 4th-order rules are the propagation module's unequal-interval rate methods
+/// ([`crate::propagation::rate_samples`], [`crate::propagation::kernels::magnus4_step_unequal`]):
+/// the rates at the step's two Gauss nodes from the backward Lagrange interpolant through the
+/// last four samples at their own times (`k−3 … k`: no look-ahead, no latency), the step's
+/// rotation vector from them, and the shared step limit
+/// ([`crate::step_limit::MAX_STEP_ANGLE`]) on it. At the start, after a saturated sample, and
+/// after an interval more than twice or less than half the one before it (a gap, a clock
+/// restart), the window restarts and the rule falls back until it holds four samples: the
+/// linear interpolant through the step's two ends (order 2), or with one sample its rate
+/// alone.
+///
+/// **The full mode's default, Magnus-4**, chosen by the project's rule (it wins or ties within
+/// the noise on every benchmark, per half; BENCHMARKS.md, "The estimator's rate rule"): on the
+/// 16 BROAD trials the mean total RMSE ties at 285.7 Hz (half A 1.219 → 1.220, B 1.212 →
+/// 1.212; the per-trial differences' standard error 0.003 / 0.006) and at 142.9 Hz (A 1.220 →
+/// 1.224 ± 0.010, B 1.249 → 1.238) and wins at 95.2 Hz (A 1.248 → 1.215, B 1.294 → 1.261)
+/// and 47.6 Hz (A 1.666 → 1.260, B 1.662 → 1.321); the 6D inclination wins or ties on every
+/// half at every rate; the synthetic grid ties (differences of opposite sign on the two seeds,
+/// within ±0.04°). CF4 gives the same numbers to ±0.001° with a second exponential.
+///
+/// **The light mode always takes the trapezoid**: there Magnus-4 loses on half A at 142.9
+/// and 95.2 Hz (light 1.201 → 1.209, 1.221 → 1.234), and its interpolation (soft-float
+/// divisions and some forty products) does not fit the light mode's Cortex-M0 budget.
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum RateRule {
+    /// The mean of the step's two end samples, `φ = (ω_prev + ω)/2·Δt − b̂Δt`: order 2, one
+    /// exponential, no interpolation. The light mode's rule whatever this parameter says.
+    Trapezoid,
+    /// Magnus-4 on the Gauss-node rates, `φ = (h/2)(ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂`
+    /// ([`crate::propagation::rate_samples::magnus4_rotation_vector`], bias removed from both
+    /// nodes): order 4, one exponential. The default.
+    #[default]
+    Magnus4,
+    /// Commutator-free CF4 on the Gauss-node rates, `q ⊗ exp(φ₁) ⊗ exp(φ₂)`
+    /// ([`crate::propagation::rate_samples::cf4_rotation_vectors`]): order 4, two exponentials.
+    Cf4,
+}
+
+impl RateRule {
+    /// Every rule, in the order above.
+    pub const ALL: [RateRule; 3] = [RateRule::Trapezoid, RateRule::Magnus4, RateRule::Cf4];
+
+    /// The propagation module's rate method a 4th-order rule runs (`None` for the trapezoid).
+    pub const fn method(self) -> Option<RateMethod> {
+        match self {
+            RateRule::Trapezoid => None,
+            RateRule::Magnus4 => Some(RateMethod::Magnus4),
+            RateRule::Cf4 => Some(RateMethod::Cf4),
+        }
+    }
+
+    /// The rule's name in the tools and Python: `trapezoid`, or the rate method's
+    /// ([`RateMethod::name`]: `magnus4`, `cf4`).
+    pub const fn name(self) -> &'static str {
+        match self.method() {
+            None => "trapezoid",
+            Some(m) => m.name(),
+        }
+    }
+}
+
+impl FromStr for RateRule {
+    type Err = Error;
+    /// The rule of [`RateRule::name`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for any other text (`rk4` included: it gives no rotation
+    /// vector to carry the compensated attitude or the covariance with).
+    fn from_str(s: &str) -> Result<Self, Error> {
+        Self::ALL
+            .into_iter()
+            .find(|r| r.name() == s)
+            .ok_or(Error::InvalidArgument)
+    }
+}
+
+impl fmt::Display for RateRule {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// The parameter-file name of a row: `flat` or `group.field`.
 macro_rules! param_name {
     ($flat:ident) => {
@@ -404,6 +490,9 @@ macro_rules! params_structs {
             pub gains: Gains<T>,
             /// Full or light update ([`Mode`]).
             pub mode: Mode<T>,
+            /// How rate samples become a step's rotation in the full mode ([`RateRule`];
+            /// `rate_rule` in the tools' `--set`). Default: [`RateRule::Magnus4`].
+            pub rate_rule: RateRule,
             $(
                 $(#[$tm])*
                 #[doc = ""]
@@ -454,6 +543,7 @@ macro_rules! params_structs {
                     frame,
                     gains,
                     mode,
+                    rate_rule: RateRule::default(),
                     $($t,)*
                     field: FieldThresholds { $($f: $ff,)* },
                     rest: RestThresholds { $($r: $rf,)* },
@@ -581,7 +671,10 @@ impl<T> Params<T> {
                 correction_period: f(correction_period),
             },
         };
-        Params::from_values(self.frame, gains, mode, self.values().map(&f))
+        Params {
+            rate_rule: self.rate_rule,
+            ..Params::from_values(self.frame, gains, mode, self.values().map(&f))
+        }
     }
 }
 

@@ -29,6 +29,11 @@ pub(crate) mod sealed {
     pub trait Propagate<T>: Copy {
         /// The attitude, rounded to `T`.
         fn attitude(&self) -> UnitQuat<T>;
+        /// Starts at `q` (the compensated attitude: low part zero).
+        fn from_unit(q: UnitQuat<T>) -> Self;
+        /// `q ⊗ exp(φ)`, then `norm`: the update kernel `mul_exp_unchecked` of the kind (the
+        /// estimator's prediction).
+        fn mul_exp_vector(self, phi: Vec3<T>, norm: Normalization) -> Self;
         /// One update by `rule` from `samples` (1 to 4 increments; `previous` the increment
         /// before them).
         fn increments(
@@ -57,6 +62,14 @@ pub(crate) mod sealed {
         #[inline(always)]
         fn attitude(&self) -> UnitQuat<T> {
             *self
+        }
+        #[inline(always)]
+        fn from_unit(q: UnitQuat<T>) -> Self {
+            q
+        }
+        #[inline(always)]
+        fn mul_exp_vector(self, phi: Vec3<T>, norm: Normalization) -> Self {
+            self.mul_exp_unchecked(phi, norm)
         }
         #[inline(always)]
         fn increments(
@@ -89,6 +102,14 @@ pub(crate) mod sealed {
         #[inline(always)]
         fn attitude(&self) -> UnitQuat<T> {
             CompensatedAttitude::attitude(self)
+        }
+        #[inline(always)]
+        fn from_unit(q: UnitQuat<T>) -> Self {
+            CompensatedAttitude::new(q)
+        }
+        #[inline(always)]
+        fn mul_exp_vector(self, phi: Vec3<T>, norm: Normalization) -> Self {
+            self.mul_exp_pair(phi, Vec3::ZERO, norm)
         }
         #[inline(always)]
         fn increments(

@@ -281,6 +281,14 @@ impl<const F: u32> Propagate<Fixed<F>> for CarriedAttitude<F> {
         self.q
     }
     #[inline(always)]
+    fn from_unit(q: UnitQuat<Fixed<F>>) -> Self {
+        CarriedAttitude::new(q)
+    }
+    #[inline(always)]
+    fn mul_exp_vector(self, phi: Vec3<Fixed<F>>, norm: Normalization) -> Self {
+        CarriedAttitude::mul_exp_vector(self, phi, norm)
+    }
+    #[inline(always)]
     fn increments(
         self,
         rule: ConingRule,

@@ -267,9 +267,14 @@ pub fn magnus4_step_unequal<T: Real, const M: usize>(
 }
 
 /// The rates at the two Gauss nodes of `[t0, t1]` from the Lagrange interpolant through the `M`
-/// samples, and the step `h = t1 − t0`: the inputs of the fourth-order steps on unequal times.
+/// samples, and the step `h = t1 − t0`: the inputs of the fourth-order steps on unequal times
+/// (these steps and the estimator's 4th-order rate rules,
+/// [`crate::estimation::RateRule`]). The basis `lᵢ(x) = Πⱼ≠ᵢ (x − tⱼ) / Πⱼ≠ᵢ (tᵢ − tⱼ)` shares
+/// its denominators between the two nodes: `M` divisions per step (a soft-float division is
+/// some hundred instructions on a Cortex-M0); the newest sample's basis function is not needed
+/// (difference form, `M − 1` divisions). Unchecked: the times distinct.
 #[inline]
-fn gauss_node_rates<T: Real, const M: usize>(
+pub(crate) fn gauss_node_rates<T: Real, const M: usize>(
     times: &[T; M],
     rates: &[Vec3<T>; M],
     t0: T,
@@ -278,11 +283,31 @@ fn gauss_node_rates<T: Real, const M: usize>(
     let h = t1 - t0;
     let g1 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_1);
     let g2 = t0 + h * T::from_f64(crate::propagation::rate_samples::GAUSS_NODE_2);
-    (
-        lagrange_at(times, rates, g1),
-        lagrange_at(times, rates, g2),
-        h,
-    )
+    // Difference form, `ω_last + Σ lᵢ(x)(ωᵢ − ω_last)` (the basis adds up to one): a constant
+    // rate comes out exactly and a slowly varying one with the rounding of its small
+    // differences only (as `rate_samples::interp_difference`).
+    let last = rates.last().copied().unwrap_or(Vec3::ZERO);
+    let (mut w1, mut w2) = (last, last);
+    for (i, (ti, wi)) in times
+        .iter()
+        .zip(rates)
+        .enumerate()
+        .take(M.saturating_sub(1))
+    {
+        let (mut den, mut n1, mut n2) = (T::ONE, T::ONE, T::ONE);
+        for (j, tj) in times.iter().enumerate() {
+            if i != j {
+                den *= *ti - *tj;
+                n1 *= g1 - *tj;
+                n2 *= g2 - *tj;
+            }
+        }
+        let r = T::ONE / den;
+        let d = *wi - last;
+        w1 += d * (n1 * r);
+        w2 += d * (n2 * r);
+    }
+    (w1, w2, h)
 }
 
 /// One commutator-free CF4 step on rate samples at unequal times: [`cf4_step`] from `t0` to

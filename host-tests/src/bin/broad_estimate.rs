@@ -9,6 +9,8 @@
 //!                    where to get them; the repository keeps only trimmed copies in data/broad)
 //!   --f32            run the filter in f32 (default f64)
 //!   --both           run f64 and f32 and print the largest difference of the scores
+//!   --compensated    carry the filter's strapdown attitude compensated
+//!                    (Estimator::try_new_compensated; with --both: both precisions)
 //!   --6d             no magnetometer (inclination is the meaningful score)
 //!   --params FILE    parameters from a parameter file (gyrostat::estimation::params_text),
 //!                    applied where it stands among the --set options
@@ -56,6 +58,7 @@ fn main() -> ExitCode {
     while let Some(a) = args.next() {
         match a.as_str() {
             "--f32" => mode.f32 = true,
+            "--compensated" => mode.compensated = true,
             "--6d" => mode.six_d = true,
             "--both" => both = true,
             "--quiet" => quiet = true,

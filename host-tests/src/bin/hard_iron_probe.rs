@@ -7,66 +7,68 @@
 //! ```text
 //! cargo run --release -p host-tests --bin hard_iron_probe -- LOG [NAME=VALUE]...
 //! ```
-use gyrostat::Vec3;
-use gyrostat::estimation::{Estimator, Params};
-use host_tests::broad::set_param;
-fn main() {
-    let mut a = std::env::args().skip(1);
-    let path = a.next().unwrap();
-    let mut p = Params::<f64>::default();
-    for s in a {
-        let (n, v) = s.split_once('=').unwrap();
-        set_param(&mut p, n, v).unwrap();
+//! The log is read by the pipeline's BROAD reader (`gyrostat_pipeline::broad::open_log`, the
+//! column finder of `broad_estimate`, the `estimate` tool and Python) and run through its
+//! estimate loop (`gyrostat_pipeline::estimate::Run`: the first-sample rule, the checked steps).
+
+use std::path::Path;
+use std::process::ExitCode;
+
+use gyrostat::estimation::Params;
+use gyrostat_pipeline::broad::{Units, open_log};
+use gyrostat_pipeline::estimate::{Options, Run, Sample, set_param};
+
+/// An environment setting, or its default when unset or not a number.
+fn setting<T: std::str::FromStr>(name: &str, default: T) -> T {
+    std::env::var(name)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
     }
-    type R = (f64, [f64; 3], [f64; 3], Option<[f64; 3]>);
-    let rows: Vec<R> = if path.ends_with(".gz") {
-        let log =
-            host_tests::broad::open_log(std::path::Path::new(&path), host_tests::broad::Units::SI)
-                .unwrap();
-        log.rows
-            .iter()
-            .map(|r| (r.t, r.gyro, r.accel, r.mag))
-            .collect()
-    } else {
-        let text = std::fs::read_to_string(&path).unwrap();
-        text.lines()
-            .skip(1)
-            .map(|line| {
-                let c: Vec<&str> = line.split(',').collect();
-                let n = |i: usize| c[i].parse::<f64>().unwrap();
-                (
-                    n(0),
-                    [n(1), n(2), n(3)],
-                    [n(4), n(5), n(6)],
-                    (!c[7].is_empty()).then(|| [n(7), n(8), n(9)]),
-                )
-            })
-            .collect()
-    };
-    let every: usize = std::env::var("EVERY")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(1);
-    let rows: Vec<R> = rows.into_iter().step_by(every).collect();
-    let step: f64 = std::env::var("STEP")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(1.0);
-    let mut f = Estimator::try_new(p).unwrap();
-    let mut prev: Option<f64> = None;
+}
+
+fn run() -> Result<(), String> {
+    let mut args = std::env::args().skip(1);
+    let path = args
+        .next()
+        .ok_or("usage: hard_iron_probe LOG [NAME=VALUE]...")?;
+    let mut p = Params::<f64>::default();
+    for s in args {
+        let (n, v) = s
+            .split_once('=')
+            .ok_or_else(|| format!("expected NAME=VALUE, got '{s}'"))?;
+        set_param(&mut p, n, v)?;
+    }
+    let every: usize = setting("EVERY", 1).max(1);
+    let step: f64 = setting("STEP", 1.0);
+    let log = open_log(Path::new(&path), Units::SI).map_err(|e| e.to_string())?;
+    let mut run = Run::try_new(p, Options::default()).map_err(|e| format!("parameters: {e}"))?;
     let mut next = 0.0;
-    for &(t, g, a, m) in &rows {
-        let dt = prev.map_or(f64::NAN, |p| t - p);
-        prev = Some(t);
-        let v = |x: [f64; 3]| Vec3::new(x[0], x[1], x[2]);
-        let _ = f.update(v(g), v(a), m.map(v), dt);
-        if t >= next {
-            next = t + step;
-            let (ap, fit) = f.hard_iron();
+    for row in log.rows.iter().step_by(every) {
+        let sample = Sample {
+            t: row.t,
+            gyro: row.gyro,
+            accel: row.accel,
+            mag: row.mag,
+        };
+        // A rejected row leaves the filter as it was; the probe goes on with the next.
+        let _ = run.push(&sample);
+        if row.t >= next {
+            next = row.t + step;
+            let (ap, fit) = run.estimator().hard_iron();
             let (h, sd) = fit.estimate();
             println!(
                 "{:5.1} applied {:6.2} {:6.2} {:6.2} | est {:7.2} {:7.2} {:7.2} sd {:6.2} {:6.2} {:6.2} nis {:8.2} r {:.4} ok {}",
-                t,
+                row.t,
                 ap.x,
                 ap.y,
                 ap.z,
@@ -82,4 +84,5 @@ fn main() {
             );
         }
     }
+    Ok(())
 }

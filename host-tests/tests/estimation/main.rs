@@ -9,6 +9,7 @@
 
 mod increments;
 mod mag_rate;
+mod rates;
 
 use gyrostat::estimation::{
     Covariance, EarthFrame, Estimator, FieldMonitor, Gains, Mode as FilterMode, Params,
@@ -746,11 +747,11 @@ fn ned_frame() {
     assert!(north[1].abs() < 1e-9 && north[0] > 15.0, "{north:?}");
 }
 
-/// A gyroscope increment `Δθ` is a mean over its step and is used as it is, while a rate
-/// sample is averaged with the previous one (the trapezoid): at a constant rate the two agree
+/// A gyroscope increment `Δθ` is a mean over its step and is used as it is, while rate
+/// samples are interpolated (Magnus-4 by default, or the trapezoid): at a constant rate the two agree
 /// (the increment `ω·Δt` against the rate `ω`, jittered steps, a turning sensor's
 /// accelerometer and field; both paths to 1e-12 rad); with a varying rate they differ by the
-/// trapezoid's correction (the rate path is checked against the truth in
+/// rate rule's correction (the rate path is checked against the truth in
 /// `magnetometer_delay_is_estimated` and the tool's convergence test).
 #[test]
 fn increment_input_equals_rate_input() {

@@ -510,8 +510,8 @@ fn t7_broad_runner_log_starting_while_turning() {
     for mode in [
         Mode::default(),
         Mode {
-            six_d: false,
             f32: true,
+            ..Mode::default()
         },
     ] {
         // The loop stops at the first row it rejects (an Err); every row has an outcome.
