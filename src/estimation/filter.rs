@@ -140,6 +140,8 @@ pub struct Estimator<T, A = UnitQuat<T>> {
     light: light::LightState<T>,
     /// The bias before the current rest's updates (`None` when not at rest).
     rest_bias: Option<Vec3<T>>,
+    /// How long (s) the current rest has lasted ([`Self::rest_ended`]).
+    rest_time: T,
     /// The full mode's 4th-order rate rules' window ([`RateRule`]): the last rate samples
     /// (clipped) and their intervals.
     window: RateWindow<T>,
@@ -263,6 +265,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             lowpass_stale: false,
             light: light::LightState::default(),
             rest_bias: None,
+            rest_time: T::ZERO,
         })
     }
 
@@ -454,7 +457,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
 
         if accel_use == SensorUse::Used {
             out.at_rest = self.rest.update(gyro, accel, dt, &self.params.rest);
-            self.rest_correction(out.at_rest, &mut x);
+            self.rest_correction(out.at_rest, dt, &mut x);
             out.accel = self.accel_update(accel, dt, &mut x);
         } else {
             out.accel = accel_use;
@@ -704,16 +707,31 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         }
     }
 
-    /// At rest, the rest update; after a rest that the specific force or the field showed to
-    /// be a slow turn ([`RestDetector::turning`]), what it taught undone: the bias back to its
-    /// value before that rest, its variance widened by the change the rest made (per axis), the
-    /// attitude variance by `(th_a/g)²` and the heading variance by the field monitor's
-    /// direction threshold squared (the turn the attitude missed while the bias cancelled it:
-    /// the specific force moved by `th_a` at most, the field's horizontal direction by that
-    /// angle at most, before the rest ended).
-    fn rest_correction(&mut self, at_rest: bool, x: &mut [T; 6]) {
+    /// At rest, the rest update (`dt` the step the bias was last propagated over); after a
+    /// rest that the specific force or the field showed to be a slow turn
+    /// ([`RestDetector::turning`]) and that the gyroscope saw as one, what it taught undone:
+    /// the bias back to its value before that rest, its variance widened by the change the
+    /// rest made (per axis), and the attitude variances by the turn the attitude missed while
+    /// the bias cancelled it.
+    ///
+    /// The rest's bias change `Δb` (earth frame, `R̂ (b̂ − b_before)`) is the rate of the turn
+    /// it cancelled. The detector called the rest a turn when, over the still period it watched
+    /// (the rest's duration `T` plus `t_min` before it), the specific force moved by `th_a`
+    /// (a tilt of `th_a/g`) or the field's horizontal direction by the field monitor's
+    /// direction threshold `th_δ` ([`RestDetector::turned_by_field`]). A turn of the sensor
+    /// shows in the gyroscope: relative to the bias before the rest it turned by
+    /// `|Δb|·(T + t_min)`, so the rest is undone when that covers at least half the angle of
+    /// the check that called it a turn, `|Δb_xy|·(T + t_min) ≥ th_a/(2g)` for the specific
+    /// force, `|Δb_z|·(T + t_min) ≥ th_δ/2` for the field. A field that changed while the
+    /// sensor stood still (a
+    /// magnet passing by) turns the field's horizontal direction as well, but the gyroscope saw
+    /// no turn (`Δb` is then the error of the bias before the rest): the rest's bias stands and
+    /// the heading keeps its weight against the changing field. The missed turn is `Δb·T`:
+    /// the tilt variances are raised by `min(|Δb_xy|² T², (th_a/g)²)` and the heading variance
+    /// by `min(Δb_z² T², th_δ²)` (the detector's angles bound it).
+    fn rest_correction(&mut self, at_rest: bool, dt: T, x: &mut [T; 6]) {
         if at_rest {
-            self.rest_update(x);
+            self.rest_update(dt, x);
         } else if self.rest_bias.is_some() {
             self.rest_ended();
         }
@@ -729,6 +747,21 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             return;
         }
         let d = self.bias - b;
+        let pr = &self.params;
+        let a = pr.rest.accel / T::from_f64(GRAVITY);
+        let h = pr.field.dip;
+        let rate = self.attitude_enu().rotate(d);
+        let (tilt2, heading2) = (rate.x * rate.x + rate.y * rate.y, rate.z * rate.z);
+        let watched = self.rest_time + pr.rest.min_duration;
+        let (w2, quarter) = (watched * watched, T::from_f64(0.25));
+        let seen = if self.rest.turned_by_field() {
+            heading2 * w2 >= quarter * h * h
+        } else {
+            tilt2 * w2 >= quarter * a * a
+        };
+        if !seen {
+            return;
+        }
         self.bias = b;
         for (i, di) in d.to_array().into_iter().enumerate() {
             if let Some(row) = self.p.bias.m.get_mut(i)
@@ -737,19 +770,22 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
                 *v += di * di;
             }
         }
-        let pr = &self.params;
-        let a = pr.rest.accel / T::from_f64(GRAVITY);
-        let h = pr.field.dip;
-        self.p.inflate_attitude(a * a);
-        self.p.inflate_heading(h * h);
+        let t2 = self.rest_time * self.rest_time;
+        self.p.inflate_attitude((tilt2 * t2).min(a * a));
+        self.p.inflate_heading((heading2 * t2).min(h * h));
         self.p.bound(T::PI * T::PI, self.bias_variance_max());
     }
 
     /// At rest, the mean rate measures the bias: `z = ω̄ − b̂ = δb + noise` (the bias before
-    /// the rest kept, see [`Self::rest_correction`]).
-    fn rest_update(&mut self, x: &mut [T; 6]) {
-        if self.rest_bias.is_none() {
-            self.rest_bias = Some(self.bias);
+    /// the rest kept, see [`Self::rest_correction`]); `dt` the step the current bias was
+    /// propagated over, added to the rest's duration.
+    fn rest_update(&mut self, dt: T, x: &mut [T; 6]) {
+        match self.rest_bias {
+            Some(_) => self.rest_time += dt,
+            None => {
+                self.rest_bias = Some(self.bias);
+                self.rest_time = T::ZERO;
+            }
         }
         let z = self.rest.mean_rate() - self.bias;
         let s = self.params.rest_bias_noise;

@@ -191,7 +191,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
 
         let mut x = [T::ZERO; 6];
         if s.accel_fed {
-            self.rest_correction(s.at_rest, &mut x);
+            self.rest_correction(s.at_rest, tc, &mut x);
             let used = self.tilt_update(self.accel_lp.output(), tc, &mut x);
             if accel_use == SensorUse::Used {
                 out.accel = used;

@@ -74,7 +74,9 @@
 //! 4. **Rest** — [`RestDetector`]: at rest the mean rate is a direct measurement of the bias
 //!    (three scalar updates of `δb`). A steady turn slower than the largest bias is not rest:
 //!    the specific force (or the field's horizontal direction) drifts, the detector then calls
-//!    it a turn, and what that rest taught the bias is undone. A tilt or heading innovation
+//!    it a turn, and what that rest taught the bias is undone when the gyroscope, relative to
+//!    the bias before the rest, turned by half the detector's angle (a magnet passing a still
+//!    sensor turns the field's direction but not the gyroscope). A tilt or heading innovation
 //!    that persists beyond three standard deviations raises its variance (a tilt learned from
 //!    a sustained acceleration, a heading from another field, is then corrected at once).
 //! 5. **Heading** (9D) — the field in the earth frame, `m = R̂ B`, gives the heading error

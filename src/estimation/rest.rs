@@ -13,7 +13,9 @@
 //! the sample `a₀` that started the still period, `|ā − a₀| ≥ th_a`. That steady rate is then
 //! a turn, and stays one (no rest) until the gyroscope moves (`|ω − ω̄| ≥ th_ω`): a slow turn
 //! would otherwise be still again for `t_min` after each restart. [`RestDetector::turning`]
-//! says so, and the estimator undoes what a rest that ended this way taught its bias. A turn
+//! says so, and the estimator undoes what a rest that ended this way taught its bias when the
+//! gyroscope saw the turn (relative to the bias before the rest; a field that changes around a
+//! still sensor turns the field's direction too, [`RestDetector::turned_by_field`]). A turn
 //! about the vertical leaves `a` alone; the field's horizontal direction shows it
 //! ([`RestDetector::update_field`], fed by the estimator with undisturbed field samples and the
 //! field monitor's direction threshold: a smaller angle ended true rests on BROAD's magnetically
@@ -34,6 +36,9 @@ pub struct RestDetector<T> {
     at_rest: bool,
     /// A steady rate found to be a turn (the specific force drifted), until the gyroscope moves.
     turning: bool,
+    /// Whether that turn was found by the field's horizontal direction (not by the specific
+    /// force).
+    field_turn: bool,
     /// The mean field over the still period (`None` until its first field sample).
     field: Option<LowPass<T>>,
     /// The horizontal direction of the mean field when the rest began (unit; zero until then).
@@ -53,6 +58,7 @@ impl<T: Real> RestDetector<T> {
             still_for: T::ZERO,
             at_rest: false,
             turning: false,
+            field_turn: false,
             field: None,
             field_anchor: Vec3::ZERO,
         }
@@ -71,6 +77,7 @@ impl<T: Real> RestDetector<T> {
             self.turning = false;
         } else if self.still_for > T::ZERO && (a - self.anchor).norm_squared() >= th_a2 {
             self.turning = true;
+            self.field_turn = false;
         }
         let moving = gyro_moving
             || self.turning
@@ -139,6 +146,7 @@ impl<T: Real> RestDetector<T> {
         }
         if (h - self.field_anchor).norm_squared() >= angle * angle {
             self.turning = true;
+            self.field_turn = true;
             self.still_for = T::ZERO;
             self.at_rest = false;
         }
@@ -156,6 +164,14 @@ impl<T: Real> RestDetector<T> {
     #[inline]
     pub fn turning(&self) -> bool {
         self.turning
+    }
+
+    /// Whether the turn of [`RestDetector::turning`] was found by the field's horizontal
+    /// direction ([`RestDetector::update_field`]: a turn about the vertical, or a field that
+    /// changed) rather than by the specific force (meaningful while `turning`).
+    #[inline]
+    pub fn turned_by_field(&self) -> bool {
+        self.field_turn
     }
 
     /// The mean rate `ω̄` (rad/s): the bias measurement while at rest.
