@@ -16,7 +16,6 @@ cell where gyrostat is behind, then the per-trial 6D inclination.
 """
 import argparse
 import json
-import os
 import pathlib
 import subprocess
 import sys
@@ -33,8 +32,7 @@ RATE = 2000.0 / 7.0
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--data", default=os.environ.get("GYROSTAT_BROAD_DIR",
-                                                     str(rp.ROOT.parent / "shared" / "real-data" / "broad")),
+    ap.add_argument("--data", default=rp.DEFAULT_DATA,
                     help="BROAD folder with score.py (default: $GYROSTAT_BROAD_DIR, else "
                          "../shared/real-data/broad beside the repository)")
     ap.add_argument("--every", default="1,2,3,6")
@@ -46,11 +44,7 @@ def main():
     args = ap.parse_args()
 
     data = pathlib.Path(args.data)
-    if not (data / "score.py").exists():
-        print(f"error: no BROAD folder at {data}", file=sys.stderr)
-        return 2
-    score = rp.load_score_module(data)
-    paths = sorted(data.glob("*.csv.gz"))
+    score, paths = rp.broad_trials(data)
     dims = [("6D", False)] + ([] if args.no_9d else [("9D", True)])
     vqf_v = rp.pkg_version("vqf")
     base_cache = rp.CACHE

@@ -102,6 +102,26 @@ GROUPS = [
 ]
 
 
+# The BROAD folder when no --data is given: $GYROSTAT_BROAD_DIR, else ../shared/real-data/broad
+# beside the repository.
+DEFAULT_DATA = os.environ.get("GYROSTAT_BROAD_DIR", str(ROOT.parent / "shared" / "real-data" / "broad"))
+
+
+def broad_trials(data, trials=None):
+    """score.py's module and the trial files (`*.csv.gz`, only the numbers in `trials` when
+    given) of the BROAD folder `data`; exits with one `error:` line (status 2) when either is
+    missing."""
+    data = Path(data)
+    paths = sorted(data.glob("*.csv.gz"))
+    if trials:
+        paths = [p for p in paths if p.name.split("_")[0] in set(trials)]
+    if not (data / "score.py").exists() or not paths:
+        print(f"error: no BROAD trials and score.py in {data} (pass --data DIR or set "
+              "GYROSTAT_BROAD_DIR; data/README.md says where to get them)", file=sys.stderr)
+        sys.exit(2)
+    return load_score_module(data), paths
+
+
 def load_score_module(data):
     spec = importlib.util.spec_from_file_location("broad_score", data / "score.py")
     mod = importlib.util.module_from_spec(spec)
@@ -309,8 +329,7 @@ def group_mean(results, stems, nine):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--data", default=os.environ.get("GYROSTAT_BROAD_DIR",
-                                                     str(ROOT.parent / "shared" / "real-data" / "broad")),
+    ap.add_argument("--data", default=DEFAULT_DATA,
                     help="BROAD folder with score.py (default: $GYROSTAT_BROAD_DIR, else "
                          "../shared/real-data/broad beside the repository; see data/README.md)")
     ap.add_argument("--trials", help="comma-separated trial numbers, e.g. 07,24 (default: all)")
@@ -336,14 +355,7 @@ def main():
     if args.every > 1:
         CACHE = CACHE / f"every{args.every}"
     data = Path(args.data)
-    score = load_score_module(data)
-    paths = sorted(data.glob("*.csv.gz"))
-    if args.trials:
-        want = set(args.trials.split(","))
-        paths = [p for p in paths if p.name.split("_")[0] in want]
-    if not paths:
-        sys.exit(f"error: no trials in {data} (pass --data DIR or set GYROSTAT_BROAD_DIR; "
-                 "data/README.md says where to get them)")
+    score, paths = broad_trials(data, args.trials.split(",") if args.trials else None)
     trials = [Trial(p, score, args.every) for p in paths]
     stems = [t.stem for t in trials]
 

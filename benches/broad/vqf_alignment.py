@@ -23,19 +23,14 @@ import run_peers as rp  # noqa: E402
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--data", default=str(rp.ROOT.parent / "shared" / "real-data" / "broad"))
+    ap.add_argument("--data", default=rp.DEFAULT_DATA)
     ap.add_argument("--every", default="1,2,3,6")
     ap.add_argument("--trials", default="", help="comma-separated trial numbers (default: all)")
     args = ap.parse_args()
     from vqf import VQF
 
     data = pathlib.Path(args.data)
-    if not (data / "score.py").exists():
-        print(f"error: no BROAD folder at {data}", file=sys.stderr)
-        return 2
-    score = rp.load_score_module(data)
-    sel = [s for s in args.trials.split(",") if s]
-    paths = [p for p in sorted(data.glob("*.csv.gz")) if not sel or p.name[:2] in sel]
+    score, paths = rp.broad_trials(data, [s for s in args.trials.split(",") if s])
     for every in (int(e) for e in args.every.split(",")):
         res = {}
         for p in paths:
