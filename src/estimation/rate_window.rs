@@ -107,16 +107,10 @@ impl<T: Real> RateWindow<T> {
         let (w1, w2) = (w1 - bias, w2 - bias);
         let step = match method {
             RateMethod::Cf4 => {
-                // The second vector as the step's mean rotation less the first: the same
-                // vectors, but their sum is `h·(ω₁ + ω₂)/2` to one rounding, where the two
-                // weights `¼ ± √3/6` rounded to f32 add up to ½ only within 1e-8, a scale error
-                // of every rotation that accumulates with the angle turned (measured 4.2e-6 rad
-                // over 10 minutes of hand-held motion in f32, compensated, against 1.8e-7
-                // for Magnus-4; `host-tests/tests/estimation/rates.rs`).
-                let (a, _) = cf4_rotation_vectors(w1, w2, h);
+                let (a, b) = cf4_rotation_vectors(w1, w2, h);
                 StepRotation {
                     first: a,
-                    second: Some((w1 + w2).scale(h * T::HALF) - a),
+                    second: Some(b),
                 }
             }
             // `RateRule` offers Magnus-4 and CF4 only.
