@@ -12,7 +12,7 @@ mod mag_rate;
 mod rates;
 
 use gyrostat::estimation::{
-    Covariance, EarthFrame, Estimator, FieldMonitor, Gains, Mode as FilterMode, Params,
+    Covariance, EarthFrame, Estimator, FieldMonitor, Gains, Mode as FilterMode, Params, RateRule,
     RestDetector, SensorUse, attitude_from_gravity, attitude_from_gravity_and_field,
 };
 use gyrostat::{Error, Mat3, Vec3};
@@ -999,9 +999,11 @@ fn parameters_by_name_and_between_precisions() {
 
 /// The parameter file (`Params::set_from_text`): a hand-written file sets exactly the fields it
 /// names (compared with the fields assigned directly), comments and blank lines are skipped,
-/// `inf` is an unlimited range, `heading_time_constant` selects fixed gains; `write_text` of
-/// parameters with every number changed reads back to the same parameters (f64 bit for bit);
-/// each kind of bad line is rejected with its line number and its kind.
+/// `inf` is an unlimited range, `heading_time_constant` selects fixed gains, `rate_rule` sets
+/// the rule by name and its absence keeps the rule the parameters held; `write_text` of
+/// parameters with every number changed, under each rate rule, reads back to the same
+/// parameters (f64 bit for bit); each kind of bad line is rejected with its line number and its
+/// kind.
 #[test]
 fn parameter_file() {
     let text = "# a sensor's file\n\
@@ -1009,6 +1011,7 @@ fn parameter_file() {
                 \n\
                    field.norm=0.15\n\
                 gyro_range = inf\n\
+                 rate_rule =  trapezoid  # the order-2 rule\n\
                 rest.min_duration = 2 # s\n";
     let mut p = Params::<f64>::default();
     p.set_from_text(text).unwrap();
@@ -1023,9 +1026,19 @@ fn parameter_file() {
             min_duration: 2.0,
             ..Params::<f64>::default().rest
         },
+        rate_rule: RateRule::Trapezoid,
         ..Params::default()
     };
     assert_eq!(p, expected);
+    // Without a `rate_rule` line the rule is the one the parameters held.
+    for rule in RateRule::ALL {
+        let mut r = Params::<f64> {
+            rate_rule: rule,
+            ..Params::default()
+        };
+        r.set_from_text("gyro_noise_density = 1.7e-4\n").unwrap();
+        assert_eq!(r.rate_rule, rule);
+    }
     let mut g = Params::<f32>::default();
     g.set_from_text("heading_time_constant = 9\n").unwrap();
     assert_eq!(
@@ -1040,12 +1053,25 @@ fn parameter_file() {
     for (k, name) in Params::<f64>::NAMES.iter().enumerate() {
         *q.parameter_mut(name).unwrap() = (k as f64 + 1.0) / 7.0;
     }
-    let mut written = String::new();
-    q.write_text(&mut written).unwrap();
-    assert_eq!(written.lines().count(), Params::<f64>::NAMES.len());
-    let mut back = Params::<f64>::default();
-    back.set_from_text(&written).unwrap();
-    assert_eq!(back, q);
+    for rule in RateRule::ALL {
+        q.rate_rule = rule;
+        let mut written = String::new();
+        q.write_text(&mut written).unwrap();
+        assert_eq!(written.lines().count(), Params::<f64>::NAMES.len() + 1);
+        let first = format!("rate_rule = {}", rule.name());
+        assert_eq!(written.lines().next(), Some(first.as_str()));
+        // Read into parameters of another rule: the file's rule wins.
+        let other = RateRule::ALL.into_iter().find(|r| *r != rule).unwrap();
+        let mut back = Params::<f64> {
+            rate_rule: other,
+            ..Params::default()
+        };
+        back.set_from_text(&written).unwrap();
+        assert_eq!(back, q);
+        let mut back32 = Params::<f32>::default();
+        back32.set_from_text(&written).unwrap();
+        assert_eq!(back32.rate_rule, rule);
+    }
 
     use gyrostat::estimation::ParamsTextErrorKind as K;
     for (bad, line, kind) in [
@@ -1056,11 +1082,28 @@ fn parameter_file() {
         ("accel_reject =\n", 1, K::BadNumber),
         ("accel_reject = 0.2\n\naccel_reject = 0.3\n", 3, K::Repeated),
         ("field_norm = 0.1\n", 1, K::UnknownName),
+        (
+            "accel_reject = 0.2\nrate_rule = rk4\n",
+            2,
+            K::UnknownRateRule,
+        ),
+        ("rate_rule = Magnus4\n", 1, K::UnknownRateRule),
+        ("rate_rule = 1\n", 1, K::UnknownRateRule),
+        ("rate_rule =\n", 1, K::UnknownRateRule),
+        ("rate_rule = cf4\nrate_rule = cf4\n", 2, K::Repeated),
+        ("rate_rule: cf4\n", 1, K::MissingEquals),
     ] {
         let e = Params::<f64>::default().set_from_text(bad).unwrap_err();
         assert_eq!((e.line, e.kind), (line, kind), "{bad:?}");
         assert!(e.to_string().starts_with(&format!("line {line}: ")), "{e}");
     }
+    let e = Params::<f64>::default()
+        .set_from_text("rate_rule = rk4\n")
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "line 1: unknown rate rule (trapezoid, magnus4, cf4)"
+    );
 }
 
 /// The parameter table (`gyrostat::estimator_parameters!`) keeps the defaults the estimator had

@@ -243,6 +243,10 @@ fn params_file_equals_set_flags() {
             "accel_time_constant = 1\naccel_time_constant = 2\n",
             "line 2",
         ),
+        (
+            "accel_time_constant = 1\nrate_rule = rk4\n",
+            "line 2: unknown rate rule (trapezoid, magnus4, cf4)",
+        ),
     ] {
         std::fs::write(&file, content).unwrap();
         let bad = run("estimate", &["--params", path], &text);
@@ -253,6 +257,42 @@ fn params_file_equals_set_flags() {
             bad.stderr
         );
     }
+}
+
+/// `rate_rule = NAME` in a parameter file is `--set rate_rule=NAME` (bit for bit) for every
+/// rule; the three rules give three different runs of a turning sensor, and a `--set` after the
+/// file wins.
+#[test]
+fn params_file_sets_the_rate_rule() {
+    let text = csv(&synthetic(1500), Some(PLAIN), 1.0, 1.0, Some(1.0));
+    let mut runs = Vec::new();
+    for rule in ["trapezoid", "magnus4", "cf4"] {
+        let file = tmp(&format!("estimate-rate-rule-{rule}.txt"));
+        std::fs::write(
+            &file,
+            format!("rate_rule = {rule}  # the step's rotation\n"),
+        )
+        .unwrap();
+        let path = file.to_str().unwrap();
+        let by_file = run("estimate", &["--params", path], &text);
+        let by_set = run("estimate", &["--set", &format!("rate_rule={rule}")], &text);
+        ok(&by_file);
+        ok(&by_set);
+        assert_eq!(by_file.stdout, by_set.stdout, "{rule}");
+        let other = if rule == "cf4" { "trapezoid" } else { "cf4" };
+        let overridden = run(
+            "estimate",
+            &["--params", path, "--set", &format!("rate_rule={other}")],
+            &text,
+        );
+        let by_other = run("estimate", &["--set", &format!("rate_rule={other}")], &text);
+        ok(&overridden);
+        assert_eq!(overridden.stdout, by_other.stdout, "{rule} then {other}");
+        runs.push(by_file.stdout);
+    }
+    assert_ne!(runs[0], runs[1]);
+    assert_ne!(runs[0], runs[2]);
+    assert_ne!(runs[1], runs[2]);
 }
 
 /// The largest angle between the rows of two runs (rad).
