@@ -122,6 +122,32 @@
 #define GYRO_MODE_LIGHT 1
 
 /**
+ * Estimator rate rule (`rate_rule` of the parameter structs): the rule the library gives
+ * parameters of the struct's other choices (frame, gains, mode; its `Params::from_values`, on
+ * which `Params::default()` is built), whatever it is in this version. The default parameters
+ * (`gyro_estimator_*_default_params`) hold this code.
+ */
+#define GYRO_RATE_RULE_DEFAULT 0
+
+/**
+ * Estimator rate rule: the mean of the step's two end samples (`RateRule::Trapezoid`, order 2,
+ * name `trapezoid`).
+ */
+#define GYRO_RATE_RULE_TRAPEZOID 1
+
+/**
+ * Estimator rate rule: Magnus-4 on the Gauss-node rates of the interpolant through the last
+ * four samples (`RateRule::Magnus4`, order 4, one exponential, name `magnus4`).
+ */
+#define GYRO_RATE_RULE_MAGNUS4 2
+
+/**
+ * Estimator rate rule: commutator-free CF4 on the same Gauss-node rates (`RateRule::Cf4`,
+ * order 4, two exponentials, name `cf4`).
+ */
+#define GYRO_RATE_RULE_CF4 3
+
+/**
  * A sensor sample corrected the estimate.
  */
 #define GYRO_SENSOR_USED 0
@@ -726,6 +752,14 @@ typedef struct {
    */
   float correction_period;
   /**
+   * How rate samples become a step's rotation: `GYRO_RATE_RULE_DEFAULT` (the
+   * library's rule for the other choices; the defaults hold it),
+   * `GYRO_RATE_RULE_TRAPEZOID`, `GYRO_RATE_RULE_MAGNUS4` or `GYRO_RATE_RULE_CF4`
+   * (the library's `Params::rate_rule`, named `trapezoid`, `magnus4`, `cf4` in
+   * the parameter file and Python).
+   */
+  uint32_t rate_rule;
+  /**
    * Gyroscope white noise, rad/s/√Hz (angle random walk). Default: the rate noise
    * spectral density of a consumer MEMS gyroscope (MPU-9250: 0.01 °/s/√Hz); a
    * characterisation reads it as the Allan deviation's slope −½ at 1 s.
@@ -938,6 +972,14 @@ typedef struct {
    * otherwise; the defaults hold 0.025).
    */
   double correction_period;
+  /**
+   * How rate samples become a step's rotation: `GYRO_RATE_RULE_DEFAULT` (the
+   * library's rule for the other choices; the defaults hold it),
+   * `GYRO_RATE_RULE_TRAPEZOID`, `GYRO_RATE_RULE_MAGNUS4` or `GYRO_RATE_RULE_CF4`
+   * (the library's `Params::rate_rule`, named `trapezoid`, `magnus4`, `cf4` in
+   * the parameter file and Python).
+   */
+  uint32_t rate_rule;
   /**
    * Gyroscope white noise, rad/s/√Hz (angle random walk). Default: the rate noise
    * spectral density of a consumer MEMS gyroscope (MPU-9250: 0.01 °/s/√Hz); a
@@ -1899,8 +1941,9 @@ gyro_status gyro_estimator_f64_attitude(const gyro_estimator_f64 *s,
                                         gyro_vec3_f64 *bias);
 
 /**
- * The library's default estimator parameters (ENU, Kalman gains; tuned on BROAD without
- * per-recording tuning) in `out`, to adjust before `gyro_estimator_f32_init_params`.
+ * The library's default estimator parameters (ENU, Kalman gains, the full mode and its rate
+ * rule as `GYRO_RATE_RULE_DEFAULT`; tuned on BROAD without per-recording tuning) in `out`, to
+ * adjust before `gyro_estimator_f32_init_params`.
  *
  * # Safety
  * Every pointer is NULL or points to a valid object of its type.
@@ -1920,7 +1963,7 @@ gyro_status gyro_estimator_f64_default_params(gyro_estimator_params_f64 *out);
  *
  * Errors: `GYRO_NON_FINITE` for a NaN parameter (infinite ranges are allowed);
  * `GYRO_INVALID_ARGUMENT` for a negative one, a zero time constant that divides, or an
- * unknown `frame`, `fixed_gains` or `mode`.
+ * unknown `frame`, `fixed_gains`, `mode` or `rate_rule`.
  *
  * # Safety
  * Every pointer is NULL or points to a valid object of its type.

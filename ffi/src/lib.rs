@@ -38,7 +38,9 @@ use core::ffi::c_char;
 use core::mem::{align_of, size_of};
 
 use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
-use gyrostat::estimation::{EarthFrame, Estimator, Gains, Mode, Outcome, Params, SensorUse};
+use gyrostat::estimation::{
+    EarthFrame, Estimator, Gains, Mode, Outcome, Params, RateRule, SensorUse,
+};
 use gyrostat::fixed::IncrementQuantizer;
 use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{
@@ -177,6 +179,21 @@ pub const GYRO_MODE_FULL: u32 = 0;
 /// Estimator mode: the prediction every sample, the covariance and the corrections once per
 /// `correction_period` (the library's `Mode::Light`).
 pub const GYRO_MODE_LIGHT: u32 = 1;
+
+/// Estimator rate rule (`rate_rule` of the parameter structs): the rule the library gives
+/// parameters of the struct's other choices (frame, gains, mode; its `Params::from_values`, on
+/// which `Params::default()` is built), whatever it is in this version. The default parameters
+/// (`gyro_estimator_*_default_params`) hold this code.
+pub const GYRO_RATE_RULE_DEFAULT: u32 = 0;
+/// Estimator rate rule: the mean of the step's two end samples (`RateRule::Trapezoid`, order 2,
+/// name `trapezoid`).
+pub const GYRO_RATE_RULE_TRAPEZOID: u32 = 1;
+/// Estimator rate rule: Magnus-4 on the Gauss-node rates of the interpolant through the last
+/// four samples (`RateRule::Magnus4`, order 4, one exponential, name `magnus4`).
+pub const GYRO_RATE_RULE_MAGNUS4: u32 = 2;
+/// Estimator rate rule: commutator-free CF4 on the same Gauss-node rates (`RateRule::Cf4`,
+/// order 4, two exponentials, name `cf4`).
+pub const GYRO_RATE_RULE_CF4: u32 = 3;
 
 /// A sensor sample corrected the estimate.
 pub const GYRO_SENSOR_USED: u32 = 0;
@@ -2114,9 +2131,28 @@ macro_rules! with_source {
     };
 }
 
+/// The library's rule of a `GYRO_RATE_RULE_*` code other than `GYRO_RATE_RULE_DEFAULT`.
+fn rate_rule_of(code: u32) -> Option<RateRule> {
+    match code {
+        GYRO_RATE_RULE_TRAPEZOID => Some(RateRule::Trapezoid),
+        GYRO_RATE_RULE_MAGNUS4 => Some(RateRule::Magnus4),
+        GYRO_RATE_RULE_CF4 => Some(RateRule::Cf4),
+        _ => None,
+    }
+}
+
+/// The `GYRO_RATE_RULE_*` code of a rule.
+fn rate_rule_code(rule: RateRule) -> u32 {
+    match rule {
+        RateRule::Trapezoid => GYRO_RATE_RULE_TRAPEZOID,
+        RateRule::Magnus4 => GYRO_RATE_RULE_MAGNUS4,
+        RateRule::Cf4 => GYRO_RATE_RULE_CF4,
+    }
+}
+
 /// The C parameter struct of one float width and its conversions to and from `Params`: the
-/// choices (frame, gains, mode) as `uint32_t` codes, then every numeric parameter of the
-/// library's table (`gyrostat::estimator_parameters!`), in its order, under its flat name.
+/// choices (frame, gains, mode, rate rule) as `uint32_t` codes, then every numeric parameter of
+/// the library's table (`gyrostat::estimator_parameters!`), in its order, under its flat name.
 macro_rules! c_params_struct {
     ($t:ty, $c:ident, $source:ident, [$(#[$doc:meta])*],
         [$( $(#[$m:meta])* $flat:ident; )*]) => {
@@ -2138,6 +2174,12 @@ macro_rules! c_params_struct {
                 /// The time (s) between two corrections with `mode` `GYRO_MODE_LIGHT` (ignored
                 /// otherwise; the defaults hold 0.025).
                 pub correction_period: $t,
+                /// How rate samples become a step's rotation: `GYRO_RATE_RULE_DEFAULT` (the
+                /// library's rule for the other choices; the defaults hold it),
+                /// `GYRO_RATE_RULE_TRAPEZOID`, `GYRO_RATE_RULE_MAGNUS4` or `GYRO_RATE_RULE_CF4`
+                /// (the library's `Params::rate_rule`, named `trapezoid`, `magnus4`, `cf4` in
+                /// the parameter file and Python).
+                pub rate_rule: u32,
                 $(
                     $(#[$m])*
                     pub $flat: $t,
@@ -2147,7 +2189,7 @@ macro_rules! c_params_struct {
 
         impl $c {
             /// The library's parameters of these (`GYRO_INVALID_ARGUMENT` for an unknown
-            /// frame, gains or mode code).
+            /// frame, gains, mode or rate rule code).
             #[doc(hidden)]
             pub fn to_params(self) -> Result<Params<$t>, gyro_status> {
                 let frame = match self.frame {
@@ -2169,7 +2211,12 @@ macro_rules! c_params_struct {
                     },
                     _ => return Err(GYRO_INVALID_ARGUMENT),
                 };
-                Ok(Params::from_values(frame, gains, mode, [$(self.$flat),*]))
+                let p = Params::from_values(frame, gains, mode, [$(self.$flat),*]);
+                let rate_rule = match self.rate_rule {
+                    GYRO_RATE_RULE_DEFAULT => p.rate_rule,
+                    code => rate_rule_of(code).ok_or(GYRO_INVALID_ARGUMENT)?,
+                };
+                Ok(Params { rate_rule, ..p })
             }
 
             /// The numeric parameter `i` of the table (the order of `Params::NAMES`).
@@ -2177,7 +2224,8 @@ macro_rules! c_params_struct {
                 [$(&mut self.$flat),*].into_iter().nth(i)
             }
 
-            /// The C struct of the library's parameters `p`.
+            /// The C struct of the library's parameters `p` (their rate rule as
+            /// `GYRO_RATE_RULE_DEFAULT` when it is the library's rule for their other choices).
             #[doc(hidden)]
             pub fn from_params(p: &Params<$t>) -> Self {
                 let (fixed_gains, heading_time_constant) = match p.gains {
@@ -2194,6 +2242,14 @@ macro_rules! c_params_struct {
                     EarthFrame::Enu => GYRO_FRAME_ENU,
                     EarthFrame::Ned => GYRO_FRAME_NED,
                 };
+                // The library's rule for these choices is written as the default code, so
+                // that a change of `mode` keeps following the library.
+                let default_rule = Params::from_values(p.frame, p.gains, p.mode, p.values()).rate_rule;
+                let rate_rule = if p.rate_rule == default_rule {
+                    GYRO_RATE_RULE_DEFAULT
+                } else {
+                    rate_rule_code(p.rate_rule)
+                };
                 let [$($flat),*] = p.values();
                 $c {
                     frame,
@@ -2201,6 +2257,7 @@ macro_rules! c_params_struct {
                     heading_time_constant,
                     mode,
                     correction_period,
+                    rate_rule,
                     $($flat,)*
                 }
             }
@@ -2474,8 +2531,9 @@ pub unsafe extern "C" fn gyro_estimator_f64_attitude(
     est_attitude::<f64, _>(s, attitude, bias)
 }
 
-/// The library's default estimator parameters (ENU, Kalman gains; tuned on BROAD without
-/// per-recording tuning) in `out`, to adjust before `gyro_estimator_f32_init_params`.
+/// The library's default estimator parameters (ENU, Kalman gains, the full mode and its rate
+/// rule as `GYRO_RATE_RULE_DEFAULT`; tuned on BROAD without per-recording tuning) in `out`, to
+/// adjust before `gyro_estimator_f32_init_params`.
 ///
 /// # Safety
 /// Every pointer is NULL or points to a valid object of its type.
@@ -2515,7 +2573,7 @@ pub unsafe extern "C" fn gyro_estimator_f64_default_params(
 ///
 /// Errors: `GYRO_NON_FINITE` for a NaN parameter (infinite ranges are allowed);
 /// `GYRO_INVALID_ARGUMENT` for a negative one, a zero time constant that divides, or an
-/// unknown `frame`, `fixed_gains` or `mode`.
+/// unknown `frame`, `fixed_gains`, `mode` or `rate_rule`.
 ///
 /// # Safety
 /// Every pointer is NULL or points to a valid object of its type.

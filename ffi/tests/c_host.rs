@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use gyrostat::dynamics::{Control, Gyrostat, Inertia, Integrator, State, Wheel};
-use gyrostat::estimation::{EarthFrame, Estimator, Outcome, Params, SensorUse};
+use gyrostat::estimation::{EarthFrame, Estimator, Outcome, Params, RateRule, SensorUse};
 use gyrostat::fixed::IncrementQuantizer;
 use gyrostat::propagation::CarriedAttitude;
 use gyrostat::propagation::{
@@ -527,6 +527,7 @@ fn estimators(r: &mut Rng, l: &mut Lines, f64: bool) {
     }
     let mut e32 = Estimator::<f32>::try_new(Params {
         gyro_range: 0.24,
+        rate_rule: RateRule::Cf4,
         ..Params::default()
     })
     .unwrap();

@@ -544,6 +544,170 @@ fn estimator_parameters_from_c() {
     }
 }
 
+/// The rate rule through the C struct: the default parameters hold `GYRO_RATE_RULE_DEFAULT`,
+/// which is the library's rule of the full and of the light mode's parameters; each named code
+/// is the library's rule of that name (set in the struct, read back from the library's
+/// parameters and written back), and an estimator started with it is the library's estimator
+/// with that rule, bit for bit (f64 and f32, on a turning record that does not repeat); the
+/// three rules give three estimates; an unknown code is `GYRO_INVALID_ARGUMENT` and leaves the
+/// estimator as it was.
+#[test]
+fn rate_rule_from_c() {
+    use gyrostat::estimation::{Estimator, Params, RateRule};
+    let mut p = gyro_estimator_params_f64::default();
+    let mut p32 = gyro_estimator_params_f32::default();
+    unsafe {
+        assert_eq!(gyro_estimator_f64_default_params(&mut p), GYRO_OK);
+        assert_eq!(gyro_estimator_f32_default_params(&mut p32), GYRO_OK);
+    }
+    assert_eq!(
+        (p.rate_rule, p32.rate_rule),
+        (GYRO_RATE_RULE_DEFAULT, GYRO_RATE_RULE_DEFAULT)
+    );
+    assert_eq!(p.to_params().unwrap(), Params::<f64>::default());
+    let mut light = p;
+    light.mode = GYRO_MODE_LIGHT;
+    assert_eq!(light.to_params().unwrap(), Params::<f64>::light());
+    assert_eq!(
+        gyro_estimator_params_f64::from_params(&Params::<f64>::light()),
+        light
+    );
+
+    // A level-ish sensor turning about a wandering axis; steps and rates never repeat.
+    let samples: Vec<(gyro_vec3_f64, gyro_vec3_f64, gyro_vec3_f64, f64)> = (0..400)
+        .map(|k| {
+            let t = f64::from(k);
+            let g = gyro_vec3_f64 {
+                x: 0.8 * (0.031 * t).sin(),
+                y: 0.5 * (0.017 * t + 0.4).cos(),
+                z: 1.2 + 0.3 * (0.0123 * t * t.sqrt()).sin(),
+            };
+            let a = gyro_vec3_f64 {
+                x: 0.2 * (0.05 * t).cos(),
+                y: 0.1,
+                z: 9.8,
+            };
+            let m = gyro_vec3_f64 {
+                x: 15.8 * (0.02 * t).sin(),
+                y: 15.8 * (0.02 * t).cos(),
+                z: -40.7,
+            };
+            (g, a, m, 0.01 + 0.002 * (1.7 * t).sin())
+        })
+        .collect();
+    let v = |v: gyro_vec3_f64| gyrostat::Vec3::new(v.x, v.y, v.z);
+    let v32 = |v: gyro_vec3_f64| gyrostat::Vec3::new(v.x as f32, v.y as f32, v.z as f32);
+    let mut finals = Vec::new();
+    for (code, name) in [
+        (GYRO_RATE_RULE_TRAPEZOID, "trapezoid"),
+        (GYRO_RATE_RULE_MAGNUS4, "magnus4"),
+        (GYRO_RATE_RULE_CF4, "cf4"),
+    ] {
+        p.rate_rule = code;
+        p32.rate_rule = code;
+        let lib = p.to_params().unwrap();
+        let lib32 = p32.to_params().unwrap();
+        assert_eq!(lib.rate_rule.name(), name);
+        assert_eq!(lib32.rate_rule, lib.rate_rule);
+        assert_eq!(
+            lib,
+            Params {
+                rate_rule: name.parse::<RateRule>().unwrap(),
+                ..Params::default()
+            }
+        );
+        // Written back: the code, or the default code where it is the library's default rule.
+        let back = gyro_estimator_params_f64::from_params(&lib);
+        let want = if lib.rate_rule == Params::<f64>::default().rate_rule {
+            GYRO_RATE_RULE_DEFAULT
+        } else {
+            code
+        };
+        assert_eq!(back.rate_rule, want, "{name}");
+        assert_eq!(back.to_params().unwrap(), lib);
+        assert_eq!(
+            gyro_estimator_params_f32::from_params(&lib32).to_params(),
+            Ok(lib32)
+        );
+
+        let mut c: gyro_estimator_f64 = zeroed();
+        let mut c32: gyro_estimator_f32 = zeroed();
+        let mut e = Estimator::<f64>::try_new(lib).unwrap();
+        let mut e32 = Estimator::<f32>::try_new(lib32).unwrap();
+        let mut o = gyro_estimator_outcome::default();
+        unsafe {
+            assert_eq!(gyro_estimator_f64_init_params(&mut c, &p), GYRO_OK);
+            assert_eq!(gyro_estimator_f32_init_params(&mut c32, &p32), GYRO_OK);
+            for &(g, a, m, dt) in &samples {
+                assert_eq!(
+                    gyro_estimator_f64_update(&mut c, &g, &a, &m, dt, &mut o),
+                    GYRO_OK
+                );
+                let f = |v: gyro_vec3_f64| gyro_vec3_f32 {
+                    x: v.x as f32,
+                    y: v.y as f32,
+                    z: v.z as f32,
+                };
+                assert_eq!(
+                    gyro_estimator_f32_update(&mut c32, &f(g), &f(a), &f(m), dt as f32, &mut o),
+                    GYRO_OK
+                );
+                e.update_9d(v(g), v(a), v(m), dt).unwrap();
+                e32.update_9d(v32(g), v32(a), v32(m), dt as f32).unwrap();
+            }
+        }
+        let mut q = SENTINEL;
+        let mut q32 = ID32;
+        unsafe {
+            assert_eq!(gyro_estimator_f64_attitude(&c, &mut q, null_mut()), GYRO_OK);
+            assert_eq!(
+                gyro_estimator_f32_attitude(&c32, &mut q32, null_mut()),
+                GYRO_OK
+            );
+        }
+        let (ql, ql32) = (e.attitude(), e32.attitude());
+        assert_eq!(
+            (q.w, q.x, q.y, q.z),
+            (ql.w(), ql.x(), ql.y(), ql.z()),
+            "{name}"
+        );
+        assert_eq!(
+            (q32.w, q32.x, q32.y, q32.z),
+            (ql32.w(), ql32.x(), ql32.y(), ql32.z()),
+            "{name} f32"
+        );
+        finals.push(q);
+
+        // An unknown code: refused, the running estimator unchanged.
+        for bad in [GYRO_RATE_RULE_CF4 + 1, u32::MAX] {
+            let mut b = p;
+            b.rate_rule = bad;
+            assert_eq!(b.to_params(), Err(GYRO_INVALID_ARGUMENT));
+            let mut b32 = p32;
+            b32.rate_rule = bad;
+            let mut after = SENTINEL;
+            unsafe {
+                assert_eq!(
+                    gyro_estimator_f64_init_params(&mut c, &b),
+                    GYRO_INVALID_ARGUMENT
+                );
+                assert_eq!(
+                    gyro_estimator_f32_init_params(&mut c32, &b32),
+                    GYRO_INVALID_ARGUMENT
+                );
+                assert_eq!(
+                    gyro_estimator_f64_attitude(&c, &mut after, null_mut()),
+                    GYRO_OK
+                );
+            }
+            assert_eq!(after, q);
+        }
+    }
+    assert_ne!(finals[0], finals[1]);
+    assert_ne!(finals[0], finals[2]);
+    assert_ne!(finals[1], finals[2]);
+}
+
 /// Every library error, listed beside a match without a wildcard: a new variant does not
 /// compile here until it is added to the list.
 fn every_error() -> Vec<gyrostat::Error> {
@@ -634,6 +798,7 @@ fn parameter_structs_follow_the_library_table() {
             "heading_time_constant",
             "mode",
             "correction_period",
+            "rate_rule",
         ];
         want.extend(Params::<f64>::FLAT_NAMES);
         assert_eq!(fields, want, "{name}");

@@ -2,7 +2,11 @@
  * (python/tests/test_faces.py): the same log through the `estimate` tool, Python's
  * gyrostat.estimate and this program must give the same rows, bit for bit.
  *
- *   faces f64|f32 [skip] < LOG.csv
+ *   faces f64|f32 [skip] [rate_rule=trapezoid|magnus4|cf4] < LOG.csv
+ *
+ * The estimator has the library's default parameters (gyro_estimator_*_default_params), with
+ * `rate_rule=NAME` the rule of that name (the `estimate` tool's `--set rate_rule=NAME`,
+ * Python's `rate_rule=`); an unknown name is a usage error (exit status 2).
  *
  * LOG.csv: a header line, then rows `t,gx,gy,gz,ax,ay,az[,mx,my,mz]` (s, rad/s, m/s^2, any
  * field unit); three empty magnetometer fields: no field sample in that row. The loop is the
@@ -94,16 +98,41 @@ static int fail(long line, int status) {
   return 1;
 }
 
+/* The GYRO_RATE_RULE_* code of a rule's name, or -1. */
+static long rate_rule(const char *name) {
+  if (!strcmp(name, "trapezoid")) return GYRO_RATE_RULE_TRAPEZOID;
+  if (!strcmp(name, "magnus4")) return GYRO_RATE_RULE_MAGNUS4;
+  if (!strcmp(name, "cf4")) return GYRO_RATE_RULE_CF4;
+  return -1;
+}
+
+static int usage(void) {
+  fprintf(stderr, "usage: faces f64|f32 [skip] [rate_rule=trapezoid|magnus4|cf4] < LOG.csv\n");
+  return 2;
+}
+
 int main(int argc, char **argv) {
-  if (argc < 2 || (strcmp(argv[1], "f64") && strcmp(argv[1], "f32"))) {
-    fprintf(stderr, "usage: faces f64|f32 [skip] < LOG.csv\n");
-    return 2;
-  }
+  if (argc < 2 || (strcmp(argv[1], "f64") && strcmp(argv[1], "f32"))) return usage();
   static filter f;
   f.f32 = strcmp(argv[1], "f32") == 0;
-  int skip = argc > 2 && strcmp(argv[2], "skip") == 0;
-  if (f.f32 ? gyro_estimator_f32_init(&f.e32, GYRO_FRAME_ENU)
-            : gyro_estimator_f64_init(&f.e64, GYRO_FRAME_ENU)) {
+  int skip = 0;
+  long rule = GYRO_RATE_RULE_DEFAULT;
+  for (int i = 2; i < argc; i++) {
+    if (!strcmp(argv[i], "skip")) {
+      skip = 1;
+    } else if (!strncmp(argv[i], "rate_rule=", 10)) {
+      rule = rate_rule(argv[i] + 10);
+      if (rule < 0) return usage();
+    } else {
+      return usage();
+    }
+  }
+  gyro_estimator_params_f64 p64;
+  gyro_estimator_params_f32 p32;
+  if (gyro_estimator_f64_default_params(&p64) || gyro_estimator_f32_default_params(&p32)) return 3;
+  p64.rate_rule = p32.rate_rule = (uint32_t)rule;
+  if (f.f32 ? gyro_estimator_f32_init_params(&f.e32, &p32)
+            : gyro_estimator_f64_init_params(&f.e64, &p64)) {
     return 3;
   }
   gyro_sample_clock_f64 clock;

@@ -376,10 +376,12 @@ static void bodies(void) {
 }
 
 static void estimators(void) {
-  /* f32 from a parameter struct: the defaults with a gyro range that some samples reach. */
+  /* f32 from a parameter struct: the defaults with a gyro range that some samples reach and
+   * the CF4 rate rule. */
   gyro_estimator_params_f32 params;
   status_line("est32_params", gyro_estimator_f32_default_params(&params));
   params.gyro_range = 0.24f;
+  params.rate_rule = GYRO_RATE_RULE_CF4;
   status_line("est32_init", gyro_estimator_f32_init_params(&est32, &params));
 #ifndef GYRO_SCENARIO_NO_F64_ESTIMATOR
   status_line("est64_init", gyro_estimator_f64_init(&est64, GYRO_FRAME_NED));
