@@ -429,6 +429,7 @@ def estimate(
     frame: str = "enu",
     precision: str = "f64",
     mode: str = "full",
+    rate_rule: Optional[str] = None,
     heading_time_constant: Optional[float] = None,
     params_file: Optional[str] = None,
     skip_errors: bool = False,
@@ -442,11 +443,18 @@ def estimate(
     the sensor turns fast). ``frame``: ``enu`` (x east,
     y magnetic north, z up) or ``ned``. ``mode``: ``full`` (every part of the filter on every
     sample) or ``light`` (the covariance and the corrections every 25 ms, a fixed magnetometer
-    delay: about a fifth of the cost; ``gyrostat::estimation::Mode``). ``heading_time_constant`` switches to fixed
+    delay: about a fifth of the cost; ``gyrostat::estimation::Mode``). ``rate_rule``: how rate
+    samples become a step's rotation in the full mode, ``trapezoid`` (the mean of the step's two
+    end samples, order 2), ``magnus4`` or ``cf4`` (order 4, on the Gauss-node rates of the
+    interpolant through the last four samples; ``gyrostat::estimation::RateRule``, the
+    parameter file's ``rate_rule = NAME``, the C struct's ``GYRO_RATE_RULE_*``); ``None`` keeps
+    the parameter file's rule, or else the library's default for the mode (``Params``'
+    documentation names it); an unknown name raises :class:`GyrostatError` (a ``ValueError``).
+    ``heading_time_constant`` switches to fixed
     (complementary) gains. ``params_file``: a parameter file (``name = value  # comment`` per
-    line, the library's names such as ``field.norm``, SI units; the format of
-    ``gyrostat::estimation::params_text``, read by the library's one parser; a bad line raises
-    naming it), applied to the defaults before the keywords. Any other keyword overrides a
+    line, the library's names such as ``field.norm``, SI units, and ``rate_rule = NAME``; the
+    format of ``gyrostat::estimation::params_text``, read by the library's one parser; a bad
+    line raises naming it), applied to the defaults before the keywords. Any other keyword overrides a
     parameter of :func:`estimator_defaults`. The loop is the ``estimate`` tool's (one code
     path, ``gyrostat_pipeline::estimate``): a time stamp not after the previous one, a step
     over 1000 s, a rate turning more than half a turn in its step or a non-finite time stamp or
@@ -471,6 +479,7 @@ def estimate(
         frame,
         precision,
         mode,
+        None if rate_rule is None else str(rate_rule),
         heading_time_constant,
         text,
         [(str(k), float(v)) for k, v in params.items()],

@@ -63,6 +63,7 @@ def estimate(
     frame: str,
     precision: str,
     mode: str,
+    rate_rule: Optional[str],
     heading_time_constant: Optional[float],
     params_text: Optional[str],
     params: List[Tuple[str, float]],

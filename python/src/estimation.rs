@@ -15,7 +15,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use gyrostat::Real;
-use gyrostat::estimation::{EarthFrame, Gains, Mode, Params, SensorUse};
+use gyrostat::estimation::{EarthFrame, Gains, Mode, Params, RateRule, SensorUse};
 use gyrostat_pipeline::estimate::{Options, RowError as RowError_, Run, Sample, Step};
 
 use crate::{RowError, array2, rows, values};
@@ -37,11 +37,13 @@ fn estimator_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     Ok(d)
 }
 
-/// The parameters in `T`: the defaults with the parameter file's text
-/// (`gyrostat::estimation::params_text`), then `overrides`, `frame` and fixed gains applied.
+/// The parameters in `T`: the defaults of `frame` and `mode` with the parameter file's text
+/// (`gyrostat::estimation::params_text`), then the rate rule (`None`: the file's, else the
+/// defaults'), fixed gains and `overrides` applied.
 fn params<T: Real>(
     frame: EarthFrame,
     mode: Mode<T>,
+    rate_rule: Option<RateRule>,
     heading_time_constant: Option<f64>,
     params_text: Option<&str>,
     overrides: &[(String, f64)],
@@ -54,6 +56,9 @@ fn params<T: Real>(
     if let Some(text) = params_text {
         p.set_from_text(text)
             .map_err(|e| RowError::call(format!("params_file: {e}")))?;
+    }
+    if let Some(rule) = rate_rule {
+        p.rate_rule = rule;
     }
     if let Some(tau) = heading_time_constant {
         p.gains = Gains::Fixed {
@@ -170,9 +175,10 @@ fn run<T: Real + std::fmt::Debug>(
 /// `q` (sensor → earth, `w, x, y, z`), `bias` (rad/s), `accel_used`, `mag_used`, `at_rest`,
 /// `attitude_std` (heading, inclination; rad), `initialized` (the attitude is initialised
 /// after the sample), `skipped` (a bad sample skipped as a gap, `skip_errors`). `mode`: `full` or `light`
-/// (`gyrostat::estimation::Mode`).
+/// (`gyrostat::estimation::Mode`). `rate_rule`: `trapezoid`, `magnus4`, `cf4`
+/// (`gyrostat::estimation::RateRule`), or `None` for the parameter file's or the defaults'.
 #[pyfunction]
-#[pyo3(signature = (t, gyro, accel, mag, frame, precision, mode, heading_time_constant, params_text, params, skip_errors))]
+#[pyo3(signature = (t, gyro, accel, mag, frame, precision, mode, rate_rule, heading_time_constant, params_text, params, skip_errors))]
 #[allow(clippy::too_many_arguments)]
 fn estimate<'py>(
     py: Python<'py>,
@@ -183,6 +189,7 @@ fn estimate<'py>(
     frame: &str,
     precision: &str,
     mode: &str,
+    rate_rule: Option<&str>,
     heading_time_constant: Option<f64>,
     params_text: Option<String>,
     params: Vec<(String, f64)>,
@@ -215,11 +222,22 @@ fn estimate<'py>(
             return Err(RowError::call(format!("mode: unknown {mode:?} (full, light)")).into());
         }
     };
+    let rate_rule = match rate_rule {
+        None => None,
+        Some(name) => Some(name.parse::<RateRule>().map_err(|_| {
+            let names: Vec<&str> = RateRule::ALL.iter().map(|r| r.name()).collect();
+            RowError::call(format!(
+                "rate_rule: unknown {name:?} ({})",
+                names.join(", ")
+            ))
+        })?),
+    };
     let tr = match precision {
         "f64" => {
             let p = self::params::<f64>(
                 frame,
                 if light { Mode::light() } else { Mode::Full },
+                rate_rule,
                 heading_time_constant,
                 params_text.as_deref(),
                 &params,
@@ -230,6 +248,7 @@ fn estimate<'py>(
             let p = self::params::<f32>(
                 frame,
                 if light { Mode::light() } else { Mode::Full },
+                rate_rule,
                 heading_time_constant,
                 params_text.as_deref(),
                 &params,

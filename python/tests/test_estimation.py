@@ -186,3 +186,45 @@ def test_params_file(tmp_path):
     f.write_text("accel_time_constant = 1.5\nbogus = 1\n")
     with pytest.raises(GyrostatError, match="params_file: line 2: unknown parameter name"):
         gyrostat.estimate(t, gyro, accel, mag, params_file=str(f))
+
+
+def test_rate_rule(tmp_path):
+    """``rate_rule=``: the three rules by name give three runs, one of them the defaults' (None);
+    the parameter file's ``rate_rule = NAME`` gives the keyword's run bit for bit and the keyword
+    wins over the file; an unknown name raises a ``ValueError`` naming the rules, in the keyword
+    and in the file (with its line); f32 as well."""
+    t, gyro, accel, mag, _ = synthetic(4000)
+    default = gyrostat.estimate(t, gyro, accel, mag)
+    runs = {r: gyrostat.estimate(t, gyro, accel, mag, rate_rule=r)
+            for r in ["trapezoid", "magnus4", "cf4"]}
+    qs = [est.q for est in runs.values()]
+    assert not (qs[0] == qs[1]).all()
+    assert not (qs[0] == qs[2]).all()
+    assert not (qs[1] == qs[2]).all()
+    assert sum((q == default.q).all() for q in qs) == 1
+    assert (gyrostat.estimate(t, gyro, accel, mag, rate_rule=None).q == default.q).all()
+    f = tmp_path / "rule.txt"
+    for rule, est in runs.items():
+        f.write_text(f"# the rule\nrate_rule = {rule}\n")
+        by_file = gyrostat.estimate(t, gyro, accel, mag, params_file=str(f))
+        assert (by_file.q == est.q).all(), rule
+        other = "cf4" if rule != "cf4" else "trapezoid"
+        both = gyrostat.estimate(t, gyro, accel, mag, params_file=str(f), rate_rule=other)
+        assert (both.q == runs[other].q).all(), (rule, other)
+        f32_file = gyrostat.estimate(t, gyro, accel, mag, params_file=str(f), precision="f32")
+        f32_key = gyrostat.estimate(t, gyro, accel, mag, rate_rule=rule, precision="f32")
+        assert (f32_file.q == f32_key.q).all(), rule
+    trap32 = gyrostat.estimate(t, gyro, accel, mag, rate_rule="trapezoid", precision="f32")
+    cf4_32 = gyrostat.estimate(t, gyro, accel, mag, rate_rule="cf4", precision="f32")
+    assert not (trap32.q == cf4_32.q).all()
+    with pytest.raises(ValueError, match=r'^rate_rule: unknown "rk4" \(trapezoid, magnus4, cf4\)$'):
+        gyrostat.estimate(t, gyro, accel, mag, rate_rule="rk4")
+    with pytest.raises(GyrostatError, match='rate_rule: unknown "Magnus4"'):
+        gyrostat.estimate(t, gyro, accel, mag, rate_rule="Magnus4", precision="f32")
+    f.write_text("accel_time_constant = 1.5\nrate_rule = rk4\n")
+    with pytest.raises(ValueError,
+                       match=r"params_file: line 2: unknown rate rule \(trapezoid, magnus4, cf4\)"):
+        gyrostat.estimate(t, gyro, accel, mag, params_file=str(f))
+    # The light mode takes the keyword too.
+    light = gyrostat.estimate(t, gyro, accel, mag, mode="light", rate_rule="cf4")
+    assert light.q.shape == (4000, 4)

@@ -102,13 +102,22 @@ def run(cmd, stdin_path: Path):
         return subprocess.run(cmd, stdin=f, capture_output=True, text=True, check=False)
 
 
-def check_faces(c_program: Path, path: Path, t, gyro, accel, mag, *, skip: bool, expect_error_row=None):
-    """The log through the three faces in f64 and f32: the same rows, or the same failing row."""
+def check_faces(c_program: Path, path: Path, t, gyro, accel, mag, *, skip: bool, expect_error_row=None,
+                rate_rule=None):
+    """The log through the three faces in f64 and f32: the same rows, or the same failing row.
+    `rate_rule`: a rule's name given to every face (the tool's `--set rate_rule=`, Python's
+    `rate_rule=`, the C program's `rate_rule=`), or None for the defaults. Returns the tool's
+    f64 output."""
     t_text = [repr(float(x)) for x in t]
+    rule_cli = [] if rate_rule is None else ["--set", f"rate_rule={rate_rule}"]
+    rule_c = [] if rate_rule is None else [f"rate_rule={rate_rule}"]
+    out = None
     for precision, dtype in [("f64", np.float64), ("f32", np.float32)]:
         cli = run([str(tool("estimate")), *(["--f32"] if precision == "f32" else []),
-                   *(["--skip-bad-rows"] if skip else []), str(path)], path)
-        c = run([str(c_program), precision, *(["skip"] if skip else [])], path)
+                   *(["--skip-bad-rows"] if skip else []), *rule_cli, str(path)], path)
+        c = run([str(c_program), precision, *(["skip"] if skip else []), *rule_c], path)
+        if precision == "f64":
+            out = cli.stdout
         if expect_error_row is not None:
             line = expect_error_row + 2  # the header is line 1
             assert cli.returncode == 1 and cli.stderr.startswith(f"error: line {line}: "), cli.stderr
@@ -125,7 +134,8 @@ def check_faces(c_program: Path, path: Path, t, gyro, accel, mag, *, skip: bool,
             continue
         assert cli.returncode == 0, cli.stderr
         assert c.returncode == 0, c.stderr
-        est = gyrostat.estimate(t, gyro, accel, mag, precision=precision, skip_errors=skip)
+        est = gyrostat.estimate(t, gyro, accel, mag, precision=precision, skip_errors=skip,
+                                rate_rule=rate_rule)
         tool_rows = parse_rows(cli.stdout, dtype)
         c_rows = parse_rows(c.stdout, dtype)
         py_rows = python_rows(est, dtype, t_text)
@@ -142,7 +152,7 @@ def check_faces(c_program: Path, path: Path, t, gyro, accel, mag, *, skip: bool,
             assert r_py[3] == (rest == "1"), where
             assert r_py[4] == (accel_flag == "used"), where
             assert r_py[5] == (mag_flag == "used"), where
-    return None
+    return out
 
 
 def rotating(n: int, dt: float, rate: float, seed: int):
@@ -220,3 +230,24 @@ def test_non_finite_rows(c_program, tmp_path):
     write_log(path, t, gyro, accel, mag)
     check_faces(c_program, path, t, gyro, accel, mag, skip=True)
     check_faces(c_program, path, t, gyro, accel, mag, skip=False, expect_error_row=200)
+
+
+def test_rate_rules(c_program, tmp_path):
+    """Each rate rule by name in every face (the tool's --set, Python's keyword, the C struct's
+    code): the same rows bit for bit; the three rules give three different runs, one of them
+    the defaults' run; an unknown name is refused by every face."""
+    t, gyro, accel, mag = rotating(600, 0.01, 1.5, seed=6)
+    gyro[:, 0] += 0.4 * np.sin(0.013 * np.arange(600) ** 1.3)  # a rate that bends
+    path = tmp_path / "rules.csv"
+    write_log(path, t, gyro, accel, mag)
+    runs = {rule: check_faces(c_program, path, t, gyro, accel, mag, skip=False, rate_rule=rule)
+            for rule in ["trapezoid", "magnus4", "cf4"]}
+    assert len(set(runs.values())) == 3
+    default = run([str(tool("estimate")), str(path)], path).stdout
+    assert sum(out == default for out in runs.values()) == 1
+    bad_cli = run([str(tool("estimate")), "--set", "rate_rule=rk4", str(path)], path)
+    assert bad_cli.returncode == 2 and bad_cli.stderr.startswith("error: "), bad_cli.stderr
+    bad_c = run([str(c_program), "f64", "rate_rule=rk4"], path)
+    assert bad_c.returncode == 2 and bad_c.stdout == "", bad_c.stderr
+    with pytest.raises(ValueError, match='rate_rule: unknown "rk4"'):
+        gyrostat.estimate(t, gyro, accel, mag, rate_rule="rk4")
