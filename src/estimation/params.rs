@@ -395,8 +395,10 @@ impl RateRule {
         }
     }
 
-    /// The rule's name in the tools and Python: `trapezoid`, or the rate method's
-    /// ([`RateMethod::name`]: `magnus4`, `cf4`).
+    /// The rule's name in the tools (`--set rate_rule=NAME`), the parameter file
+    /// (`rate_rule = NAME`, [`super::params_text`]) and Python (`estimate(rate_rule=NAME)`):
+    /// `trapezoid`, or the rate method's ([`RateMethod::name`]: `magnus4`, `cf4`). The C
+    /// interface gives each rule a code (`GYRO_RATE_RULE_TRAPEZOID`, `_MAGNUS4`, `_CF4`).
     pub const fn name(self) -> &'static str {
         match self.method() {
             None => "trapezoid",

@@ -129,11 +129,15 @@ OPTIONS:
                    set anywhere in the rows a point stands for).
     --params FILE  the estimator's parameters from a parameter file (the format of
                    gyrostat::estimation::params_text: `name = value  # comment` per line,
-                   names as for --set, SI units; the characterisation tool writes it);
+                   names as for --set, SI units, `rate_rule = NAME` for the rate rule; the
+                   characterisation tool writes it; an unknown name or rule, a repeated name
+                   or a bad number is `error: --params: FILE: line N: reason`, status 2);
                    names it does not give keep their defaults; --set applies after it
     --set NAME=VALUE  an estimator parameter (gyrostat::estimation::Params; SI units, angles
                    in rad; a value ending in deg or deg/s is converted): gains=kalman,
                    heading_time_constant (complementary gains), light_period (light mode, s),
+                   rate_rule (how rate samples become a step's rotation: trapezoid, magnus4,
+                   cf4; default: the library's, Params::rate_rule),
                    gyro_noise_density,
                    gyro_scale_noise, gyro_bias_initial, gyro_bias_stability, gyro_bias_time,
                    gyro_bias_max, gyro_range, gyro_delay, accel_range, accel_time_constant,
