@@ -2376,11 +2376,10 @@ fn est_init<T: CFloat, S: Slot<Inner = Estimator<T>>>(s: *mut S, frame: u32) -> 
             GYRO_FRAME_NED => EarthFrame::Ned,
             _ => return Err(GYRO_INVALID_ARGUMENT),
         };
-        let params = Params {
-            frame,
-            ..Params::default()
-        };
-        init(s, Estimator::try_new(params)?)
+        init(
+            s,
+            Estimator::try_new(Params::defaults_of(frame, Mode::Full))?,
+        )
     })())
 }
 

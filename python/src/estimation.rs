@@ -37,9 +37,9 @@ fn estimator_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     Ok(d)
 }
 
-/// The parameters in `T`: the defaults of `frame` and `mode` with the parameter file's text
-/// (`gyrostat::estimation::params_text`), then the rate rule (`None`: the file's, else the
-/// defaults'), fixed gains and `overrides` applied.
+/// The parameters in `T`: the defaults of `frame` and `mode` (`Params::defaults_of`) with the
+/// parameter file's text (`gyrostat::estimation::params_text`), then the rate rule (`None`:
+/// the file's, else the defaults'), fixed gains and `overrides` applied.
 fn params<T: Real>(
     frame: EarthFrame,
     mode: Mode<T>,
@@ -48,11 +48,7 @@ fn params<T: Real>(
     params_text: Option<&str>,
     overrides: &[(String, f64)],
 ) -> Result<Params<T>, RowError> {
-    let mut p = Params::<T> {
-        frame,
-        mode,
-        ..Params::default()
-    };
+    let mut p = Params::<T>::defaults_of(frame, mode);
     if let Some(text) = params_text {
         p.set_from_text(text)
             .map_err(|e| RowError::call(format!("params_file: {e}")))?;

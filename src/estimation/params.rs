@@ -689,6 +689,16 @@ impl<T: Real> Params<T> {
         }
     }
 
+    /// The default parameters in earth frame `frame` and mode `mode`: the numbers and gains of
+    /// [`Params::default`], and the choices [`Params::from_values`] gives that frame and mode
+    /// (the rate rule among them). The faces that take a frame and a mode by name (the
+    /// `estimate` tool, Python's `estimate`) start from these, and the C structs' default rate
+    /// rule code is the same rule, so that a default that depends on the mode reaches them all.
+    pub fn defaults_of(frame: EarthFrame, mode: Mode<T>) -> Self {
+        let d = Self::default();
+        Self::from_values(frame, d.gains, mode, d.values())
+    }
+
     /// Checks every parameter against its [`Domain`] ([`Params::DOMAINS`]), the heading time
     /// constant of [`Gains::Fixed`] and the period of [`Mode::Light`] (finite, `≥ 0`).
     /// [`Estimator::try_new`](super::Estimator::try_new) starts with it.

@@ -1030,6 +1030,18 @@ fn parameter_file() {
         ..Params::default()
     };
     assert_eq!(p, expected);
+    // The defaults of a frame and a mode (where the faces start).
+    assert_eq!(
+        Params::<f64>::defaults_of(EarthFrame::Enu, FilterMode::Full),
+        Params::default()
+    );
+    assert_eq!(
+        Params::<f32>::defaults_of(EarthFrame::Ned, FilterMode::light()),
+        Params {
+            frame: EarthFrame::Ned,
+            ..Params::light()
+        }
+    );
     // Without a `rate_rule` line the rule is the one the parameters held.
     for rule in RateRule::ALL {
         let mut r = Params::<f64> {

@@ -228,11 +228,7 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
             .parse()
             .map_err(|_| format!("--mode must be full or light, got '{name}'"))?,
     };
-    let mut params = Params::<f64> {
-        frame,
-        mode,
-        ..Params::default()
-    };
+    let mut params = Params::<f64>::defaults_of(frame, mode);
     if let Some(path) = f.value("--params") {
         let text = std::fs::read_to_string(path).map_err(|e| format!("--params: {path}: {e}"))?;
         params
