@@ -5,7 +5,7 @@ the loop of ``gyrostat-pipeline`` (pipeline/src/estimate.rs); the C program writ
 with the C interface. Logs: the trimmed BROAD trial 07 (data/broad/), a log that starts while
 the sensor turns at 5 rad/s, a log with a time gap, clipped samples (a rate beyond the
 gyroscope's range, a garbage specific force), and non-finite rows (skipped as gaps, or ending
-the run at the same line in every face); f64 and f32.
+the run at the same line in every face), and each rate rule by name; f64 and f32.
 
 The C program is built with the host C compiler against target/release/libgyrostat_ffi.a (the
 README test command builds it: ffi/tests/c_host.rs); without a compiler or the library the test
