@@ -397,11 +397,11 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             return Ok(out);
         }
 
-        // The full mode's 4th-order rule on rate samples (`RateRule`; the light mode and
-        // increments take the mean rate below).
-        let fourth = match self.params.mode {
-            Mode::Full if !self.rate_is_mean => self.params.rate_rule.method(),
-            _ => None,
+        // The 4th-order rule on rate samples (`RateRule`; increments take the mean rate below).
+        let fourth = if self.rate_is_mean {
+            None
+        } else {
+            self.params.rate_rule.method()
         };
         // The mean rate over the step: the trapezoid of the two samples at its ends (an
         // increment's rate is that mean already, and the previous increment is the coning
@@ -437,7 +437,16 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         self.last_gyro = gyro;
         self.last_saturated = out.gyro_saturated;
         if let Mode::Light { correction_period } = self.params.mode {
+            let step = match fourth {
+                Some(RateMethod::Magnus4) => {
+                    self.window.push(gyro, dt, out.gyro_saturated);
+                    StepRotation::single(self.window.magnus4_cached(gyro, self.bias, dt))
+                }
+                Some(method) => self.fourth_order_step(method, gyro, dt, out.gyro_saturated),
+                None => StepRotation::at_rate(mean_rate - self.bias, dt),
+            };
             return Ok(self.update_light(
+                step,
                 mean_rate,
                 gyro,
                 accel,
@@ -533,7 +542,8 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
 
     /// The step's rotation by a 4th-order rule: the sample `gyro` into the window, the rule's
     /// rotation vector(s) from it ([`RateWindow::rotation`]).
-    // Out of line, as `coned_rate`: only the full mode's 4th-order rules take it.
+    // Out of line, as `coned_rate`: only the full mode's 4th-order rules and the light mode's
+    // CF4 take it.
     #[inline(never)]
     fn fourth_order_step(
         &mut self,

@@ -274,8 +274,7 @@ pub enum Mode<T> {
     /// updates (variances for one measurement per `T_c`) once per `correction_period` `T_c`
     /// (s, sample time). No magnetometer-delay estimate: the field sample is carried back by a
     /// delay `d` to first order, `m − d·(ω × m)`, `d` = [`Params::mag_delay`] when
-    /// [`Params::mag_delay_estimation_time`] is 0, else [`Mode::LIGHT_MAG_DELAY`] less
-    /// [`Mode::LIGHT_MAG_DELAY_PER_STEP`] times the sample step. Between
+    /// [`Params::mag_delay_estimation_time`] is 0, else [`Mode::LIGHT_MAG_DELAY`]. Between
     /// corrections the [`Outcome`](super::Outcome) reports a valid magnetometer sample as the
     /// last correction did. Cost and accuracy: BENCHMARKS.md (about a fifth of the full mode's
     /// cost on the M4F).
@@ -289,18 +288,15 @@ impl<T: Real> Mode<T> {
     /// The default correction period (s) of [`Mode::Light`]: 25 ms (40 Hz).
     pub const LIGHT_PERIOD: f64 = 0.025;
 
-    /// The magnetometer delay `d₀` (s) the light mode applies in place of the online estimate,
-    /// less [`Mode::LIGHT_MAG_DELAY_PER_STEP`] times the sample step: `d = d₀ − c·Δt`
-    /// (`d ≥ 0`). 10 ms: read off BROAD's trials of half A (01 05 09 14 21 26 30 34, the
-    /// light mode's mean total over fixed delays at 285.7, 95.2 and 47.6 Hz: best near 9.2,
-    /// 7.5 and 5 ms), checked on half B (BENCHMARKS.md). The full mode's online estimates on
-    /// the same trials are 5.1–13.9 ms at every rate.
-    pub const LIGHT_MAG_DELAY: f64 = 0.010;
-
-    /// The part `c` of the sample step `Δt` taken off the light mode's magnetometer delay,
-    /// `d = d₀ − c·Δt` (see [`Mode::LIGHT_MAG_DELAY`]): 1/4, from the same scan (half A's best
-    /// fixed delay falls by 4–5 ms from 3.5 ms to 21 ms steps; half B's by 4).
-    pub const LIGHT_MAG_DELAY_PER_STEP: f64 = 0.25;
+    /// The magnetometer delay `d` (s) the light mode applies in place of the online estimate,
+    /// at every sample rate: 9.25 ms, read off BROAD's trials of half A (01 05 09 14 21 26 30
+    /// 34: the light mode's mean total over fixed delays 8–10 ms at 285.7, 142.9, 95.2 and
+    /// 47.6 Hz, Magnus-4 rate rule), checked on half B (BENCHMARKS.md, "the light mode's rate
+    /// rule"). The full mode's online estimates on the same trials are 5.1–13.9 ms at every
+    /// rate. With [`RateRule::Trapezoid`] the delay that scores best falls by about a quarter
+    /// of the sample step: that rule's error at long steps, which a shorter delay partly
+    /// offsets, not a property of the sensor.
+    pub const LIGHT_MAG_DELAY: f64 = 0.009_25;
 
     /// [`Mode::Light`] with the default correction period [`Mode::LIGHT_PERIOD`].
     pub fn light() -> Self {
