@@ -63,8 +63,8 @@ pub(super) struct LightState<T> {
 }
 
 /// What the light mode's per-sample work computes from the step `Δt` alone, kept for the next
-/// sample with the same `Δt` (a fixed sample rate): two divisions and an exponential or its
-/// series fewer per sample, which is most of a soft-float core's cost of a sample, and the
+/// sample with the same `Δt` (a fixed sample rate): four divisions and two exponentials or
+/// their series fewer per sample, which is most of a soft-float core's cost of a sample, and the
 /// magnetometer delay computed once (the values are the same numbers as computed afresh).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct StepFactors<T> {
@@ -74,6 +74,8 @@ struct StepFactors<T> {
     scale_noise: T,
     /// The inertial low-pass's stage gain ([`LowPass::gain`]).
     lowpass_gain: T,
+    /// The rest detector's low-pass stage gain ([`LowPass::gain`] of its time constant).
+    rest_gain: T,
     /// The magnetometer delay `d` (s) the field sample is carried back by (module docs).
     mag_delay: T,
 }
@@ -97,6 +99,7 @@ impl<T: Real> StepFactors<T> {
                 dt,
                 scale_noise: (s2 / dt).min(T::ONE),
                 lowpass_gain: LowPass::gain(pr.accel_time_constant, dt),
+                rest_gain: LowPass::gain(pr.rest.time_constant, dt),
                 mag_delay: mag_delay(pr),
             };
         }
@@ -138,7 +141,9 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             self.lowpass_stale = true;
         }
         if accel_use == SensorUse::Used {
-            s.at_rest = self.rest.update(gyro, accel, dt, &pr.rest);
+            s.at_rest = self
+                .rest
+                .update_with_gain(gyro, accel, dt, factors.rest_gain, &pr.rest);
             let a_gyro = self.q_gyro.attitude().rotate(accel);
             if self.lowpass_stale {
                 self.accel_lp = LowPass::at(a_gyro);
