@@ -142,7 +142,7 @@ pub struct Estimator<T, A = UnitQuat<T>> {
     rest_bias: Option<Vec3<T>>,
     /// How long (s) the current rest has lasted ([`Self::rest_ended`]).
     rest_time: T,
-    /// The full mode's 4th-order rate rules' window ([`RateRule`]): the last rate samples
+    /// The 4th-order rate rules' window ([`RateRule`]): the last rate samples
     /// (clipped) and their intervals.
     window: RateWindow<T>,
 }

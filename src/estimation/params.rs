@@ -359,14 +359,19 @@ impl<T> fmt::Display for Mode<T> {
 /// half at every rate; the synthetic grid ties (differences of opposite sign on the two seeds,
 /// within ±0.04°). CF4 gives the same numbers to ±0.001° with a second exponential.
 ///
-/// **The light mode always takes the trapezoid**: there Magnus-4 loses on half A at 142.9
-/// and 95.2 Hz (light 1.201 → 1.209, 1.221 → 1.234), and its interpolation (soft-float
-/// divisions and some forty products) does not fit the light mode's Cortex-M0 budget.
+/// **The light mode honours the rule too, with the same default, Magnus-4**, formed from
+/// weights on the samples computed once per run of equal intervals (the same rotation vector
+/// to rounding; the estimation module's rate window). Against the trapezoid it kept before, on
+/// the 16 BROAD trials (light 9D, its magnetometer delay [`Mode::LIGHT_MAG_DELAY`]): half A
+/// 1.186 / 1.201 / 1.221 / 1.554 → 1.185 / 1.189 / 1.184 / 1.217, half B 1.193 / 1.216 /
+/// 1.261 / 1.656 → 1.193 / 1.212 / 1.241 / 1.306 at 285.7 / 142.9 / 95.2 / 47.6 Hz. It costs
+/// the light mode's Cortex-M0 update about 5 700 instructions (BENCHMARKS.md, "The light
+/// mode's rate rule"); [`RateRule::Trapezoid`] is the cheapest choice there.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum RateRule {
     /// The mean of the step's two end samples, `φ = (ω_prev + ω)/2·Δt − b̂Δt`: order 2, one
-    /// exponential, no interpolation. The light mode's rule whatever this parameter says.
+    /// exponential, no interpolation.
     Trapezoid,
     /// Magnus-4 on the Gauss-node rates, `φ = (h/2)(ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂`
     /// ([`crate::propagation::rate_samples::magnus4_rotation_vector`], bias removed from both
@@ -486,7 +491,7 @@ macro_rules! params_structs {
             pub gains: Gains<T>,
             /// Full or light update ([`Mode`]).
             pub mode: Mode<T>,
-            /// How rate samples become a step's rotation in the full mode ([`RateRule`];
+            /// How rate samples become a step's rotation, in both modes ([`RateRule`];
             /// `rate_rule` in the tools' `--set`). Default: [`RateRule::Magnus4`].
             pub rate_rule: RateRule,
             $(
