@@ -116,7 +116,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
     )]
     pub(super) fn update_light(
         &mut self,
-        step: StepRotation<T>,
+        (step, theta2): (StepRotation<T>, T),
         mean_rate: Vec3<T>,
         gyro: Vec3<T>,
         accel: Vec3<T>,
@@ -133,7 +133,6 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         s.elapsed += dt;
         let factors = s.steps.for_step(dt, &pr);
         // The full mode's rate-proportional noise per step, `θ²·min(s²/Δt, 1)`, summed.
-        let theta2 = step.total().norm_squared();
         s.q_scale += theta2 * factors.scale_noise;
         if out.gyro_saturated {
             let a = (pr.gyro_range * dt).min(T::PI);

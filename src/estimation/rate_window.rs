@@ -21,7 +21,7 @@ use crate::propagation::rate_samples::{
     GAUSS_NODE_1, GAUSS_NODE_2, cf4_rotation_vectors, magnus4_rotation_vector,
 };
 use crate::propagation::{Normalization, RateMethod};
-use crate::step_limit::within_step_limit_real;
+use crate::step_limit::{MAX_STEP_ANGLE, within_step_limit_real};
 use crate::{Real, Vec3};
 
 /// The largest ratio between an interval and the one before it that keeps the window: a longer
@@ -149,20 +149,25 @@ impl<T: Real> RateWindow<T> {
     /// against the interpolation's divisions and some forty products of
     /// [`RateWindow::rotation`] (a soft-float division is some hundred instructions on a
     /// Cortex-M0).
+    /// `rate` is the newest sample with the bias removed, `ω₃ − b̂`; returns `φ` and `|φ|²`.
     #[inline]
-    pub(super) fn magnus4_cached(&mut self, gyro: Vec3<T>, bias: Vec3<T>, dt: T) -> Vec3<T> {
+    pub(super) fn magnus4_cached(&mut self, rate: Vec3<T>, dt: T) -> (Vec3<T>, T) {
         let [s0, s1, s2] = self.steps;
+        let held = |w: Vec3<T>| {
+            let phi = w.scale(dt);
+            (phi, phi.norm_squared())
+        };
         let key = match self.len {
             4 => [s0, s1, s2],
             2 | 3 => [T::ZERO, T::ZERO, s2],
-            _ => return (gyro - bias).scale(dt),
+            _ => return held(rate),
         };
         if key != self.weights.key {
             self.weights = Magnus4Weights::new(key);
         }
         let w = &self.weights;
         let [r0, r1, r2, r3] = self.rates;
-        let mut phi = (r3 - bias).scale(s2);
+        let mut phi = rate.scale(s2);
         let mut delta = Vec3::ZERO;
         for (r, (c, e)) in [r0, r1, r2].iter().zip(w.mean.iter().zip(&w.spread)) {
             let d = *r - r3;
@@ -170,10 +175,12 @@ impl<T: Real> RateWindow<T> {
             delta += d.scale(*e);
         }
         let phi = phi + phi.cross(delta);
-        if within_step_limit_real(phi) {
-            phi
+        let n2 = phi.norm_squared();
+        // The shared step limit, `within_step_limit_real`'s test on the square at hand.
+        if n2 <= T::from_f64(MAX_STEP_ANGLE * MAX_STEP_ANGLE) {
+            (phi, n2)
         } else {
-            (gyro - bias).scale(dt)
+            held(rate)
         }
     }
 }
