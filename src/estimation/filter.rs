@@ -437,16 +437,24 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         self.last_gyro = gyro;
         self.last_saturated = out.gyro_saturated;
         if let Mode::Light { correction_period } = self.params.mode {
-            let step = match fourth {
+            let (step, theta2) = match fourth {
                 Some(RateMethod::Magnus4) => {
                     self.window.push(gyro, dt, out.gyro_saturated);
-                    StepRotation::single(self.window.magnus4_cached(gyro, self.bias, dt))
+                    let (phi, n2) = self.window.magnus4_cached(self.lead_rate, dt);
+                    (StepRotation::single(phi), n2)
                 }
-                Some(method) => self.fourth_order_step(method, gyro, dt, out.gyro_saturated),
-                None => StepRotation::at_rate(mean_rate - self.bias, dt),
+                other => {
+                    let step = match other {
+                        Some(method) => {
+                            self.fourth_order_step(method, gyro, dt, out.gyro_saturated)
+                        }
+                        None => StepRotation::at_rate(mean_rate - self.bias, dt),
+                    };
+                    (step, step.total().norm_squared())
+                }
             };
             return Ok(self.update_light(
-                step,
+                (step, theta2),
                 mean_rate,
                 gyro,
                 accel,
