@@ -276,7 +276,7 @@ pub enum Mode<T> {
     /// delay `d` to first order, `m − d·(ω × m)`, `d` = [`Params::mag_delay`] when
     /// [`Params::mag_delay_estimation_time`] is 0, else [`Mode::LIGHT_MAG_DELAY`]. Between
     /// corrections the [`Outcome`](super::Outcome) reports a valid magnetometer sample as the
-    /// last correction did. Cost and accuracy: BENCHMARKS.md (about a fifth of the full mode's
+    /// last correction did. Cost and accuracy: BENCHMARKS.md (about a third of the full mode's
     /// cost on the M4F).
     Light {
         /// The time (s) between two corrections.
