@@ -142,7 +142,7 @@ pub struct Estimator<T, A = UnitQuat<T>> {
     rest_bias: Option<Vec3<T>>,
     /// How long (s) the current rest has lasted ([`Self::rest_ended`]).
     rest_time: T,
-    /// The full mode's 4th-order rate rules' window ([`RateRule`]): the last rate samples
+    /// The 4th-order rate rules' window ([`RateRule`]): the last rate samples
     /// (clipped) and their intervals.
     window: RateWindow<T>,
 }
@@ -397,11 +397,11 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             return Ok(out);
         }
 
-        // The full mode's 4th-order rule on rate samples (`RateRule`; the light mode and
-        // increments take the mean rate below).
-        let fourth = match self.params.mode {
-            Mode::Full if !self.rate_is_mean => self.params.rate_rule.method(),
-            _ => None,
+        // The 4th-order rule on rate samples (`RateRule`; increments take the mean rate below).
+        let fourth = if self.rate_is_mean {
+            None
+        } else {
+            self.params.rate_rule.method()
         };
         // The mean rate over the step: the trapezoid of the two samples at its ends (an
         // increment's rate is that mean already, and the previous increment is the coning
@@ -437,7 +437,24 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         self.last_gyro = gyro;
         self.last_saturated = out.gyro_saturated;
         if let Mode::Light { correction_period } = self.params.mode {
+            let (step, theta2) = match fourth {
+                Some(RateMethod::Magnus4) => {
+                    self.window.push(gyro, dt, out.gyro_saturated);
+                    let (phi, n2) = self.window.magnus4_cached(self.lead_rate, dt);
+                    (StepRotation::single(phi), n2)
+                }
+                other => {
+                    let step = match other {
+                        Some(method) => {
+                            self.fourth_order_step(method, gyro, dt, out.gyro_saturated)
+                        }
+                        None => StepRotation::at_rate(mean_rate - self.bias, dt),
+                    };
+                    (step, step.total().norm_squared())
+                }
+            };
             return Ok(self.update_light(
+                (step, theta2),
                 mean_rate,
                 gyro,
                 accel,
@@ -533,7 +550,8 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
 
     /// The step's rotation by a 4th-order rule: the sample `gyro` into the window, the rule's
     /// rotation vector(s) from it ([`RateWindow::rotation`]).
-    // Out of line, as `coned_rate`: only the full mode's 4th-order rules take it.
+    // Out of line, as `coned_rate`: only the full mode's 4th-order rules and the light mode's
+    // CF4 take it.
     #[inline(never)]
     fn fourth_order_step(
         &mut self,

@@ -1,8 +1,10 @@
 //! The light mode of [`Estimator`] ([`Mode::Light`]): the same filter with its corrections
 //! taken at a lower rate than the prediction.
 //!
-//! Every sample: the strapdown prediction `q_g ← q_g ⊗ exp((ω̄ − b̂)·Δt)` (trapezoid mean
-//! rate, as the full mode), the rest detector, and the specific force rotated into the
+//! Every sample: the strapdown prediction `q_g ← q_g ⊗ exp(φ)` with the step's rotation `φ`
+//! by [`Params::rate_rule`] as in the full mode (the default Magnus-4 from weights computed
+//! once per run of equal intervals: `rate_window`'s `magnus4_cached`, the same rotation
+//! vector as the full mode's to rounding), the rest detector, and the specific force rotated into the
 //! gyroscope frame and low-passed there. Every `T_c` ([`Mode::Light`]'s `correction_period`,
 //! measured in sample time, so the same at any rate): the covariance prediction over the whole
 //! interval, `Φ = [[I, −R̂·T_c], [0, I]]` (the attitude's transition is the identity in the
@@ -20,11 +22,8 @@
 //! sensor frame: the sample taken `d` ago is mapped to the current sensor frame by
 //! `exp(−ω·d) ≈ I − d[ω]×`, `m' = m − d·(ω × m)`. `d` is [`Params::mag_delay`] when
 //! [`Params::mag_delay_estimation_time`] is 0 (a fixed delay asked for); when an estimate is
-//! asked for (the default), which the light mode does not make, `d = d₀ − c·Δt` with
-//! `d₀` = [`Mode::LIGHT_MAG_DELAY`] and `c` = [`Mode::LIGHT_MAG_DELAY_PER_STEP`] (`Δt` the
-//! last sample step, `d ≥ 0`): the delay that scores best on BROAD falls with the sample step
-//! (by about a quarter of it, on both halves of the trials), which the online estimate of the
-//! full mode, a physical delay, does not follow (BENCHMARKS.md).
+//! asked for (the default), which the light mode does not make, `d` =
+//! [`Mode::LIGHT_MAG_DELAY`] at every sample rate (BENCHMARKS.md).
 //!
 //! Between corrections the [`Outcome`] reports the accelerometer sample as used (it fed the
 //! low-pass filter) and a valid magnetometer sample with the report of the last correction
@@ -35,7 +34,7 @@ use super::{
     Params, SensorUse, horizontal, length,
 };
 use crate::estimation::lowpass::LowPass;
-use crate::propagation::Normalization;
+use crate::estimation::rate_window::StepRotation;
 use crate::propagation::PropagatedAttitude;
 use crate::{Real, UnitQuat, Vec3};
 
@@ -64,8 +63,8 @@ pub(super) struct LightState<T> {
 }
 
 /// What the light mode's per-sample work computes from the step `Δt` alone, kept for the next
-/// sample with the same `Δt` (a fixed sample rate): two divisions and an exponential or its
-/// series fewer per sample, which is most of a soft-float core's cost of a sample, and the
+/// sample with the same `Δt` (a fixed sample rate): four divisions and two exponentials or
+/// their series fewer per sample, which is most of a soft-float core's cost of a sample, and the
 /// magnetometer delay computed once (the values are the same numbers as computed afresh).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct StepFactors<T> {
@@ -75,6 +74,8 @@ struct StepFactors<T> {
     scale_noise: T,
     /// The inertial low-pass's stage gain ([`LowPass::gain`]).
     lowpass_gain: T,
+    /// The rest detector's low-pass stage gain ([`LowPass::gain`] of its time constant).
+    rest_gain: T,
     /// The magnetometer delay `d` (s) the field sample is carried back by (module docs).
     mag_delay: T,
 }
@@ -98,7 +99,8 @@ impl<T: Real> StepFactors<T> {
                 dt,
                 scale_noise: (s2 / dt).min(T::ONE),
                 lowpass_gain: LowPass::gain(pr.accel_time_constant, dt),
-                mag_delay: mag_delay(dt, pr),
+                rest_gain: LowPass::gain(pr.rest.time_constant, dt),
+                mag_delay: mag_delay(pr),
             };
         }
         *self
@@ -114,6 +116,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
     )]
     pub(super) fn update_light(
         &mut self,
+        (step, theta2): (StepRotation<T>, T),
         mean_rate: Vec3<T>,
         gyro: Vec3<T>,
         accel: Vec3<T>,
@@ -124,13 +127,12 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         period: T,
     ) -> Outcome {
         let w = mean_rate - self.bias;
-        self.q_gyro = self.q_gyro.mul_exp_vector(w.scale(dt), Normalization::Fast);
+        self.q_gyro = step.apply(self.q_gyro);
         let pr = self.params;
         let s = &mut self.light;
         s.elapsed += dt;
         let factors = s.steps.for_step(dt, &pr);
         // The full mode's rate-proportional noise per step, `θ²·min(s²/Δt, 1)`, summed.
-        let theta2 = w.scale(dt).norm_squared();
         s.q_scale += theta2 * factors.scale_noise;
         if out.gyro_saturated {
             let a = (pr.gyro_range * dt).min(T::PI);
@@ -138,7 +140,9 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             self.lowpass_stale = true;
         }
         if accel_use == SensorUse::Used {
-            s.at_rest = self.rest.update(gyro, accel, dt, &pr.rest);
+            s.at_rest = self
+                .rest
+                .update_with_gain(gyro, accel, dt, factors.rest_gain, &pr.rest);
             let a_gyro = self.q_gyro.attitude().rotate(accel);
             if self.lowpass_stale {
                 self.accel_lp = LowPass::at(a_gyro);
@@ -296,12 +300,10 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
 
 /// The light mode's magnetometer delay `d` (s) for the sample step `dt` (module docs):
 /// [`Params::mag_delay`] (at most `MAG_DELAY_MAX`) when a fixed delay is asked for, else
-/// `max(d₀ − c·Δt, 0)` with `d₀` = [`Mode::LIGHT_MAG_DELAY`] and
-/// `c` = [`Mode::LIGHT_MAG_DELAY_PER_STEP`].
-fn mag_delay<T: Real>(dt: T, pr: &Params<T>) -> T {
+/// [`Mode::LIGHT_MAG_DELAY`].
+fn mag_delay<T: Real>(pr: &Params<T>) -> T {
     if pr.mag_delay_estimation_time > T::ZERO {
-        let per_step = T::from_f64(Mode::<T>::LIGHT_MAG_DELAY_PER_STEP);
-        (T::from_f64(Mode::<T>::LIGHT_MAG_DELAY) - per_step * dt).max(T::ZERO)
+        T::from_f64(Mode::<T>::LIGHT_MAG_DELAY)
     } else {
         pr.mag_delay.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX))
     }

@@ -29,12 +29,12 @@
 //!    ([`crate::UnitQuat::mul_exp_unchecked`], the update kernel of [`crate::propagation`], with
 //!    the fast renormalisation), `φ` the step's rotation (bias removed) over the per-sample `Δt`
 //!    of the time stamps. Rate samples take [`Params::rate_rule`] ([`RateRule`]): by default
-//!    (full mode) the propagation module's unequal-interval Magnus-4, the rates at the step's
+//!    (both modes) the propagation module's unequal-interval Magnus-4, the rates at the step's
 //!    Gauss nodes from the backward cubic interpolant through the last four samples at their
 //!    own times ([`crate::propagation::kernels::magnus4_step_unequal`]'s interpolation; order
 //!    4 on a jittered clock), falling back to the linear interpolant at the start, after a
-//!    saturated sample and across a gap; CF4 or the trapezoid (`ω̄ = (ω_prev + ω)/2`, order 2,
-//!    the light mode's rule) on request. An increment, [`Estimator::update_increment`], is a
+//!    saturated sample and across a gap; CF4 or the trapezoid (`ω̄ = (ω_prev + ω)/2`, order 2)
+//!    on request. An increment, [`Estimator::update_increment`], is a
 //!    mean already, and takes the one-plus-previous coning rule of
 //!    [`crate::propagation::coning`] with the previous
 //!    increment. The samples' checks are the shared ones: the step limit of

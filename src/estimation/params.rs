@@ -274,10 +274,9 @@ pub enum Mode<T> {
     /// updates (variances for one measurement per `T_c`) once per `correction_period` `T_c`
     /// (s, sample time). No magnetometer-delay estimate: the field sample is carried back by a
     /// delay `d` to first order, `m − d·(ω × m)`, `d` = [`Params::mag_delay`] when
-    /// [`Params::mag_delay_estimation_time`] is 0, else [`Mode::LIGHT_MAG_DELAY`] less
-    /// [`Mode::LIGHT_MAG_DELAY_PER_STEP`] times the sample step. Between
+    /// [`Params::mag_delay_estimation_time`] is 0, else [`Mode::LIGHT_MAG_DELAY`]. Between
     /// corrections the [`Outcome`](super::Outcome) reports a valid magnetometer sample as the
-    /// last correction did. Cost and accuracy: BENCHMARKS.md (about a fifth of the full mode's
+    /// last correction did. Cost and accuracy: BENCHMARKS.md (about a third of the full mode's
     /// cost on the M4F).
     Light {
         /// The time (s) between two corrections.
@@ -289,18 +288,15 @@ impl<T: Real> Mode<T> {
     /// The default correction period (s) of [`Mode::Light`]: 25 ms (40 Hz).
     pub const LIGHT_PERIOD: f64 = 0.025;
 
-    /// The magnetometer delay `d₀` (s) the light mode applies in place of the online estimate,
-    /// less [`Mode::LIGHT_MAG_DELAY_PER_STEP`] times the sample step: `d = d₀ − c·Δt`
-    /// (`d ≥ 0`). 10 ms: read off BROAD's trials of half A (01 05 09 14 21 26 30 34, the
-    /// light mode's mean total over fixed delays at 285.7, 95.2 and 47.6 Hz: best near 9.2,
-    /// 7.5 and 5 ms), checked on half B (BENCHMARKS.md). The full mode's online estimates on
-    /// the same trials are 5.1–13.9 ms at every rate.
-    pub const LIGHT_MAG_DELAY: f64 = 0.010;
-
-    /// The part `c` of the sample step `Δt` taken off the light mode's magnetometer delay,
-    /// `d = d₀ − c·Δt` (see [`Mode::LIGHT_MAG_DELAY`]): 1/4, from the same scan (half A's best
-    /// fixed delay falls by 4–5 ms from 3.5 ms to 21 ms steps; half B's by 4).
-    pub const LIGHT_MAG_DELAY_PER_STEP: f64 = 0.25;
+    /// The magnetometer delay `d` (s) the light mode applies in place of the online estimate,
+    /// at every sample rate: 9.25 ms, read off BROAD's trials of half A (01 05 09 14 21 26 30
+    /// 34: the light mode's mean total over fixed delays 8–10 ms at 285.7, 142.9, 95.2 and
+    /// 47.6 Hz, Magnus-4 rate rule), checked on half B (BENCHMARKS.md, "the light mode's rate
+    /// rule"). The full mode's online estimates on the same trials are 5.1–13.9 ms at every
+    /// rate. With [`RateRule::Trapezoid`] the delay that scores best falls by about a quarter
+    /// of the sample step: that rule's error at long steps, which a shorter delay partly
+    /// offsets, not a property of the sensor.
+    pub const LIGHT_MAG_DELAY: f64 = 0.009_25;
 
     /// [`Mode::Light`] with the default correction period [`Mode::LIGHT_PERIOD`].
     pub fn light() -> Self {
@@ -363,14 +359,19 @@ impl<T> fmt::Display for Mode<T> {
 /// half at every rate; the synthetic grid ties (differences of opposite sign on the two seeds,
 /// within ±0.04°). CF4 gives the same numbers to ±0.001° with a second exponential.
 ///
-/// **The light mode always takes the trapezoid**: there Magnus-4 loses on half A at 142.9
-/// and 95.2 Hz (light 1.201 → 1.209, 1.221 → 1.234), and its interpolation (soft-float
-/// divisions and some forty products) does not fit the light mode's Cortex-M0 budget.
+/// **The light mode honours the rule too, with the same default, Magnus-4**, formed from
+/// weights on the samples computed once per run of equal intervals (the same rotation vector
+/// to rounding; the estimation module's rate window). Against the trapezoid it kept before, on
+/// the 16 BROAD trials (light 9D, its magnetometer delay [`Mode::LIGHT_MAG_DELAY`]): half A
+/// 1.186 / 1.201 / 1.221 / 1.554 → 1.185 / 1.189 / 1.184 / 1.217, half B 1.193 / 1.216 /
+/// 1.261 / 1.656 → 1.193 / 1.212 / 1.241 / 1.306 at 285.7 / 142.9 / 95.2 / 47.6 Hz. It costs
+/// the light mode's Cortex-M0 update about 5 700 instructions (BENCHMARKS.md, "The light
+/// mode's rate rule"); [`RateRule::Trapezoid`] is the cheapest choice there.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum RateRule {
     /// The mean of the step's two end samples, `φ = (ω_prev + ω)/2·Δt − b̂Δt`: order 2, one
-    /// exponential, no interpolation. The light mode's rule whatever this parameter says.
+    /// exponential, no interpolation.
     Trapezoid,
     /// Magnus-4 on the Gauss-node rates, `φ = (h/2)(ω₁ + ω₂) + (√3/12) h² ω₁ × ω₂`
     /// ([`crate::propagation::rate_samples::magnus4_rotation_vector`], bias removed from both
@@ -492,7 +493,7 @@ macro_rules! params_structs {
             pub gains: Gains<T>,
             /// Full or light update ([`Mode`]).
             pub mode: Mode<T>,
-            /// How rate samples become a step's rotation in the full mode ([`RateRule`];
+            /// How rate samples become a step's rotation, in both modes ([`RateRule`];
             /// `rate_rule` in the tools' `--set`). Default: [`RateRule::Magnus4`].
             pub rate_rule: RateRule,
             $(

@@ -10,12 +10,18 @@
 //! CF4 rotation vectors ([`crate::propagation::rate_samples`]). The times are kept relative to
 //! the newest sample (`0`, `−Δtₖ`, `−Δtₖ − Δtₖ₋₁`, …), so an f32 filter interpolates over
 //! differences of a few steps, never over a growing clock.
+//!
+//! The light mode ([`super::Mode::Light`]) forms the same Magnus-4 rotation vector from weights
+//! on the samples that depend on the intervals alone ([`Magnus4Weights`]), computed once for a
+//! run of equal intervals (a fixed sample rate): [`RateWindow::magnus4_cached`].
 
 use crate::propagation::attitude::sealed::Propagate;
 use crate::propagation::kernels::gauss_node_rates;
-use crate::propagation::rate_samples::{cf4_rotation_vectors, magnus4_rotation_vector};
+use crate::propagation::rate_samples::{
+    GAUSS_NODE_1, GAUSS_NODE_2, cf4_rotation_vectors, magnus4_rotation_vector,
+};
 use crate::propagation::{Normalization, RateMethod};
-use crate::step_limit::within_step_limit_real;
+use crate::step_limit::{MAX_STEP_ANGLE, within_step_limit_real};
 use crate::{Real, Vec3};
 
 /// The largest ratio between an interval and the one before it that keeps the window: a longer
@@ -33,6 +39,8 @@ pub(super) struct RateWindow<T> {
     steps: [T; 3],
     /// How many of the newest samples form one unbroken run (0 to 4).
     len: u8,
+    /// The light mode's Magnus-4 weights for the last intervals it saw.
+    weights: Magnus4Weights<T>,
 }
 
 impl<T: Real> Default for RateWindow<T> {
@@ -41,6 +49,7 @@ impl<T: Real> Default for RateWindow<T> {
             rates: [Vec3::ZERO; 4],
             steps: [T::ZERO; 3],
             len: 0,
+            weights: Magnus4Weights::default(),
         }
     }
 }
@@ -127,6 +136,108 @@ impl<T: Real> RateWindow<T> {
     }
 }
 
+impl<T: Real> RateWindow<T> {
+    /// The light mode's Magnus-4 rotation of the step ending at the newest sample: the same
+    /// rotation vector as [`RateWindow::rotation`] with [`RateMethod::Magnus4`] (the same
+    /// interpolant, nodes and fallbacks), formed as
+    /// `φ = φ₀ + φ₀ × δ`, `φ₀ = h(ω₃ − b̂) + Σᵢ cᵢ(ωᵢ − ω₃)`, `δ = Σᵢ eᵢ(ωᵢ − ω₃)` (`ω₃` the
+    /// newest sample, `i` over the older ones) with the [`Magnus4Weights`] of the window's
+    /// intervals, computed only when the intervals change. `φ₀ = (h/2)(ω₁ + ω₂)` and
+    /// `δ = (√3/12)·h·(ω₂ − ω₁)` for the Gauss-node rates `ω₁`, `ω₂` (bias removed), and
+    /// `ω₁ × ω₂ = m × (ω₂ − ω₁)` for `m = (ω₁ + ω₂)/2`: so `φ` is Magnus-4's
+    /// `(h/2)(ω₁ + ω₂) + (√3/12)h² ω₁ × ω₂`. Per sample: 21 products and a cross product,
+    /// against the interpolation's divisions and some forty products of
+    /// [`RateWindow::rotation`] (a soft-float division is some hundred instructions on a
+    /// Cortex-M0).
+    /// `rate` is the newest sample with the bias removed, `ω₃ − b̂`; returns `φ` and `|φ|²`.
+    #[inline]
+    pub(super) fn magnus4_cached(&mut self, rate: Vec3<T>, dt: T) -> (Vec3<T>, T) {
+        let [s0, s1, s2] = self.steps;
+        let held = |w: Vec3<T>| {
+            let phi = w.scale(dt);
+            (phi, phi.norm_squared())
+        };
+        let key = match self.len {
+            4 => [s0, s1, s2],
+            2 | 3 => [T::ZERO, T::ZERO, s2],
+            _ => return held(rate),
+        };
+        if key != self.weights.key {
+            self.weights = Magnus4Weights::new(key);
+        }
+        let w = &self.weights;
+        let [r0, r1, r2, r3] = self.rates;
+        let mut phi = rate.scale(s2);
+        let mut delta = Vec3::ZERO;
+        for (r, (c, e)) in [r0, r1, r2].iter().zip(w.mean.iter().zip(&w.spread)) {
+            let d = *r - r3;
+            phi += d.scale(*c);
+            delta += d.scale(*e);
+        }
+        let phi = phi + phi.cross(delta);
+        let n2 = phi.norm_squared();
+        // The shared step limit, `within_step_limit_real`'s test on the square at hand.
+        if n2 <= T::from_f64(MAX_STEP_ANGLE * MAX_STEP_ANGLE) {
+            (phi, n2)
+        } else {
+            held(rate)
+        }
+    }
+}
+
+/// Magnus-4's weights on the older samples of a [`RateWindow`] for one set of intervals, in
+/// difference form (on `ωᵢ − ω₃`, `ω₃` the newest sample): with `lᵢ` the Lagrange basis of the
+/// window's interpolant (the cubic through the four samples, or the line through the step's
+/// two ends) and `g₁`, `g₂` the step's Gauss nodes, `cᵢ = (h/2)(lᵢ(g₁) + lᵢ(g₂))` and
+/// `eᵢ = (√3/12)·h·(lᵢ(g₂) − lᵢ(g₁))` ([`RateWindow::magnus4_cached`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Magnus4Weights<T> {
+    /// The intervals (`[s₀, s₁, h]`; `[0, 0, h]` for the line) these are for; zero before the
+    /// first.
+    key: [T; 3],
+    /// `cᵢ` for the three older samples (zero for those the line leaves out).
+    mean: [T; 3],
+    /// `eᵢ` for the three older samples (zero for those the line leaves out).
+    spread: [T; 3],
+}
+
+impl<T: Real> Magnus4Weights<T> {
+    /// The weights for the intervals `key` (`[s₀, s₁, h]` oldest first, or `[0, 0, h]`: the
+    /// line through the last two samples). Unchecked: the intervals positive.
+    fn new(key: [T; 3]) -> Self {
+        let [s0, s1, h] = key;
+        let t2 = -h;
+        let t1 = t2 - s1;
+        let times = [t1 - s0, t1, t2, T::ZERO];
+        let g1 = t2 + h * T::from_f64(GAUSS_NODE_1);
+        let g2 = t2 + h * T::from_f64(GAUSS_NODE_2);
+        let first = if s0 == T::ZERO { 2 } else { 0 };
+        let half_h = h * T::HALF;
+        let spread_h = h * T::from_f64(SQRT_3_12);
+        let mut w = Self {
+            key,
+            ..Self::default()
+        };
+        for i in first..3 {
+            let (mut den, mut n1, mut n2) = (T::ONE, T::ONE, T::ONE);
+            for (j, tj) in times.iter().enumerate().skip(first) {
+                if i != j {
+                    den *= times[i] - *tj;
+                    n1 *= g1 - *tj;
+                    n2 *= g2 - *tj;
+                }
+            }
+            let (l1, l2) = (n1 / den, n2 / den);
+            w.mean[i] = half_h * (l1 + l2);
+            w.spread[i] = spread_h * (l2 - l1);
+        }
+        w
+    }
+}
+
+/// `√3/12`: Magnus-4's commutator weight.
+const SQRT_3_12: f64 = 0.144_337_567_297_406_44;
+
 /// A step's rotation in the body (sensor) frame, as the prediction applies it:
 /// `q ⊗ exp(first)`, then `⊗ exp(second)` when there is a second (CF4).
 #[derive(Clone, Copy, Debug)]
@@ -141,6 +252,15 @@ impl<T: Real> StepRotation<T> {
     pub(super) fn at_rate(w: Vec3<T>, dt: T) -> Self {
         Self {
             first: w.scale(dt),
+            second: None,
+        }
+    }
+
+    /// The single rotation vector `φ`: `q ⊗ exp(φ)`.
+    #[inline]
+    pub(super) fn single(first: Vec3<T>) -> Self {
+        Self {
+            first,
             second: None,
         }
     }

@@ -67,7 +67,20 @@ impl<T: Real> RestDetector<T> {
     /// Feeds one sample taken `dt` after the previous one; returns whether the sensor is at
     /// rest.
     pub fn update(&mut self, gyro: Vec3<T>, accel: Vec3<T>, dt: T, th: &RestThresholds<T>) -> bool {
-        let k = LowPass::gain(th.time_constant, dt);
+        self.update_with_gain(gyro, accel, dt, LowPass::gain(th.time_constant, dt), th)
+    }
+
+    /// [`RestDetector::update`] with its low-pass stage gain `k` =
+    /// `LowPass::gain(th.time_constant, dt)` given (computed once for a run of equal steps).
+    #[inline]
+    pub fn update_with_gain(
+        &mut self,
+        gyro: Vec3<T>,
+        accel: Vec3<T>,
+        dt: T,
+        k: T,
+        th: &RestThresholds<T>,
+    ) -> bool {
         let g = self.gyro.update(gyro, k);
         let a = self.accel.update(accel, k);
         let b = th.max_bias;
