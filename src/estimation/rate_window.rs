@@ -296,4 +296,63 @@ fn apply_two<T: Real, A: Propagate<T>>(q: A, a: Vec3<T>, b: Vec3<T>) -> A {
         .mul_exp_vector(b, Normalization::Fast)
 }
 
-impl<T: Real> StepRotation<T> {}
+#[cfg(test)]
+mod tests {
+    use super::{RateMethod, RateWindow};
+    use crate::{Real, Vec3};
+
+    /// A rate that does not repeat (incommensurate frequencies, rad/s) and jittered intervals
+    /// with two gaps: the light mode's cached Magnus-4 rotation against the window's
+    /// interpolated one, the reference path, at every sample (runs of one to four samples,
+    /// after each restart, and intervals that change every step as well as runs of equal
+    /// ones). Tolerances: f64 `1e-13·(|φ| + 1e-9)`, f32 `2e-6·(|φ| + 1e-6)` (rad; rounding of
+    /// differently ordered sums of four samples and of the weights' divisions).
+    fn cached_matches_interpolated<T: Real>(tol: f64, floor: f64) {
+        let rate = |t: f64| {
+            Vec3::new(
+                T::from_f64(2.0 * (1.3 * t).sin() + 0.7 * (5.1 * t).cos()),
+                T::from_f64(1.5 * (0.9 * t + 0.4).cos() - 0.3 * (7.3 * t).sin()),
+                T::from_f64(0.8 * (2.2 * t).sin() * (0.37 * t).cos() + 0.2),
+            )
+        };
+        let bias = Vec3::new(T::from_f64(0.01), T::from_f64(-0.02), T::from_f64(0.005));
+        let mut w = RateWindow::<T>::default();
+        let mut t = 0.0f64;
+        w.start(rate(t));
+        for k in 1..2000u32 {
+            // Equal intervals in runs, jittered ones between them, two gaps.
+            let dt = match k {
+                700 | 1500 => 0.05,
+                _ if (k / 100) % 2 == 0 => 0.01,
+                _ => 0.01 * (1.0 + 0.3 * (0.77 * f64::from(k)).sin()),
+            };
+            t += dt;
+            let g = rate(t);
+            let dtt = T::from_f64(dt);
+            w.push(g, dtt, false);
+            let reference = w.rotation(RateMethod::Magnus4, g, bias, dtt).total();
+            let (fast, n2) = w.magnus4_cached(g - bias, dtt);
+            let e = (fast - reference).norm().to_f64();
+            let scale = reference.norm().to_f64();
+            assert!(
+                e <= tol * (scale + floor),
+                "sample {k}: {fast:?} against {reference:?}"
+            );
+            let n2_err = (n2 - fast.norm_squared()).abs().to_f64();
+            assert!(
+                n2_err <= tol * (scale * scale + floor),
+                "sample {k}: |φ|² {n2_err}"
+            );
+        }
+    }
+
+    #[test]
+    fn cached_magnus4_matches_the_interpolated_rule_f64() {
+        cached_matches_interpolated::<f64>(1e-13, 1e-9);
+    }
+
+    #[test]
+    fn cached_magnus4_matches_the_interpolated_rule_f32() {
+        cached_matches_interpolated::<f32>(2e-6, 1e-6);
+    }
+}
