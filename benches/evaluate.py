@@ -455,8 +455,9 @@ def main(argv):
         args.peer_list = grid.parse_peers(ap, args.grid_peers)
         grid.check_grid_args(ap, args)
         # gyrostat 9D full is grid.py's own `estimate --truth` run (with every --set); the
-        # other gyrostat columns run through grid.py's --estimator with the same --set flags.
-        est = " ".join([shlex.quote(str(args.estimate_bin))]
+        # other gyrostat columns run through grid.py's --estimator with the same --set flags
+        # and parameter file ({params}: --params-from-sensor).
+        est = " ".join([shlex.quote(str(args.estimate_bin)), "{params}"]
                        + [f"--set {shlex.quote(s)}" for s in args.set])
         args.estimator = [(lab, f"{est} {' '.join(flags)} {{log}} > {{out}}")
                           for lab, _, flags in GYROSTAT[1:]] + list(args.estimator)

@@ -36,8 +36,9 @@ Disturbances (the flags given to synthesize):
 Parameters: `estimate` runs with its defaults (a consumer MEMS IMU's figures) unless
 --params-from-sensor: then, per sensor and rate, a 300 s rest log of that sensor (`synthesize
 --motion rest`, seed 1000: not a seed of the grid) is characterised (`characterize --params`:
-the gyroscope's noise density and bias stability from its Allan deviation) and every cell of
-that sensor and rate is estimated with `--params FILE` (before any --set).
+the gyroscope's noise density and bias stability from its Allan deviation; plus `gyro_delay =
+0`, the synthetic sensors' group delay, which a rest log cannot show) and every cell of that
+sensor and rate is estimated with `--params FILE` (before any --set).
 
 Scoring: BROAD's metric (total / heading / inclination RMSE in degrees over the movement phases,
 score.py's definition). gyrostat's `estimate` is scored by its own `--truth` (the same metric,
@@ -49,8 +50,9 @@ beside the repository); without it they are skipped with a message.
 Plugging in an estimator: --estimator 'LABEL=CMD' (repeatable) runs CMD through the shell from the
 repository root for every cell, {log} the log's path (CSV, BROAD's columns: t_s, gyr_*_rad_s,
 acc_*_m_s2, mag_*_uT, opt_q*, movement; rows without a new magnetometer sample have empty mag
-fields), {out} the CSV to write, {rate} the nominal rate (Hz). A LABEL ending in "6D" is scored
-on inclination only.
+fields), {out} the CSV to write, {rate} the nominal rate (Hz), {params} `--params FILE` with
+--params-from-sensor (the cell's sensor and rate; empty without it). A LABEL ending in "6D" is
+scored on inclination only.
 
 Python peers (--peers LIST; --vqf is --peers vqf): vqf, fusion, madgwick, mahony, each 9D and 6D
 (`madgwick:9d`: 9D only), from benches/peers.py: the code, settings and frame mappings
@@ -302,7 +304,8 @@ def cell(args, rate, sensor, dist, seed, check_score):
         for label, cmd in args.estimator:
             out = log.with_suffix(f".{re.sub(r'[^A-Za-z0-9]+', '_', label)}.csv")
             t0 = time.time()
-            run(cmd.format(log=shlex.quote(str(log)), out=shlex.quote(str(out)), rate=rate),
+            run(cmd.format(log=shlex.quote(str(log)), out=shlex.quote(str(out)), rate=rate,
+                           params=shlex.join(params)),
                 shell=True, cwd=ROOT)
             secs = time.time() - t0
             r = score_file(score, log, out, label.endswith("6D"))
@@ -331,6 +334,12 @@ def sensor_params(args, sensor, rate):
         raise RuntimeError(f"{shlex.join(synth)}: {p.stderr.strip()}")
     run([str(args.bin / "characterize"), "--params", str(path), str(log)])
     log.unlink()
+    # What a rest log cannot show but the sensor's spec states: `synthesize` samples the motion
+    # at the time stamps (no low-pass), so the gyroscope's group delay is 0, not the default's
+    # 2.9 ms of a consumer MEMS low-pass (BENCHMARKS, "The grid's inclination against VQF").
+    with open(path, "a") as f:
+        f.write("# the gyroscope's group delay: synthesize samples the motion at its time stamps\n"
+                "gyro_delay = 0\n")
     return path
 
 
