@@ -994,3 +994,78 @@ fn hard_iron_rejects_a_passing_magnet() {
          error {worst:.2}°"
     );
 }
+
+/// The hard-iron fit keeps its time in seconds whatever the magnetometer's rate: the fixed
+/// magnet of `hard_iron_converges_on_a_fixed_magnet` on six seeds, the magnetometer at the
+/// gyroscope's 100 Hz and at a fifth of it (20 Hz, the other rows without a field), in the full
+/// and the light mode. The time from the attachment to the first offer of the offset differs
+/// by less than 4 s on average over the seeds. On a clock that counts the rows' steps instead
+/// (the fit fed at half or a tenth of its samples, each standing for one row's step) it
+/// differs by about 16 s: the random walk and the consistency statistics run five times slower beside the 20 Hz
+/// magnetometer. (Measured on the rows' clock, which this tree has: 16.2 s on average, the
+/// largest 29.0 s, so the test is ignored; on the magnetometer's clock with the fit's
+/// regressor-noise bias removed, branch `hic-fit`: 2.3 s, the largest 10.2 s.)
+#[test]
+#[ignore = "fails on the rows' clock (issue 28 item 1): the fit's clock is not yet the \
+            magnetometer's (BENCHMARKS.md, 'The hard-iron fit's clock')"]
+fn hard_iron_time_is_the_magnetometers() {
+    use gyrostat::Vec3;
+    use gyrostat::estimation::{Estimator, Mode, Params};
+    let v = |a: [f64; 3]| Vec3::new(a[0], a[1], a[2]);
+    let first_offer = |rows: &[Row], light: bool| -> f64 {
+        let mut p = Params::default();
+        if light {
+            p.mode = Mode::light();
+        }
+        let mut f = Estimator::<f64>::try_new(p).unwrap();
+        let mut prev: Option<f64> = None;
+        for r in rows {
+            let dt = prev.map_or(f64::NAN, |p| r.t() - p);
+            prev = Some(r.t());
+            f.update(v(r.gyr()), v(r.acc()), r.mag().map(v), dt)
+                .unwrap();
+            if r.t() > 15.0 && f.hard_iron().1.offset().is_some() {
+                return r.t() - 15.0;
+            }
+        }
+        f64::INFINITY
+    };
+    for light in [false, true] {
+        let (mut sum, mut worst) = (0.0f64, 0.0f64);
+        for seed in 1..=6 {
+            let times: Vec<f64> = [100, 20]
+                .iter()
+                .map(|mag_rate| {
+                    let spec = write_spec(
+                        &format!("hard-iron-rate-{mag_rate}.spec"),
+                        &format!(
+                            "rate = 100\nmag_noise = 0.2\nmag_hard_iron = 1.0, -0.6, 1.5\n\
+                             mag_rate = {mag_rate}\n"
+                        ),
+                    );
+                    let seed = seed.to_string();
+                    let rows = log(&[
+                        "--sensor",
+                        spec.to_str().unwrap(),
+                        "--seed",
+                        &seed,
+                        "--magnet-fixed",
+                        "20,-10,15",
+                    ]);
+                    first_offer(&rows, light)
+                })
+                .collect();
+            assert!(
+                times.iter().all(|t| t.is_finite()),
+                "light {light}, seed {seed}: never offered: {times:?}"
+            );
+            let d = (times[0] - times[1]).abs();
+            sum += d;
+            worst = worst.max(d);
+            eprintln!("light {light}, seed {seed}: offered after {times:?} s (100 / 20 Hz)");
+        }
+        let mean = sum / 6.0;
+        eprintln!("light {light}: mean difference {mean:.2} s, largest {worst:.2} s");
+        assert!(mean < 4.0, "light {light}: mean difference {mean} s");
+    }
+}
