@@ -3,9 +3,11 @@
 //!
 //! Every sample: the strapdown prediction `q_g ← q_g ⊗ exp(φ)` with the step's rotation `φ`
 //! by [`Params::rate_rule`] as in the full mode (the default Magnus-4 from weights computed
-//! once per run of equal intervals: `rate_window`'s `magnus4_cached`, the same rotation
-//! vector as the full mode's to rounding), the rest detector, and the specific force rotated into the
-//! gyroscope frame and low-passed there. Every `T_c` ([`Mode::Light`]'s `correction_period`,
+//! once per run of equal intervals: `rate_window`'s `magnus4_cached`, the full mode's mean
+//! rotation to rounding, its commutator from the step's end samples, which changes the step by
+//! the order of Magnus-4's own local error), renormalised every
+//! eighth prediction, the rest detector, and the specific force rotated into the gyroscope frame
+//! and low-passed there. Every `T_c` ([`Mode::Light`]'s `correction_period`,
 //! measured in sample time, so the same at any rate): the covariance prediction over the whole
 //! interval, `Φ = [[I, −R̂·T_c], [0, I]]` (the attitude's transition is the identity in the
 //! earth frame, so `k` steps of the full mode collapse into one with `R̂` held at its value at

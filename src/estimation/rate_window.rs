@@ -11,9 +11,10 @@
 //! the newest sample (`0`, `−Δtₖ`, `−Δtₖ − Δtₖ₋₁`, …), so an f32 filter interpolates over
 //! differences of a few steps, never over a growing clock.
 //!
-//! The light mode ([`super::Mode::Light`]) forms the same Magnus-4 rotation vector from weights
-//! on the samples that depend on the intervals alone ([`Magnus4Weights`]), computed once for a
-//! run of equal intervals (a fixed sample rate): [`RateWindow::magnus4_cached`].
+//! The light mode ([`super::Mode::Light`]) forms Magnus-4's rotation vector from weights on the
+//! samples that depend on the intervals alone ([`Magnus4Weights`]), computed once for a run of
+//! equal intervals (a fixed sample rate), with the commutator's rate difference taken from the
+//! step's two end samples (order 4 still): [`RateWindow::magnus4_cached`].
 
 use crate::propagation::attitude::sealed::Propagate;
 use crate::propagation::kernels::gauss_node_rates;
