@@ -125,9 +125,10 @@ fn fourth_order_on_jittered_rate_samples_f64() {
 /// with order 4 (halving the step divides the error by 12 or more, 16 in theory), the
 /// trapezoid with order 2 (by 3.5 to 4.5); Magnus-4 at 100 Hz more than 100× closer to the
 /// closed form than the trapezoid; the f32 filter within 1e-5 rad of the closed form at 100 Hz
-/// over 10 s (the f32 tolerance of the full mode's rule above). Measured: Magnus-4 1.15e-6 →
-/// 7.2e-8 rad jittered (15.9), 1.23e-6 → 7.8e-8 regular (15.8); the trapezoid 1.68e-3 →
-/// 4.3e-4 (3.9); f32 3.1e-6 and 2.1e-6 rad.
+/// over 10 s (the f32 tolerance of the full mode's rule above). Measured: Magnus-4 1.06e-6 →
+/// 6.6e-8 rad jittered (16.0), 1.15e-6 → 7.3e-8 regular (15.8) (with the Gauss nodes' rates
+/// in the commutator, as the full mode: 1.15e-6 → 7.2e-8 and 1.23e-6 → 7.8e-8); the
+/// trapezoid 1.68e-3 → 4.3e-4 (3.9); f32 3.3e-6 and 2.0e-6 rad.
 #[test]
 fn light_mode_rule_orders() {
     assert_eq!(Params::<f64>::light().rate_rule, RateRule::Magnus4);
@@ -319,8 +320,8 @@ fn light_norm_drift<T: Real>(n: usize) -> f64 {
 /// The light mode renormalises its strapdown attitude every 8th prediction only: between two,
 /// `|q|` drifts by the rounding of at most seven products, and it does not accumulate over a
 /// long run without corrections (200 000 samples, 33 min at 100 Hz): within 16 ulp of 1 in f32
-/// (2e-6), 8 ulp in f64 (2e-15). Measured: f32 6.0e-7, f64 6.7e-16; the same run without any
-/// renormalisation drifts to 1.6e-4 in f32.
+/// (2e-6), 8 ulp in f64 (2e-15). Measured: f32 3.9e-7, f64 8.9e-16; the same run without any
+/// renormalisation drifts to 8.5e-6 in f32.
 #[test]
 fn light_mode_attitude_stays_unit() {
     let d32 = light_norm_drift::<f32>(200_000);
