@@ -287,8 +287,9 @@ fn compensated_f32_follows_f64() {
 /// `max | |q| − 1 |` of the light mode's attitude over `n` samples of the closed-form stream at
 /// 100 Hz ± 25 % without corrections (a correction period longer than the run) and without the
 /// output lead (`gyro_delay` 0: the attitude is the strapdown product as it is), so that only
-/// the predictions' renormalisation keeps `|q|` at 1.
-fn light_norm_drift<T: Real>(n: usize) -> f64 {
+/// the predictions' renormalisation keeps `|q|` at 1. `compensated`: the strapdown attitude
+/// carried compensated ([`Estimator::try_new_compensated`]).
+fn light_norm_drift<T: Real>(n: usize, compensated: bool) -> f64 {
     let p = Params {
         gyro_delay: 0.0,
         mode: Mode::Light {
@@ -296,7 +297,20 @@ fn light_norm_drift<T: Real>(n: usize) -> f64 {
         },
         ..Params::default()
     };
-    let mut f = Estimator::<T>::try_new(p.map(T::from_f64)).unwrap();
+    let p = p.map(T::from_f64);
+    if compensated {
+        let f = Estimator::<T, _>::try_new_compensated(p).unwrap();
+        drift_over(f, n)
+    } else {
+        drift_over(Estimator::<T>::try_new(p).unwrap(), n)
+    }
+}
+
+/// [`light_norm_drift`] on the estimator `f`.
+fn drift_over<T: Real, A: gyrostat::propagation::PropagatedAttitude<T>>(
+    mut f: Estimator<T, A>,
+    n: usize,
+) -> f64 {
     let mut jitter = Lcg(0x5eed_0028);
     let mut t = 0.3;
     f.update_6d(
@@ -320,14 +334,17 @@ fn light_norm_drift<T: Real>(n: usize) -> f64 {
 /// The light mode renormalises its strapdown attitude every 8th prediction only: between two,
 /// `|q|` drifts by the rounding of at most seven products, and it does not accumulate over a
 /// long run without corrections (200 000 samples, 33 min at 100 Hz): within 16 ulp of 1 in f32
-/// (2e-6), 8 ulp in f64 (2e-15). Measured: f32 3.9e-7, f64 8.9e-16; the same run without any
+/// (2e-6), 8 ulp in f64 (2e-15), the strapdown attitude plain or compensated. Measured (plain):
+/// f32 3.9e-7, f64 8.9e-16 (compensated 1.3e-7, 3.3e-16); the same run without any
 /// renormalisation drifts to 8.5e-6 in f32.
 #[test]
 fn light_mode_attitude_stays_unit() {
-    let d32 = light_norm_drift::<f32>(200_000);
-    assert!(d32 < 2e-6, "f32: {d32:e}");
-    let d64 = light_norm_drift::<f64>(200_000);
-    assert!(d64 < 2e-15, "f64: {d64:e}");
+    for compensated in [false, true] {
+        let d32 = light_norm_drift::<f32>(200_000, compensated);
+        assert!(d32 < 2e-6, "f32 (compensated {compensated}): {d32:e}");
+        let d64 = light_norm_drift::<f64>(200_000, compensated);
+        assert!(d64 < 2e-15, "f64 (compensated {compensated}): {d64:e}");
+    }
 }
 
 /// The light mode skips the per-sample test of the shared step limit for a step length over
