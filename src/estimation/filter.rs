@@ -373,7 +373,11 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         let gyro = Vec3::from_array(gyro);
         // More than half a turn in one step: no step of any method is valid there (the shared
         // `step_limit::MAX_STEP_ANGLE`); an overflowing square fails too.
-        if self.initialized && !within_step_limit_real(gyro.scale(dt)) {
+        // (The light mode knows from the last step of the same length when no clipped rate can.)
+        if self.initialized
+            && !self.light.step_within_limit(dt)
+            && !within_step_limit_real(gyro.scale(dt))
+        {
             return Err(Error::StepTooLong);
         }
         let accel_use = self.check(accel, self.params.accel_range);

@@ -3,9 +3,11 @@
 //!
 //! Every sample: the strapdown prediction `q_g ← q_g ⊗ exp(φ)` with the step's rotation `φ`
 //! by [`Params::rate_rule`] as in the full mode (the default Magnus-4 from weights computed
-//! once per run of equal intervals: `rate_window`'s `magnus4_cached`, the same rotation
-//! vector as the full mode's to rounding), the rest detector, and the specific force rotated into the
-//! gyroscope frame and low-passed there. Every `T_c` ([`Mode::Light`]'s `correction_period`,
+//! once per run of equal intervals: `rate_window`'s `magnus4_cached`, the full mode's mean
+//! rotation to rounding, its commutator from the step's end samples, which changes the step by
+//! the order of Magnus-4's own local error), renormalised every
+//! eighth prediction, the rest detector, and the specific force rotated into the gyroscope frame
+//! and low-passed there. Every `T_c` ([`Mode::Light`]'s `correction_period`,
 //! measured in sample time, so the same at any rate): the covariance prediction over the whole
 //! interval, `Φ = [[I, −R̂·T_c], [0, I]]` (the attitude's transition is the identity in the
 //! earth frame, so `k` steps of the full mode collapse into one with `R̂` held at its value at
@@ -35,7 +37,9 @@ use super::{
 };
 use crate::estimation::lowpass::LowPass;
 use crate::estimation::rate_window::StepRotation;
-use crate::propagation::PropagatedAttitude;
+use crate::estimation::rest::RestFactors;
+use crate::propagation::{Normalization, PropagatedAttitude};
+use crate::step_limit::within_step_limit_real;
 use crate::{Real, UnitQuat, Vec3};
 
 /// What the light mode accumulates between two corrections.
@@ -60,7 +64,19 @@ pub(super) struct LightState<T> {
     rate: Vec3<T>,
     /// The per-step factors of the last step length, kept across corrections.
     steps: StepFactors<T>,
+    /// The predictions since `q_g` was last renormalised, kept across corrections (at most
+    /// [`RENORMALISATION_STEPS`]).
+    unnormalised: u8,
 }
+
+/// The light mode renormalises the strapdown attitude `q_g` (fast, [`Normalization::Fast`])
+/// after every this many predictions, not after each: a product of unit quaternions drifts
+/// from unit norm by about an ulp (a random walk), so `|q_g|` stays within some eight ulp of 1
+/// between renormalisations (the output's [`Params::gyro_delay`] lead renormalises it once
+/// more), and a Cortex-M0 saves some 1400 of its soft-float instructions per sample
+/// (`|q|²`, the correction's factor and the four products and sums of
+/// [`crate::UnitQuat::renormalize_fast`] on seven samples of eight).
+const RENORMALISATION_STEPS: u8 = 8;
 
 /// What the light mode's per-sample work computes from the step `Δt` alone, kept for the next
 /// sample with the same `Δt` (a fixed sample rate): four divisions and two exponentials or
@@ -74,10 +90,15 @@ struct StepFactors<T> {
     scale_noise: T,
     /// The inertial low-pass's stage gain ([`LowPass::gain`]).
     lowpass_gain: T,
-    /// The rest detector's low-pass stage gain ([`LowPass::gain`] of its time constant).
-    rest_gain: T,
+    /// The rest detector's low-pass stage gain ([`LowPass::gain`] of its time constant) and
+    /// squared thresholds ([`RestFactors`]).
+    rest: RestFactors<T>,
     /// The magnetometer delay `d` (s) the field sample is carried back by (module docs).
     mag_delay: T,
+    /// Whether every clipped rate turns within the shared step limit over `Δt`:
+    /// `3·(r·Δt)² ≤ MAX_STEP_ANGLE²` for the gyroscope's range `r` (rounded as the test on a
+    /// sample, whose square can then not exceed it), so that the per-sample test is moot.
+    within_step_limit: bool,
 }
 
 /// A valid field sample waiting for the next correction, with what its row knew.
@@ -99,11 +120,25 @@ impl<T: Real> StepFactors<T> {
                 dt,
                 scale_noise: (s2 / dt).min(T::ONE),
                 lowpass_gain: LowPass::gain(pr.accel_time_constant, dt),
-                rest_gain: LowPass::gain(pr.rest.time_constant, dt),
+                rest: RestFactors::new(&pr.rest, dt),
                 mag_delay: mag_delay(pr),
+                within_step_limit: {
+                    let a = pr.gyro_range * dt;
+                    within_step_limit_real(Vec3::new(a, a, a))
+                },
             };
         }
         *self
+    }
+}
+
+impl<T: Real> LightState<T> {
+    /// Whether no clipped rate can turn by more than the shared step limit over `dt`, known
+    /// from the last step of the same length (`false` when not known: the caller tests the
+    /// sample).
+    #[inline]
+    pub(super) fn step_within_limit(&self, dt: T) -> bool {
+        self.steps.dt == dt && self.steps.within_step_limit
     }
 }
 
@@ -126,12 +161,20 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         dt: T,
         period: T,
     ) -> Outcome {
-        let w = mean_rate - self.bias;
-        self.q_gyro = step.apply(self.q_gyro);
-        let pr = self.params;
+        let s = &mut self.light;
+        s.unnormalised += 1;
+        let norm = if s.unnormalised >= RENORMALISATION_STEPS {
+            s.unnormalised = 0;
+            Normalization::Fast
+        } else {
+            Normalization::None
+        };
+        self.q_gyro = step.apply_normalised(self.q_gyro, norm);
+        // Borrowed, not copied, on the per-sample path.
+        let pr = &self.params;
         let s = &mut self.light;
         s.elapsed += dt;
-        let factors = s.steps.for_step(dt, &pr);
+        let factors = s.steps.for_step(dt, pr);
         // The full mode's rate-proportional noise per step, `θ²·min(s²/Δt, 1)`, summed.
         s.q_scale += theta2 * factors.scale_noise;
         if out.gyro_saturated {
@@ -142,7 +185,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         if accel_use == SensorUse::Used {
             s.at_rest = self
                 .rest
-                .update_with_gain(gyro, accel, dt, factors.rest_gain, &pr.rest);
+                .update_with_squares(gyro, accel, dt, factors.rest, &pr.rest);
             let a_gyro = self.q_gyro.attitude().rotate(accel);
             if self.lowpass_stale {
                 self.accel_lp = LowPass::at(a_gyro);
@@ -180,8 +223,12 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             return out;
         }
 
+        // The bias-corrected rate for the field's delay, with the bias before the corrections.
+        let w = mean_rate - self.bias;
+        let pr = self.params;
         let s = core::mem::take(&mut self.light);
         self.light.steps = s.steps;
+        self.light.unnormalised = s.unnormalised;
         let tc = s.elapsed;
         // The covariance over the interval, R̂ at its end.
         let f = self.attitude_enu().to_rotation_matrix().scale(-tc);

@@ -360,13 +360,15 @@ impl<T> fmt::Display for Mode<T> {
 /// within ±0.04°). CF4 gives the same numbers to ±0.001° with a second exponential.
 ///
 /// **The light mode honours the rule too, with the same default, Magnus-4**, formed from
-/// weights on the samples computed once per run of equal intervals (the same rotation vector
-/// to rounding; the estimation module's rate window). Against the trapezoid it kept before, on
+/// weights on the samples computed once per run of equal intervals (the same mean rotation to
+/// rounding, the commutator's rate difference from the step's end samples: order 4 still; the
+/// estimation module's rate window). Against the trapezoid it kept before, on
 /// the 16 BROAD trials (light 9D, its magnetometer delay [`Mode::LIGHT_MAG_DELAY`]): half A
 /// 1.186 / 1.201 / 1.221 / 1.554 → 1.185 / 1.189 / 1.184 / 1.217, half B 1.193 / 1.216 /
-/// 1.261 / 1.656 → 1.193 / 1.212 / 1.241 / 1.306 at 285.7 / 142.9 / 95.2 / 47.6 Hz. It costs
-/// the light mode's Cortex-M0 update about 5 700 instructions (BENCHMARKS.md, "The light
-/// mode's rate rule"); [`RateRule::Trapezoid`] is the cheapest choice there.
+/// 1.261 / 1.656 → 1.193 / 1.212 / 1.241 / 1.306 at 285.7 / 142.9 / 95.2 / 47.6 Hz. The light
+/// mode's Cortex-M0 update costs 39 580 instructions with it, within the 40 000 budget
+/// (BENCHMARKS.md, "The light mode's rate rule"); [`RateRule::Trapezoid`] is the cheapest
+/// choice there.
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum RateRule {

@@ -11,9 +11,10 @@
 //! the newest sample (`0`, `−Δtₖ`, `−Δtₖ − Δtₖ₋₁`, …), so an f32 filter interpolates over
 //! differences of a few steps, never over a growing clock.
 //!
-//! The light mode ([`super::Mode::Light`]) forms the same Magnus-4 rotation vector from weights
-//! on the samples that depend on the intervals alone ([`Magnus4Weights`]), computed once for a
-//! run of equal intervals (a fixed sample rate): [`RateWindow::magnus4_cached`].
+//! The light mode ([`super::Mode::Light`]) forms Magnus-4's rotation vector from weights on the
+//! samples that depend on the intervals alone ([`Magnus4Weights`]), computed once for a run of
+//! equal intervals (a fixed sample rate), with the commutator's rate difference taken from the
+//! step's two end samples (order 4 still): [`RateWindow::magnus4_cached`].
 
 use crate::propagation::attitude::sealed::Propagate;
 use crate::propagation::kernels::gauss_node_rates;
@@ -72,12 +73,13 @@ impl<T: Real> RateWindow<T> {
     /// the interval) is no rate to interpolate through: the window keeps it alone, so that this
     /// step takes its rate alone and the next one restarts after it. An interval beyond
     /// [`GAP_RATIO`] times the previous one, or below its inverse, keeps only the interval's
-    /// two samples.
+    /// two samples (an interval equal to the previous one, a regular clock, skips the ratio's
+    /// products).
     #[inline]
     pub(super) fn push(&mut self, gyro: Vec3<T>, dt: T, saturated: bool) {
         let [_, s1, s2] = self.steps;
         let r = T::from_f64(GAP_RATIO);
-        let len = if self.len >= 2 && (dt > r * s2 || dt * r < s2) {
+        let len = if self.len >= 2 && dt != s2 && (dt > r * s2 || dt * r < s2) {
             1
         } else {
             self.len
@@ -138,17 +140,20 @@ impl<T: Real> RateWindow<T> {
 
 impl<T: Real> RateWindow<T> {
     /// The light mode's Magnus-4 rotation of the step ending at the newest sample: the same
-    /// rotation vector as [`RateWindow::rotation`] with [`RateMethod::Magnus4`] (the same
-    /// interpolant, nodes and fallbacks), formed as
-    /// `φ = φ₀ + φ₀ × δ`, `φ₀ = h(ω₃ − b̂) + Σᵢ cᵢ(ωᵢ − ω₃)`, `δ = Σᵢ eᵢ(ωᵢ − ω₃)` (`ω₃` the
-    /// newest sample, `i` over the older ones) with the [`Magnus4Weights`] of the window's
-    /// intervals, computed only when the intervals change. `φ₀ = (h/2)(ω₁ + ω₂)` and
-    /// `δ = (√3/12)·h·(ω₂ − ω₁)` for the Gauss-node rates `ω₁`, `ω₂` (bias removed), and
-    /// `ω₁ × ω₂ = m × (ω₂ − ω₁)` for `m = (ω₁ + ω₂)/2`: so `φ` is Magnus-4's
-    /// `(h/2)(ω₁ + ω₂) + (√3/12)h² ω₁ × ω₂`. Per sample: 21 products and a cross product,
-    /// against the interpolation's divisions and some forty products of
-    /// [`RateWindow::rotation`] (a soft-float division is some hundred instructions on a
-    /// Cortex-M0).
+    /// interpolant, nodes and fallbacks as [`RateWindow::rotation`] with [`RateMethod::Magnus4`],
+    /// formed as `φ = φ₀ + φ₀ × δ`, `φ₀ = h(ω₃ − b̂) + Σᵢ cᵢ(ωᵢ − ω₃)` (`ω₃` the newest sample,
+    /// `i` over the older ones, the [`Magnus4Weights`] of the window's intervals, computed only
+    /// when the intervals change) and `δ = (h/12)(ω₃ − ω₂)`. `φ₀ = (h/2)(ω₁ + ω₂)` for the
+    /// Gauss-node rates `ω₁`, `ω₂` (bias removed), Magnus-4's mean term. Its commutator
+    /// `(√3/12)h² ω₁ × ω₂ = φ₀ × δ'` with `δ' = (√3/12)·h·(ω₂ − ω₁)` (as
+    /// `ω₁ × ω₂ = m × (ω₂ − ω₁)`, `m = (ω₁ + ω₂)/2`) takes the step's end samples' difference
+    /// for the Gauss nodes': `ω₂ − ω₁ = (h/√3)(ω̇ + h²ω⃛/36 + …)` and
+    /// `ω₃ − ω₂ = h(ω̇ + h²ω⃛/24 + …)` at the step's middle, so `δ − δ' = O(h⁴)` and the
+    /// commutator changes by `O(h⁵)`, the order of Magnus-4's local error (the rule stays of
+    /// order 4; on the line through the step's ends, with fewer than four samples, `δ = δ'`
+    /// exactly). Per sample: 15 products and a cross product, against the interpolation's
+    /// divisions and some forty products of [`RateWindow::rotation`] (a soft-float division is
+    /// some hundred instructions on a Cortex-M0).
     /// `rate` is the newest sample with the bias removed, `ω₃ − b̂`; returns `φ` and `|φ|²`.
     #[inline]
     pub(super) fn magnus4_cached(&mut self, rate: Vec3<T>, dt: T) -> (Vec3<T>, T) {
@@ -167,14 +172,12 @@ impl<T: Real> RateWindow<T> {
         }
         let w = &self.weights;
         let [r0, r1, r2, r3] = self.rates;
-        let mut phi = rate.scale(s2);
-        let mut delta = Vec3::ZERO;
-        for (r, (c, e)) in [r0, r1, r2].iter().zip(w.mean.iter().zip(&w.spread)) {
-            let d = *r - r3;
-            phi += d.scale(*c);
-            delta += d.scale(*e);
-        }
-        let phi = phi + phi.cross(delta);
+        let d2 = r2 - r3;
+        let phi = rate.scale(s2)
+            + (r0 - r3).scale(w.mean[0])
+            + (r1 - r3).scale(w.mean[1])
+            + d2.scale(w.mean[2]);
+        let phi = phi + phi.cross(d2.scale(w.spread));
         let n2 = phi.norm_squared();
         // The shared step limit, `within_step_limit_real`'s test on the square at hand.
         if n2 <= T::from_f64(MAX_STEP_ANGLE * MAX_STEP_ANGLE) {
@@ -188,8 +191,8 @@ impl<T: Real> RateWindow<T> {
 /// Magnus-4's weights on the older samples of a [`RateWindow`] for one set of intervals, in
 /// difference form (on `ωᵢ − ω₃`, `ω₃` the newest sample): with `lᵢ` the Lagrange basis of the
 /// window's interpolant (the cubic through the four samples, or the line through the step's
-/// two ends) and `g₁`, `g₂` the step's Gauss nodes, `cᵢ = (h/2)(lᵢ(g₁) + lᵢ(g₂))` and
-/// `eᵢ = (√3/12)·h·(lᵢ(g₂) − lᵢ(g₁))` ([`RateWindow::magnus4_cached`]).
+/// two ends) and `g₁`, `g₂` the step's Gauss nodes, `cᵢ = (h/2)(lᵢ(g₁) + lᵢ(g₂))`; and the
+/// commutator's `−h/12` on `ω₂ − ω₃` ([`RateWindow::magnus4_cached`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Magnus4Weights<T> {
     /// The intervals (`[s₀, s₁, h]`; `[0, 0, h]` for the line) these are for; zero before the
@@ -197,8 +200,8 @@ struct Magnus4Weights<T> {
     key: [T; 3],
     /// `cᵢ` for the three older samples (zero for those the line leaves out).
     mean: [T; 3],
-    /// `eᵢ` for the three older samples (zero for those the line leaves out).
-    spread: [T; 3],
+    /// `−h/12`: `δ = −(h/12)(ω₂ − ω₃)`.
+    spread: T,
 }
 
 impl<T: Real> Magnus4Weights<T> {
@@ -213,9 +216,9 @@ impl<T: Real> Magnus4Weights<T> {
         let g2 = t2 + h * T::from_f64(GAUSS_NODE_2);
         let first = if s0 == T::ZERO { 2 } else { 0 };
         let half_h = h * T::HALF;
-        let spread_h = h * T::from_f64(SQRT_3_12);
         let mut w = Self {
             key,
+            spread: -h / T::from_f64(12.0),
             ..Self::default()
         };
         for i in first..3 {
@@ -227,16 +230,11 @@ impl<T: Real> Magnus4Weights<T> {
                     n2 *= g2 - *tj;
                 }
             }
-            let (l1, l2) = (n1 / den, n2 / den);
-            w.mean[i] = half_h * (l1 + l2);
-            w.spread[i] = spread_h * (l2 - l1);
+            w.mean[i] = half_h * (n1 / den + n2 / den);
         }
         w
     }
 }
-
-/// `√3/12`: Magnus-4's commutator weight.
-const SQRT_3_12: f64 = 0.144_337_567_297_406_44;
 
 /// A step's rotation in the body (sensor) frame, as the prediction applies it:
 /// `q ⊗ exp(first)`, then `⊗ exp(second)` when there is a second (CF4).
@@ -279,21 +277,27 @@ impl<T: Real> StepRotation<T> {
     /// attitude kind's update kernel (plain or compensated).
     #[inline]
     pub(super) fn apply<A: Propagate<T>>(&self, q: A) -> A {
+        self.apply_normalised(q, Normalization::Fast)
+    }
+
+    /// [`StepRotation::apply`] with the renormalisation `norm` after the last exponential.
+    #[inline]
+    pub(super) fn apply_normalised<A: Propagate<T>>(&self, q: A, norm: Normalization) -> A {
         match self.second {
-            Some(b) => apply_two(q, self.first, b),
-            None => q.mul_exp_vector(self.first, Normalization::Fast),
+            Some(b) => apply_two(q, self.first, b, norm),
+            None => q.mul_exp_vector(self.first, norm),
         }
     }
 }
 
-/// `q ⊗ exp(a) ⊗ exp(b)`, renormalised after the second. Out of line: inlined, its two copies
-/// of the update kernel grew the estimator's update past the size at which the compiler
-/// inlines the light mode's per-sample helpers (measured on a Cortex-M0 with
+/// `q ⊗ exp(a) ⊗ exp(b)`, renormalised by `norm` after the second. Out of line: inlined, its
+/// two copies of the update kernel grew the estimator's update past the size at which the
+/// compiler inlines the light mode's per-sample helpers (measured on a Cortex-M0 with
 /// `fw_icount_estimation`).
 #[inline(never)]
-fn apply_two<T: Real, A: Propagate<T>>(q: A, a: Vec3<T>, b: Vec3<T>) -> A {
+fn apply_two<T: Real, A: Propagate<T>>(q: A, a: Vec3<T>, b: Vec3<T>, norm: Normalization) -> A {
     q.mul_exp_vector(a, Normalization::None)
-        .mul_exp_vector(b, Normalization::Fast)
+        .mul_exp_vector(b, norm)
 }
 
 #[cfg(test)]

@@ -45,6 +45,30 @@ pub struct RestDetector<T> {
     field_anchor: Vec3<T>,
 }
 
+/// What the rest detector's update computes from its thresholds and the step alone: the
+/// low-pass stage gain and the squared thresholds (kept by the light mode for a run of equal
+/// steps).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct RestFactors<T> {
+    /// [`LowPass::gain`]`(τ_rest, Δt)`.
+    gain: T,
+    /// `th_ω²`.
+    gyro2: T,
+    /// `th_a²`.
+    accel2: T,
+}
+
+impl<T: Real> RestFactors<T> {
+    /// The factors of the thresholds `th` for the step `dt`.
+    pub(crate) fn new(th: &RestThresholds<T>, dt: T) -> Self {
+        Self {
+            gain: LowPass::gain(th.time_constant, dt),
+            gyro2: th.gyro * th.gyro,
+            accel2: th.accel * th.accel,
+        }
+    }
+}
+
 /// The rest detector's thresholds, declared with the estimator's parameters.
 pub use super::params::RestThresholds;
 
@@ -81,11 +105,30 @@ impl<T: Real> RestDetector<T> {
         k: T,
         th: &RestThresholds<T>,
     ) -> bool {
-        let g = self.gyro.update(gyro, k);
-        let a = self.accel.update(accel, k);
+        let f = RestFactors {
+            gain: k,
+            gyro2: th.gyro * th.gyro,
+            accel2: th.accel * th.accel,
+        };
+        self.update_with_squares(gyro, accel, dt, f, th)
+    }
+
+    /// [`RestDetector::update_with_gain`] with the squared thresholds given too (computed once
+    /// with the gain).
+    #[inline]
+    pub(crate) fn update_with_squares(
+        &mut self,
+        gyro: Vec3<T>,
+        accel: Vec3<T>,
+        dt: T,
+        f: RestFactors<T>,
+        th: &RestThresholds<T>,
+    ) -> bool {
+        let g = self.gyro.update(gyro, f.gain);
+        let a = self.accel.update(accel, f.gain);
         let b = th.max_bias;
-        let th_a2 = th.accel * th.accel;
-        let gyro_moving = (gyro - g).norm_squared() >= th.gyro * th.gyro;
+        let th_a2 = f.accel2;
+        let gyro_moving = (gyro - g).norm_squared() >= f.gyro2;
         if gyro_moving {
             self.turning = false;
         } else if self.still_for > T::ZERO && (a - self.anchor).norm_squared() >= th_a2 {
