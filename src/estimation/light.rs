@@ -185,7 +185,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         if accel_use == SensorUse::Used {
             s.at_rest = self
                 .rest
-                .update_with_squares(gyro, accel, dt, factors.rest, &pr.rest);
+                .update_with_factors(gyro, accel, dt, factors.rest, &pr.rest);
             let a_gyro = self.q_gyro.attitude().rotate(accel);
             if self.lowpass_stale {
                 self.accel_lp = LowPass::at(a_gyro);

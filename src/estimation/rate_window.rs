@@ -90,6 +90,27 @@ impl<T: Real> RateWindow<T> {
         self.len = if saturated { 0 } else { (len + 1).min(4) };
     }
 
+    /// The rates at the step's two Gauss nodes and the step `h`
+    /// ([`gauss_node_rates`] of the interpolant through the window: the cubic through four
+    /// samples, the line through the step's ends with two or three); `None` with fewer than two.
+    #[inline]
+    fn gauss_node_rates(&self) -> Option<(Vec3<T>, Vec3<T>, T)> {
+        let [s0, s1, s2] = self.steps;
+        let [_, _, r2, r3] = self.rates;
+        let t2 = -s2;
+        let t1 = t2 - s1;
+        match self.len {
+            4 => Some(gauss_node_rates(
+                &[t1 - s0, t1, t2, T::ZERO],
+                &self.rates,
+                t2,
+                T::ZERO,
+            )),
+            2 | 3 => Some(gauss_node_rates(&[t2, T::ZERO], &[r2, r3], t2, T::ZERO)),
+            _ => None,
+        }
+    }
+
     /// The rotation of the step ending at the newest sample (`gyro`, `dt` after the one before
     /// it), bias `bias` removed from every sample: `method`'s rotation vector(s) from the
     /// Gauss-node rates of the interpolant through the window (four samples: cubic, order 4;
@@ -106,14 +127,8 @@ impl<T: Real> RateWindow<T> {
         bias: Vec3<T>,
         dt: T,
     ) -> StepRotation<T> {
-        let [s0, s1, s2] = self.steps;
-        let [_, _, r2, r3] = self.rates;
-        let t2 = -s2;
-        let t1 = t2 - s1;
-        let (w1, w2, h) = match self.len {
-            4 => gauss_node_rates(&[t1 - s0, t1, t2, T::ZERO], &self.rates, t2, T::ZERO),
-            2 | 3 => gauss_node_rates(&[t2, T::ZERO], &[r2, r3], t2, T::ZERO),
-            _ => return StepRotation::at_rate(gyro - bias, dt),
+        let Some((w1, w2, h)) = self.gauss_node_rates() else {
+            return StepRotation::at_rate(gyro - bias, dt);
         };
         let (w1, w2) = (w1 - bias, w2 - bias);
         let step = match method {
@@ -303,23 +318,15 @@ fn apply_two<T: Real, A: Propagate<T>>(q: A, a: Vec3<T>, b: Vec3<T>, norm: Norma
 #[cfg(test)]
 mod tests {
     use super::{RateMethod, RateWindow};
-    use crate::propagation::kernels::gauss_node_rates;
     use crate::{Real, Vec3};
 
     /// The light mode's rule written out from the window's interpolation (the reference path's
-    /// `gauss_node_rates`): `φ₀ = (h/2)(ω₁ + ω₂ − 2b̂)` at the Gauss nodes,
+    /// Gauss-node rates): `φ₀ = (h/2)(ω₁ + ω₂ − 2b̂)` at the Gauss nodes,
     /// `φ = φ₀ + φ₀ × (h/12)(ω₃ − ω₂)` with the step's end samples; `None` where the window
     /// holds fewer than two samples (the rate held).
     fn written_out<T: Real>(w: &RateWindow<T>, bias: Vec3<T>) -> Option<Vec3<T>> {
-        let [s0, s1, s2] = w.steps;
+        let (w1, w2, h) = w.gauss_node_rates()?;
         let [_, _, r2, r3] = w.rates;
-        let t2 = -s2;
-        let t1 = t2 - s1;
-        let (w1, w2, h) = match w.len {
-            4 => gauss_node_rates(&[t1 - s0, t1, t2, T::ZERO], &w.rates, t2, T::ZERO),
-            2 | 3 => gauss_node_rates(&[t2, T::ZERO], &[r2, r3], t2, T::ZERO),
-            _ => return None,
-        };
         let mean = (w1 - bias + w2 - bias).scale(h * T::HALF);
         Some(mean + mean.cross((r3 - r2).scale(h / T::from_f64(12.0))))
     }

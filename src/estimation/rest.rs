@@ -91,32 +91,13 @@ impl<T: Real> RestDetector<T> {
     /// Feeds one sample taken `dt` after the previous one; returns whether the sensor is at
     /// rest.
     pub fn update(&mut self, gyro: Vec3<T>, accel: Vec3<T>, dt: T, th: &RestThresholds<T>) -> bool {
-        self.update_with_gain(gyro, accel, dt, LowPass::gain(th.time_constant, dt), th)
+        self.update_with_factors(gyro, accel, dt, RestFactors::new(th, dt), th)
     }
 
-    /// [`RestDetector::update`] with its low-pass stage gain `k` =
-    /// `LowPass::gain(th.time_constant, dt)` given (computed once for a run of equal steps).
+    /// [`RestDetector::update`] with the factors of the thresholds and the step given
+    /// ([`RestFactors::new`]; the light mode computes them once for a run of equal steps).
     #[inline]
-    pub fn update_with_gain(
-        &mut self,
-        gyro: Vec3<T>,
-        accel: Vec3<T>,
-        dt: T,
-        k: T,
-        th: &RestThresholds<T>,
-    ) -> bool {
-        let f = RestFactors {
-            gain: k,
-            gyro2: th.gyro * th.gyro,
-            accel2: th.accel * th.accel,
-        };
-        self.update_with_squares(gyro, accel, dt, f, th)
-    }
-
-    /// [`RestDetector::update_with_gain`] with the squared thresholds given too (computed once
-    /// with the gain).
-    #[inline]
-    pub(crate) fn update_with_squares(
+    pub(crate) fn update_with_factors(
         &mut self,
         gyro: Vec3<T>,
         accel: Vec3<T>,
