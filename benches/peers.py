@@ -204,26 +204,9 @@ def run_fusion(tr, nine, documented=False):
     return qmul_rows(ENU_FROM_NWU, out)
 
 
-def run_madgwick(tr, nine):
-    from ahrs.filters import Madgwick
-
-    f = Madgwick(frequency=1.0 / tr.ts, gain=MADGWICK_GAIN)
-    q = qmul(NWU_FROM_ENU, initial_enu(tr.acc[0], tr.mag[0] if nine else None))
-    out = np.empty((len(tr.gyr), 4))
-    for i in range(len(tr.gyr)):
-        if nine:
-            q = f.updateMARG(q, tr.gyr[i], tr.acc[i], tr.mag[i])
-        else:
-            q = f.updateIMU(q, tr.gyr[i], tr.acc[i])
-        out[i] = q
-    return qmul_rows(ENU_FROM_NWU, out)
-
-
-def run_mahony(tr, nine):
-    from ahrs.filters import Mahony
-
-    q = initial_enu(tr.acc[0], tr.mag[0] if nine else None)
-    f = Mahony(frequency=1.0 / tr.ts, k_P=MAHONY_KP, k_I=MAHONY_KI, q0=q.copy())
+def run_ahrs_filter(f, q, tr, nine):
+    """One `ahrs` filter `f` over a trial from the quaternion `q` (in the filter's own frame):
+    `updateMARG` on every row (9D) or `updateIMU` (6D); the quaternion after each row."""
     out = np.empty((len(tr.gyr), 4))
     for i in range(len(tr.gyr)):
         if nine:
@@ -232,6 +215,22 @@ def run_mahony(tr, nine):
             q = f.updateIMU(q, tr.gyr[i], tr.acc[i])
         out[i] = q
     return out
+
+
+def run_madgwick(tr, nine):
+    from ahrs.filters import Madgwick
+
+    f = Madgwick(frequency=1.0 / tr.ts, gain=MADGWICK_GAIN)
+    q = qmul(NWU_FROM_ENU, initial_enu(tr.acc[0], tr.mag[0] if nine else None))
+    return qmul_rows(ENU_FROM_NWU, run_ahrs_filter(f, q, tr, nine))
+
+
+def run_mahony(tr, nine):
+    from ahrs.filters import Mahony
+
+    q = initial_enu(tr.acc[0], tr.mag[0] if nine else None)
+    f = Mahony(frequency=1.0 / tr.ts, k_P=MAHONY_KP, k_I=MAHONY_KI, q0=q.copy())
+    return run_ahrs_filter(f, q, tr, nine)
 
 
 def peer_table():
