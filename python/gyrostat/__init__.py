@@ -414,10 +414,12 @@ class Estimate:
     skipped: npt.NDArray[np.bool_]
 
 
-def estimator_defaults() -> Dict[str, float]:
+def estimator_defaults(mode: str = "full") -> Dict[str, Union[float, str]]:
     """The estimator's default parameters by name (SI units, angles in rad): the keywords
-    :func:`estimate` takes."""
-    return dict(_gyrostat.estimator_defaults())
+    :func:`estimate` takes, what it starts from in ``mode`` (``full`` or ``light``), with the
+    mode's default rate rule under ``rate_rule`` (its name, as :func:`estimate`'s
+    ``rate_rule`` takes it); an unknown mode raises :class:`GyrostatError`."""
+    return dict(_gyrostat.estimator_defaults(str(mode)))
 
 
 def estimate(

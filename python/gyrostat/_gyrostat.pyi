@@ -2,7 +2,7 @@
 ``__init__.py``, which documents the conventions; these functions take C-contiguous float64
 rows of the stated width and, where an attitude is expected, unit quaternions ``w, x, y, z``."""
 
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -69,7 +69,7 @@ def estimate(
     params: List[Tuple[str, float]],
     skip_errors: bool,
 ) -> Dict[str, Any]: ...
-def estimator_defaults() -> Dict[str, float]: ...
+def estimator_defaults(mode: str = ...) -> Dict[str, Union[float, str]]: ...
 def synthesize(
     *,
     motion: str = ...,

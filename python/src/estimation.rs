@@ -26,15 +26,31 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The estimator's default parameters (SI units, angles in rad) by name.
+/// The estimator's default parameters (SI units, angles in rad) by name, and the default rate
+/// rule of `mode` (`full` or `light`) under `rate_rule` (its name): `Params::defaults_of`, what
+/// `estimate` starts from.
 #[pyfunction]
-fn estimator_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
-    let p = Params::<f64>::default();
+#[pyo3(signature = (mode = "full"))]
+fn estimator_defaults<'py>(py: Python<'py>, mode: &str) -> PyResult<Bound<'py, PyDict>> {
+    let mode = mode_of(mode)?;
+    let p = Params::<f64>::defaults_of(EarthFrame::Enu, mode);
     let d = PyDict::new(py);
     for (name, v) in Params::<f64>::FLAT_NAMES.iter().zip(p.values()) {
         d.set_item(name, v)?;
     }
+    d.set_item("rate_rule", p.rate_rule.name())?;
     Ok(d)
+}
+
+/// The mode of its name, `full` or `light` (the light mode's default correction period).
+fn mode_of<T: Real>(mode: &str) -> Result<Mode<T>, RowError> {
+    match mode.parse::<Mode<f64>>() {
+        Ok(Mode::Full) => Ok(Mode::Full),
+        Ok(_) => Ok(Mode::light()),
+        Err(_) => Err(RowError::call(format!(
+            "mode: unknown {mode:?} (full, light)"
+        ))),
+    }
 }
 
 /// The parameters in `T`: the defaults of `frame` and `mode` (`Params::defaults_of`) with the
@@ -212,12 +228,7 @@ fn estimate<'py>(
     let frame: EarthFrame = frame
         .parse()
         .map_err(|_| RowError::call(format!("frame: unknown {frame:?} (enu, ned)")))?;
-    let light = match mode.parse::<Mode<f64>>() {
-        Ok(m) => m != Mode::Full,
-        Err(_) => {
-            return Err(RowError::call(format!("mode: unknown {mode:?} (full, light)")).into());
-        }
-    };
+    let light = mode_of::<f64>(mode)? != Mode::Full;
     let rate_rule = match rate_rule {
         None => None,
         Some(name) => Some(name.parse::<RateRule>().map_err(|_| {

@@ -91,6 +91,21 @@ def test_parameters_and_errors():
     t, gyro, accel, mag, _ = synthetic(2000)
     d = gyrostat.estimator_defaults()
     assert d["accel_time_constant"] == 3.0
+    # The rule named as the default is the one `estimate` runs without a rule (bit for bit),
+    # in each mode, and another rule gives other rows (on a rate that changes: the rules agree
+    # on a constant one).
+    turning = gyro + 0.5 * np.sin(np.outer(1.3 * t + 0.7 * t * t, [1.0, 0.6, -0.8]))
+    for mode in ("full", "light"):
+        rule = gyrostat.estimator_defaults(mode)["rate_rule"]
+        plain = gyrostat.estimate(t, turning, accel, mag, mode=mode)
+        named = gyrostat.estimate(t, turning, accel, mag, mode=mode, rate_rule=rule)
+        assert np.array_equal(plain.q, named.q)
+        other = "trapezoid" if rule != "trapezoid" else "magnus4"
+        assert not np.array_equal(
+            plain.q, gyrostat.estimate(t, turning, accel, mag, mode=mode, rate_rule=other).q
+        )
+    with pytest.raises(GyrostatError, match='mode: unknown "heavy"'):
+        gyrostat.estimator_defaults("heavy")
     est = gyrostat.estimate(t, gyro, accel, mag, accel_time_constant=1.0, frame="ned",
                             heading_time_constant=9.0)
     assert est.q.shape == (2000, 4)
