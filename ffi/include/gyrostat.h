@@ -230,7 +230,7 @@
 /**
  * Words of `gyro_estimator_f64`'s storage.
  */
-#define GYRO_ESTIMATOR_F64_WORDS 267
+#define GYRO_ESTIMATOR_F64_WORDS 268
 
 /**
  * `gyro_sample_clock_*_interval`: the first time stamp (or the first after a restart): no

@@ -2099,7 +2099,7 @@ pub unsafe extern "C" fn gyro_gyrostat_f64_step(
 /// Words of `gyro_estimator_f32`'s storage.
 pub const GYRO_ESTIMATOR_F32_WORDS: usize = 136;
 /// Words of `gyro_estimator_f64`'s storage.
-pub const GYRO_ESTIMATOR_F64_WORDS: usize = 267;
+pub const GYRO_ESTIMATOR_F64_WORDS: usize = 268;
 
 /// The attitude and gyro-bias estimator, f32 (`Estimator`, the library's default parameters).
 /// Contents private.

@@ -98,6 +98,14 @@ pub struct Estimator<T, A = UnitQuat<T>> {
     last_saturated: bool,
     p: Covariance<T>,
     accel_lp: LowPass<T>,
+    /// Time (s) the accelerometer's low-pass has averaged since it started (0: only its
+    /// starting sample); below `accel_time_constant` it holds the running mean
+    /// ([`LowPass::mean_update`]).
+    accel_warm: T,
+    /// Whether the inclination is still taken in full from the low-pass's running mean: from
+    /// initialisation until the low-pass has averaged `accel_time_constant` (see
+    /// [`Estimator::accel_update`]).
+    tilt_from_mean: bool,
     rest: RestDetector<T>,
     field: FieldMonitor<T>,
     field_started: bool,
@@ -244,6 +252,8 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             window: RateWindow::default(),
             p: Covariance::diagonal(T::ZERO, b0 * b0),
             accel_lp: LowPass::default(),
+            accel_warm: T::ZERO,
+            tilt_from_mean: false,
             rest: RestDetector::default(),
             field: FieldMonitor::default(),
             field_started: false,
@@ -531,6 +541,8 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         self.q_gyro = A::from_unit(q);
         self.q_corr = UnitQuat::IDENTITY;
         self.accel_lp = LowPass::at(q.rotate(accel));
+        self.accel_warm = T::ZERO;
+        self.tilt_from_mean = self.params.accel_time_constant > T::ZERO;
         self.rest = RestDetector::new(gyro, accel);
         self.mag_clock = T::ZERO;
         self.last_gyro = gyro;
@@ -827,14 +839,27 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         let a_gyro = self.q_gyro.attitude().rotate(accel);
         if self.lowpass_stale {
             self.accel_lp = LowPass::at(a_gyro);
+            self.accel_warm = T::ZERO;
+            self.tilt_from_mean = false;
             self.lowpass_stale = false;
         }
-        let k = if tau_a > T::ZERO {
-            LowPass::gain(tau_a, dt)
+        let v = if self.accel_warm < tau_a {
+            // The starting sample counts as one step of this length.
+            let prior = if self.accel_warm > T::ZERO {
+                self.accel_warm
+            } else {
+                dt
+            };
+            self.accel_warm = prior + dt;
+            self.accel_lp.mean_update(a_gyro, dt / self.accel_warm)
         } else {
-            T::ONE
+            let k = if tau_a > T::ZERO {
+                LowPass::gain(tau_a, dt)
+            } else {
+                T::ONE
+            };
+            self.accel_lp.update(a_gyro, k)
         };
-        let v = self.accel_lp.update(a_gyro, k);
         // What the low-pass filter left of non-gravitational acceleration shows in its norm.
         let g = T::from_f64(GRAVITY);
         let residual = (length(v) - g).abs() / g;
@@ -850,6 +875,15 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         } else {
             (T::ZERO, T::ZERO)
         };
+        if self.tilt_from_mean {
+            // The initial inclination came from one sample, whose noise grows as the square
+            // root of the sample rate; the running mean shares that sample's offset and has
+            // less of its noise, so it replaces it in full until the low-pass takes over.
+            self.tilt_from_mean = self.accel_warm < tau_a;
+            x[0] = ex;
+            x[1] = ey;
+            return SensorUse::Used;
+        }
         self.persistent_tilt(ex, ey);
         match gains {
             Gains::Kalman => {

@@ -61,6 +61,18 @@ impl<T: Real> LowPass<T> {
         self.stage2
     }
 
+    /// Feeds one sample into a running mean held in both stages: `y ← y + w·(x − y)` with
+    /// the sample's weight `w` (its share of the time averaged so far, `Δt/T`), the output
+    /// that mean. A filter started on one noisy sample ([`LowPass::at`]) carries that sample's
+    /// error for several `τ`; fed this way over its first `τ` it starts from the mean of that
+    /// time instead (at rest on it: the normal updates continue without a step).
+    #[inline]
+    pub fn mean_update(&mut self, x: Vec3<T>, w: T) -> Vec3<T> {
+        self.stage1 += (x - self.stage1).scale(w);
+        self.stage2 = self.stage1;
+        self.stage2
+    }
+
     /// The current output.
     #[inline]
     pub fn output(&self) -> Vec3<T> {
