@@ -310,7 +310,7 @@ impl<T: Real> Mode<T> {
     /// --params-out FILE`): on synthetic logs with a known delay the light mode does best
     /// with the true delay (given the gyroscope's true delay, [`Params::gyro_delay`]), with no
     /// offset for the corrections' period or the sample step. The full mode's online
-    /// estimates on BROAD are 5.1–14.7 ms at every rate. With [`RateRule::Trapezoid`] the
+    /// estimates on BROAD are 5.3–14.7 ms at every rate. With [`RateRule::Trapezoid`] the
     /// delay that scores best falls by about a quarter of the sample step: that rule's error
     /// at long steps, which a shorter delay partly offsets, not a property of the sensor.
     pub const LIGHT_MAG_DELAY: f64 = 0.009_25;
