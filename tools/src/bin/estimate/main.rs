@@ -148,6 +148,10 @@ OPTIONS:
                    field.new_field_min_rate in an undisturbed field: with less, no file is
                    written and the run ends with `error: --params-out: ...` (status 1, the
                    rows already written). The folder must exist (checked before the run).
+                   The estimate averages over about the last mag_delay_estimation_time of
+                   that rotation: for a measurement, a log with a minute or more of turning and
+                   --set mag_delay_estimation_time=30 scatter less (BENCHMARKS.md, \"The light
+                   mode's magnetometer delay from the sensor\").
     --set NAME=VALUE  an estimator parameter (gyrostat::estimation::Params; SI units, angles
                    in rad; a value ending in deg or deg/s is converted): gains=kalman,
                    heading_time_constant (complementary gains), light_period (light mode, s),
