@@ -857,7 +857,12 @@ typedef struct {
    * Delay (s) of the magnetometer behind the gyroscope: its sample is compared with
    * the attitude that long ago (linear between the two nearest attitudes of the
    * history, up to `MAG_DELAY_MAX`). Default 0: set it when known, else it is
-   * estimated online (`mag_delay_estimation_time`).
+   * estimated online (`mag_delay_estimation_time`). The light mode makes no
+   * estimate: it uses a positive value as it is, and without one a fixed default
+   * (`Mode::LIGHT_MAG_DELAY`). A sensor's delay is not a datasheet figure (it is
+   * the magnetometer's conversion and output timing against the gyroscope's
+   * filter); the full mode measures it from a log with rotation (`estimate
+   * --params-out FILE` writes it as a parameter file).
    */
   float mag_delay;
   /**
@@ -1078,7 +1083,12 @@ typedef struct {
    * Delay (s) of the magnetometer behind the gyroscope: its sample is compared with
    * the attitude that long ago (linear between the two nearest attitudes of the
    * history, up to `MAG_DELAY_MAX`). Default 0: set it when known, else it is
-   * estimated online (`mag_delay_estimation_time`).
+   * estimated online (`mag_delay_estimation_time`). The light mode makes no
+   * estimate: it uses a positive value as it is, and without one a fixed default
+   * (`Mode::LIGHT_MAG_DELAY`). A sensor's delay is not a datasheet figure (it is
+   * the magnetometer's conversion and output timing against the gyroscope's
+   * filter); the full mode measures it from a log with rotation (`estimate
+   * --params-out FILE` writes it as a parameter file).
    */
   double mag_delay;
   /**

@@ -1142,6 +1142,15 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         d.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX))
     }
 
+    /// How long (s) the online estimate of the magnetometer's delay has been fed: the time of
+    /// rotation faster than `field.new_field_min_rate` in an undisturbed field so far. The
+    /// estimate replaces [`Params::mag_delay`] in [`Estimator::mag_delay`] once this reaches
+    /// [`Params::mag_delay_estimation_time`] (never when that is 0, nor in the light mode,
+    /// which makes no estimate).
+    pub fn mag_delay_evidence(&self) -> T {
+        self.lag_time
+    }
+
     /// A sequential scalar Kalman update of error-state component `i` with measurement `z`:
     /// the innovation is `z − xᵢ` (the state already accumulated in this update).
     fn scalar_update(&mut self, x: &mut [T; 6], i: usize, z: T, r: T) {

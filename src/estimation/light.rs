@@ -22,10 +22,14 @@
 //! What the light mode leaves out: the attitude history on the time grid and the online
 //! estimate of the magnetometer's delay. A fixed delay `d` is applied to first order in the
 //! sensor frame: the sample taken `d` ago is mapped to the current sensor frame by
-//! `exp(−ω·d) ≈ I − d[ω]×`, `m' = m − d·(ω × m)`. `d` is [`Params::mag_delay`] when
-//! [`Params::mag_delay_estimation_time`] is 0 (a fixed delay asked for); when an estimate is
-//! asked for (the default), which the light mode does not make, `d` =
-//! [`Mode::LIGHT_MAG_DELAY`] at every sample rate (BENCHMARKS.md).
+//! `exp(−ω·d) ≈ I − d[ω]×`, `m' = m − d·(ω × m)`. `d` is [`Params::mag_delay`] when it is
+//! given (positive) or when [`Params::mag_delay_estimation_time`] is 0 (a fixed delay asked
+//! for, 0 included). With neither (the defaults: no delay given, an estimate asked for, which
+//! the light mode does not make) `d` = [`Mode::LIGHT_MAG_DELAY`] at every sample rate: a value
+//! read off BROAD, not a sensor figure. The sensor's own delay is measured by the full mode:
+//! `estimate --params-out FILE` writes its estimate as a parameter file for `--params`
+//! (BENCHMARKS.md, "The light mode's magnetometer delay from the sensor": with the sensor's
+//! true delay the light mode scores as the full mode does with it, no offset between them).
 //!
 //! Between corrections the [`Outcome`] reports the accelerometer sample as used (it fed the
 //! low-pass filter) and a valid magnetometer sample with the report of the last correction
@@ -345,11 +349,11 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
     }
 }
 
-/// The light mode's magnetometer delay `d` (s) for the sample step `dt` (module docs):
-/// [`Params::mag_delay`] (at most `MAG_DELAY_MAX`) when a fixed delay is asked for, else
-/// [`Mode::LIGHT_MAG_DELAY`].
+/// The light mode's magnetometer delay `d` (s) (module docs): [`Params::mag_delay`] (at most
+/// `MAG_DELAY_MAX`) when it is given (positive) or a fixed delay is asked for
+/// (`mag_delay_estimation_time` 0), else [`Mode::LIGHT_MAG_DELAY`].
 fn mag_delay<T: Real>(pr: &Params<T>) -> T {
-    if pr.mag_delay_estimation_time > T::ZERO {
+    if pr.mag_delay_estimation_time > T::ZERO && pr.mag_delay <= T::ZERO {
         T::from_f64(Mode::<T>::LIGHT_MAG_DELAY)
     } else {
         pr.mag_delay.max(T::ZERO).min(T::from_f64(MAG_DELAY_MAX))

@@ -109,7 +109,12 @@ macro_rules! estimator_parameters {
             /// Delay (s) of the magnetometer behind the gyroscope: its sample is compared with
             /// the attitude that long ago (linear between the two nearest attitudes of the
             /// history, up to `MAG_DELAY_MAX`). Default 0: set it when known, else it is
-            /// estimated online (`mag_delay_estimation_time`).
+            /// estimated online (`mag_delay_estimation_time`). The light mode makes no
+            /// estimate: it uses a positive value as it is, and without one a fixed default
+            /// (`Mode::LIGHT_MAG_DELAY`). A sensor's delay is not a datasheet figure (it is
+            /// the magnetometer's conversion and output timing against the gyroscope's
+            /// filter); the full mode measures it from a log with rotation (`estimate
+            /// --params-out FILE` writes it as a parameter file).
             mag_delay: 0.0, NonNegative;
             /// Averaging time `τ_d` (s of rotation in an undisturbed field) of the online
             /// estimate of the magnetometer's delay; 0 keeps `mag_delay` fixed. A positive
@@ -273,8 +278,8 @@ pub enum Mode<T> {
     /// (`Φ = [[I, −R̂·T_c], [0, I]]`, `R̂` at its end) and the rest, inclination and heading
     /// updates (variances for one measurement per `T_c`) once per `correction_period` `T_c`
     /// (s, sample time). No magnetometer-delay estimate: the field sample is carried back by a
-    /// delay `d` to first order, `m − d·(ω × m)`, `d` = [`Params::mag_delay`] when
-    /// [`Params::mag_delay_estimation_time`] is 0, else [`Mode::LIGHT_MAG_DELAY`]. Between
+    /// delay `d` to first order, `m − d·(ω × m)`, `d` = [`Params::mag_delay`] when it is
+    /// positive or [`Params::mag_delay_estimation_time`] is 0, else [`Mode::LIGHT_MAG_DELAY`]. Between
     /// corrections the [`Outcome`](super::Outcome) reports a valid magnetometer sample as the
     /// last correction did. Cost and accuracy: BENCHMARKS.md (about a third of the full mode's
     /// cost on the M4F).
@@ -288,14 +293,26 @@ impl<T: Real> Mode<T> {
     /// The default correction period (s) of [`Mode::Light`]: 25 ms (40 Hz).
     pub const LIGHT_PERIOD: f64 = 0.025;
 
-    /// The magnetometer delay `d` (s) the light mode applies in place of the online estimate,
-    /// at every sample rate: 9.25 ms, read off BROAD's trials of half A (01 05 09 14 21 26 30
-    /// 34: the light mode's mean total over fixed delays 8–10 ms at 285.7, 142.9, 95.2 and
-    /// 47.6 Hz, Magnus-4 rate rule), checked on half B (BENCHMARKS.md, "the light mode's rate
-    /// rule"). The full mode's online estimates on the same trials are 5.1–13.9 ms at every
-    /// rate. With [`RateRule::Trapezoid`] the delay that scores best falls by about a quarter
-    /// of the sample step: that rule's error at long steps, which a shorter delay partly
-    /// offsets, not a property of the sensor.
+    /// The magnetometer delay `d` (s) the light mode applies when no delay is given
+    /// ([`Params::mag_delay`] 0 with an online estimate asked for, the defaults), at every
+    /// sample rate: 9.25 ms. **It is fitted to BROAD, not taken from a sensor**: read off
+    /// BROAD's trials of half A (01 05 09 14 21 26 30 34: the light mode's mean total over
+    /// fixed delays 8–10 ms at 285.7, 142.9, 95.2 and 47.6 Hz, Magnus-4 rate rule). Half B's
+    /// best fixed delay is shorter, about 7 ms at 285.7 and 47.6 Hz, and the full mode with a
+    /// fixed delay has the same two optima (BENCHMARKS.md, "The light mode's magnetometer
+    /// delay from the sensor"). No sensor figure replaces it: the delay is the magnetometer's
+    /// conversion and output timing against the gyroscope's filter, which datasheets do not
+    /// state as one number (the AK8963's, for one, gives a 100 Hz continuous mode and data
+    /// ready at the end of each measurement: a sample is at least half a period, 5 ms, old on
+    /// average when read at a higher rate; MS1356-E-02, 2013/10, section 6.4.3, page 15),
+    /// and 5 ms loses 0.23° on half A at 285.7 Hz (1.185° → 1.418°). For another sensor set
+    /// [`Params::mag_delay`] to its own delay, measured by the full mode (`estimate
+    /// --params-out FILE`): on synthetic logs with a known delay the light mode does best
+    /// with the true delay (given the gyroscope's true delay, [`Params::gyro_delay`]), with no
+    /// offset for the corrections' period or the sample step. The full mode's online
+    /// estimates on BROAD are 5.3–14.7 ms at every rate. With [`RateRule::Trapezoid`] the
+    /// delay that scores best falls by about a quarter of the sample step: that rule's error
+    /// at long steps, which a shorter delay partly offsets, not a property of the sensor.
     pub const LIGHT_MAG_DELAY: f64 = 0.009_25;
 
     /// [`Mode::Light`] with the default correction period [`Mode::LIGHT_PERIOD`].

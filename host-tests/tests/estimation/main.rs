@@ -326,6 +326,42 @@ host_tests::per_type! {
         assert!(err_l < rad(0.5), "{}: light {}°", T::NAME, err_l.to_degrees());
     }
 
+    /// The light mode's magnetometer delay: a given [`Params::mag_delay`] is used as it is
+    /// whether or not an online estimate is asked for (the light mode makes none), and with
+    /// no delay given it is [`FilterMode::LIGHT_MAG_DELAY`]: on the motion of
+    /// `light_mode_follows_the_full_mode` with a 12 ms delay given, the run with the default
+    /// `mag_delay_estimation_time` equals the run with it 0 bit for bit, the defaults' run
+    /// equals a fixed 9.25 ms bit for bit, and the two pairs differ.
+    #[test]
+    fn light_mode_takes_a_given_mag_delay() {
+        let run = |mag_delay: f64, estimation: Option<f64>| {
+            let mut motion = Motion { t: 0.0, q: qexp([0.3, -0.2, 1.0]), amp: 0.5 };
+            let base = Params::<T>::light();
+            let p = Params::<T> {
+                mag_delay: T::from_f64(mag_delay),
+                mag_delay_estimation_time: estimation.map_or(base.mag_delay_estimation_time, T::from_f64),
+                ..base
+            };
+            let mut f = Estimator::<T>::try_new(p).unwrap();
+            let mut rng = Lcg(9);
+            let mut qs = Vec::new();
+            for _ in 0..4000 {
+                let dt = 0.005 * (1.0 + 0.2 * rng.next());
+                let w = motion.step(dt);
+                let (acc, mag) = motion.sensors();
+                f.update_9d(vec3(w), vec3(acc), vec3(mag), T::from_f64(dt)).unwrap();
+                qs.push(f.attitude().to_array().map(|x| x.to_f64()));
+            }
+            qs
+        };
+        assert!(Params::<T>::light().mag_delay_estimation_time > T::ZERO);
+        let given = run(0.012, None);
+        assert_eq!(given, run(0.012, Some(0.0)), "{}", T::NAME);
+        let default = run(0.0, None);
+        assert_eq!(default, run(FilterMode::<f64>::LIGHT_MAG_DELAY, Some(0.0)), "{}", T::NAME);
+        assert_ne!(given, default, "{}", T::NAME);
+    }
+
     /// The online magnetometer delay: a sensor turning continuously (non-repeating rates up to
     /// about 100 °/s; the gyroscope's samples are point samples at the end of each step) whose
     /// field sample is that of the attitude `d` samples earlier (`d` = 0, 2 and 5, that is 0, 10

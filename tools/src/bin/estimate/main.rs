@@ -2,7 +2,8 @@
 //!
 //! ```text
 //! estimate [--6d | --9d] [--f32] [--mode full|light] [--frame enu|ned] [--gyro-unit U] [--accel-unit U]
-//!     [--mag-unit U] [--time-unit U] [--truth] [--plot FILE.svg] [--set NAME=VALUE]... [FILE]
+//!     [--mag-unit U] [--time-unit U] [--truth] [--plot FILE.svg] [--params-out FILE]
+//!     [--set NAME=VALUE]... [FILE]
 //! ```
 //! Run with `--help` for the full description of the input and output formats.
 
@@ -41,6 +42,7 @@ const CLI: Cli = Cli {
         Flag::value("--plot"),
         Flag::value("--calibration"),
         Flag::value("--params"),
+        Flag::value("--params-out"),
         Flag::repeated("--set"),
     ],
 };
@@ -53,7 +55,7 @@ USAGE:
              [--gyro-unit rad/s|deg/s]
              [--accel-unit m/s^2|g] [--mag-unit uT|nT|G|any] [--time-unit s|ms|us]
              [--calibration FILE] [--params FILE] [--truth] [--skip-bad-rows]
-             [--plot FILE.svg]
+             [--plot FILE.svg] [--params-out FILE]
              [--set NAME=VALUE]... [FILE]
 
     Reads FILE (standard input without FILE, or with FILE `-`); gzip-compressed input (BROAD's
@@ -133,6 +135,23 @@ OPTIONS:
                    characterisation tool writes it; an unknown name or rule, a repeated name
                    or a bad number is `error: --params: FILE: line N: reason`, status 2);
                    names it does not give keep their defaults; --set applies after it
+    --params-out FILE
+                   after the run, write the magnetometer's delay behind the gyroscope that the
+                   full mode estimated (9D, --mode full, mag_delay_estimation_time > 0) as a
+                   parameter file: `mag_delay = D` and `mag_delay_estimation_time = 0`, with
+                   comments (the log, the seconds of rotation the estimate rests on). Given to
+                   --params of another run (appended to characterize's --params file, say), it
+                   makes the light mode, which does not estimate the delay, use this sensor's
+                   instead of its fixed default (Mode::LIGHT_MAG_DELAY, 9.25 ms), and the full
+                   mode use it from the first sample. The log needs at least
+                   mag_delay_estimation_time (10 s) of rotation faster than
+                   field.new_field_min_rate in an undisturbed field: with less, no file is
+                   written and the run ends with `error: --params-out: ...` (status 1, the
+                   rows already written). The folder must exist (checked before the run).
+                   The estimate averages over about the last mag_delay_estimation_time of
+                   that rotation: for a measurement, a log with a minute or more of turning and
+                   --set mag_delay_estimation_time=30 scatter less (BENCHMARKS.md, \"The light
+                   mode's magnetometer delay from the sensor\").
     --set NAME=VALUE  an estimator parameter (gyrostat::estimation::Params; SI units, angles
                    in rad; a value ending in deg or deg/s is converted): gains=kalman,
                    heading_time_constant (complementary gains), light_period (light mode, s),
@@ -200,6 +219,7 @@ struct Args {
     truth: bool,
     skip_bad_rows: bool,
     plot: Option<PathBuf>,
+    params_out: Option<PathBuf>,
     calibration: Option<CalibrationFile>,
     gyro: Option<GyroUnit>,
     accel: Option<AccelUnit>,
@@ -244,6 +264,28 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
     // The parameters are checked here, so that a bad one is a usage error before any input.
     Estimator::try_new(params)
         .map_err(|e| format!("--set/--params: the parameters are invalid: {e}"))?;
+    let params_out = f.value("--params-out").map(PathBuf::from);
+    if params_out.is_some() {
+        if params.mode != Mode::Full {
+            return Err(
+                "--params-out: the light mode does not estimate the magnetometer's \
+                        delay: run the full mode (--mode full, no light_period)"
+                    .into(),
+            );
+        }
+        if params.mag_delay_estimation_time <= 0.0 {
+            return Err(
+                "--params-out: mag_delay_estimation_time is 0: the delay is not \
+                        estimated (it stays mag_delay)"
+                    .into(),
+            );
+        }
+        if sensors == Sensors::SixD {
+            return Err(
+                "--params-out: the magnetometer's delay needs the magnetometer (9D)".into(),
+            );
+        }
+    }
     let file = match operands.as_slice() {
         [] => None,
         [one] if one == "-" => None,
@@ -257,6 +299,7 @@ fn arguments(f: &Flags, operands: Vec<String>) -> Result<Args, String> {
         truth: f.switch("--truth"),
         skip_bad_rows: f.switch("--skip-bad-rows"),
         plot: f.value("--plot").map(PathBuf::from),
+        params_out,
         calibration: f
             .value("--calibration")
             .map(|p| calibration::read(p).map_err(|e| format!("--calibration: {e}")))
@@ -334,6 +377,9 @@ struct Done {
     metric: Option<Metric>,
     rows: Vec<PlotRow>,
     six_d: bool,
+    /// The magnetometer delay in use at the end (s) and the seconds of rotation its estimate
+    /// was fed ([`Estimator::mag_delay_evidence`]).
+    mag_delay: (f64, f64),
 }
 
 /// Reads the input, runs the estimator in `T` and prints the rows.
@@ -376,6 +422,11 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
         (Sensors::SixD, _) | (Sensors::Auto, false) => true,
         (Sensors::NineD | Sensors::Auto, true) => false,
     };
+    if six_d && args.params_out.is_some() {
+        return Err(Failure::Usage(
+            "--params-out: the input has no magnetometer columns: the delay needs them".into(),
+        ));
+    }
     if args.truth && layout.truth.is_none() {
         return Err(Failure::Usage(
             "--truth: the input has no reference columns (qw,qx,qy,qz or opt_qw,...)".into(),
@@ -490,10 +541,15 @@ fn run<T: Scalar>(args: &Args, params: Params<T>, out: &mut Csv) -> Result<Done,
             skipped.1
         );
     }
+    let filter = pipeline.estimator();
     Ok(Done {
         metric,
         rows,
         six_d,
+        mag_delay: (
+            filter.mag_delay().to_f64(),
+            filter.mag_delay_evidence().to_f64(),
+        ),
     })
 }
 
@@ -655,6 +711,12 @@ fn main() -> ExitCode {
         flags::error(&format!("--plot {}: {e}", path.display()));
         return ExitCode::FAILURE;
     }
+    if let Some(path) = &args.params_out
+        && let Err(e) = gyrostat_tools::plot::check_folder(path)
+    {
+        flags::error(&format!("--params-out {}: {e}", path.display()));
+        return ExitCode::FAILURE;
+    }
     let mut out = Csv::stdout();
     let result = if args.f32 {
         run::<f32>(&args, args.params.map(|x| x as f32), &mut out)
@@ -695,5 +757,41 @@ fn main() -> ExitCode {
         flags::error(&format!("--plot {}: {e}", path.display()));
         return ExitCode::FAILURE;
     }
+    if let Some(path) = &args.params_out {
+        let (delay, evidence) = done.mag_delay;
+        let needed = args.params.mag_delay_estimation_time;
+        if evidence < needed {
+            flags::error(&format!(
+                "--params-out: the magnetometer's delay was not estimated: {evidence:.1} s of \
+                 rotation in an undisturbed field, {needed} s needed \
+                 (mag_delay_estimation_time); no file written"
+            ));
+            return ExitCode::FAILURE;
+        }
+        let text = delay_params_text(&args, delay, evidence);
+        if let Err(e) = std::fs::write(path, text) {
+            flags::error(&format!("--params-out {}: {e}", path.display()));
+            return ExitCode::FAILURE;
+        }
+    }
     ExitCode::SUCCESS
+}
+
+/// The parameter file of `--params-out`: the full mode's estimate of the magnetometer's delay
+/// `delay` (s), fed `evidence` seconds of rotation, kept fixed.
+fn delay_params_text(args: &Args, delay: f64, evidence: f64) -> String {
+    let source = args
+        .file
+        .as_deref()
+        .map_or("(stdin)".into(), |p| p.display().to_string());
+    format!(
+        "# The magnetometer's delay behind the gyroscope, estimated by estimate's full mode\n\
+         # from {source}\n\
+         # over {evidence:.1} s of rotation in an undisturbed field (averaged over about the last\n\
+         # {tau} s of it: mag_delay_estimation_time), kept fixed: the light mode uses it in place\n\
+         # of its default (Mode::LIGHT_MAG_DELAY), the full mode from the first sample.\n\
+         mag_delay = {delay:?}  # s\n\
+         mag_delay_estimation_time = 0  # s: no online estimate, mag_delay as it is\n",
+        tau = args.params.mag_delay_estimation_time,
+    )
 }
