@@ -121,31 +121,38 @@ impl<T: Real> Covariance<T> {
         }
         let inv = T::ONE / s;
         let k = p.map(|v| v * inv);
-        // Every entry of the upper triangle as `Pⱼₖ − (pⱼ pₖ)/s`, written to both triangles
-        // (each block read in its upper triangle only, before it is written), then row and
-        // column `i` over it in Joseph form.
+        // Every entry of the upper triangle off row and column `i` as `Pⱼₖ − (pⱼ pₖ)/s`,
+        // written to both triangles (each block read in its upper triangle only, before it is
+        // written), then row and column `i` in Joseph form (from `p` and `K`, which the
+        // entries written first do not enter: row and column `i` are not formed twice).
         let a = &mut self.attitude.m;
         for j in 0..3 {
             for c in j..3 {
-                let v = a[j][c] - p[j] * p[c] * inv;
-                let v = if j == c { v.max(T::ZERO) } else { v };
-                a[j][c] = v;
-                a[c][j] = v;
+                if j != i && c != i {
+                    let v = a[j][c] - p[j] * p[c] * inv;
+                    let v = if j == c { v.max(T::ZERO) } else { v };
+                    a[j][c] = v;
+                    a[c][j] = v;
+                }
             }
         }
         let b = &mut self.cross.m;
         for j in 0..3 {
             for c in 0..3 {
-                b[j][c] -= p[j] * p[c + 3] * inv;
+                if j != i && c + 3 != i {
+                    b[j][c] -= p[j] * p[c + 3] * inv;
+                }
             }
         }
         let cb = &mut self.bias.m;
         for j in 0..3 {
             for c in j..3 {
-                let v = cb[j][c] - p[j + 3] * p[c + 3] * inv;
-                let v = if j == c { v.max(T::ZERO) } else { v };
-                cb[j][c] = v;
-                cb[c][j] = v;
+                if j + 3 != i && c + 3 != i {
+                    let v = cb[j][c] - p[j + 3] * p[c + 3] * inv;
+                    let v = if j == c { v.max(T::ZERO) } else { v };
+                    cb[j][c] = v;
+                    cb[c][j] = v;
+                }
             }
         }
         let g = r * inv;

@@ -209,6 +209,12 @@ const UNKNOWN_HEADING_VARIANCE: f64 = core::f64::consts::PI * core::f64::consts:
 /// The earth's gravity used for the accelerometer gate, m/s².
 const GRAVITY: f64 = 9.81;
 
+/// The range of a sample's largest component `m` within which its `|v|²` (between `m²` and
+/// `3m²`) is finite and not zero in f32 and f64: `2⁻⁶⁰ ≤ m ≤ 2⁶⁰` (`Estimator::check`).
+const NORM_CHECK_MIN: f64 = 1.0 / NORM_CHECK_MAX;
+/// See [`NORM_CHECK_MIN`].
+const NORM_CHECK_MAX: f64 = (1u64 << 60) as f64;
+
 impl<T: Real> Estimator<T> {
     /// An estimator with these parameters, waiting for its first sample; the strapdown
     /// attitude a plain [`UnitQuat`].
@@ -518,10 +524,24 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         Ok(out)
     }
 
+    /// How a sample `v` with the full scale `range` can be used: not finite, saturated (a
+    /// component at the range, or `|v|²` overflowing), zero (`|v|² = 0`, underflow included),
+    /// or used. With `m = max|vᵢ|`, `m² ≤ |v|² ≤ 3m²`: for `2⁻⁶⁰ ≤ m ≤ 2⁶⁰` the square is
+    /// finite and not zero in f32 and f64 (2⁻¹²⁰ is above f32's smallest normal 2⁻¹²⁶,
+    /// 3·2¹²⁰ below its largest), so it is formed only outside that range (a soft-float core
+    /// saves its three products and two sums on every sample).
     fn check(&self, v: Vec3<T>, range: T) -> SensorUse {
         if !v.is_finite() {
-            SensorUse::NonFinite
-        } else if v.max_abs() >= range || !v.norm_squared().is_finite() {
+            return SensorUse::NonFinite;
+        }
+        let m = v.max_abs();
+        if m >= range {
+            return SensorUse::Saturated;
+        }
+        if m >= T::from_f64(NORM_CHECK_MIN) && m <= T::from_f64(NORM_CHECK_MAX) {
+            return SensorUse::Used;
+        }
+        if !v.norm_squared().is_finite() {
             SensorUse::Saturated
         } else if v.norm_squared() == T::ZERO {
             SensorUse::Zero

@@ -173,7 +173,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         } else {
             Normalization::None
         };
-        self.q_gyro = step.apply_normalised(self.q_gyro, norm);
+        self.q_gyro = step.apply_normalised_sq(self.q_gyro, theta2, norm);
         // Borrowed, not copied, on the per-sample path.
         let pr = &self.params;
         let s = &mut self.light;

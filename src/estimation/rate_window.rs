@@ -305,6 +305,24 @@ impl<T: Real> StepRotation<T> {
     }
 }
 
+impl<T: Real> StepRotation<T> {
+    /// [`StepRotation::apply_normalised`] given `total_sq`, `total().norm_squared()` as the
+    /// caller formed it: a single rotation's exponential takes it for its own `|φ|²` (the
+    /// same bits).
+    #[inline]
+    pub(super) fn apply_normalised_sq<A: Propagate<T>>(
+        &self,
+        q: A,
+        total_sq: T,
+        norm: Normalization,
+    ) -> A {
+        match self.second {
+            Some(b) => apply_two(q, self.first, b, norm),
+            None => q.mul_exp_vector_sq(self.first, total_sq, norm),
+        }
+    }
+}
+
 /// `q ⊗ exp(a) ⊗ exp(b)`, renormalised by `norm` after the second. Out of line: inlined, its
 /// two copies of the update kernel grew the estimator's update past the size at which the
 /// compiler inlines the light mode's per-sample helpers (measured on a Cortex-M0 with

@@ -34,6 +34,17 @@ pub(crate) mod sealed {
         /// `q ⊗ exp(φ)`, then `norm`: the update kernel `mul_exp_unchecked` of the kind (the
         /// estimator's prediction).
         fn mul_exp_vector(self, phi: Vec3<T>, norm: Normalization) -> Self;
+        /// [`Propagate::mul_exp_vector`] given `phi_sq = |φ|²` as `phi.norm_squared()` forms
+        /// it (a caller that has it: the light estimator's step): the plain float update takes
+        /// it for its own (the same bits, three products and two sums fewer), the other kinds
+        /// form their update from `φ` alone.
+        #[inline(always)]
+        fn mul_exp_vector_sq(self, phi: Vec3<T>, _phi_sq: T, norm: Normalization) -> Self
+        where
+            T: Real,
+        {
+            self.mul_exp_vector(phi, norm)
+        }
         /// One update by `rule` from `samples` (1 to 4 increments; `previous` the increment
         /// before them).
         fn increments(
@@ -70,6 +81,15 @@ pub(crate) mod sealed {
         #[inline(always)]
         fn mul_exp_vector(self, phi: Vec3<T>, norm: Normalization) -> Self {
             self.mul_exp_unchecked(phi, norm)
+        }
+        /// The floats' `ExpMap::mul_exp`, `q ⊗ exp(φ)`, with the exponential's `|φ|²` given.
+        #[inline(always)]
+        fn mul_exp_vector_sq(self, phi: Vec3<T>, phi_sq: T, norm: Normalization) -> Self
+        where
+            T: Real,
+        {
+            let e = UnitQuat::exp_unchecked_sq(phi, phi_sq);
+            norm.apply(UnitQuat::new_unchecked(self.into_quat() * *e.as_quat()))
         }
         #[inline(always)]
         fn increments(

@@ -121,7 +121,13 @@ impl<T: ExpMap> UnitQuat<T> {
     /// (see [`crate::fixed`]).
     #[inline(always)]
     pub fn exp_unchecked(phi: Vec3<T>) -> Self {
-        let n2 = phi.norm_squared();
+        Self::exp_unchecked_sq(phi, phi.norm_squared())
+    }
+
+    /// [`UnitQuat::exp_unchecked`] given `n2 = |φ|²` as `phi.norm_squared()` forms it (the
+    /// same bits; a caller that formed it saves the products).
+    #[inline(always)]
+    pub(crate) fn exp_unchecked_sq(phi: Vec3<T>, n2: T) -> Self {
         if n2 <= T::EXP_SERIES_MAX_SQ {
             let (c, s) = half_angle_series(n2);
             Self::new_unchecked(Quat::from_parts(c, phi.scale(s)))

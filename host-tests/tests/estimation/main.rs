@@ -216,6 +216,58 @@ host_tests::per_type! {
         }
     }
 
+    /// The sample check at the edges of the square's range: samples with components from
+    /// 2⁻¹¹⁰⁰ to 2¹⁰²³ where the type holds them (zero and subnormal squares, overflowing ones, and the band between
+    /// them where the check does not form the square), in the magnetometer (no range) and the
+    /// accelerometer (a finite range, not reached here below it), in both modes. Reference:
+    /// the definition, `|v|²` formed in the type, zero or not finite; the accelerometer's range
+    /// is reported first.
+    #[test]
+    fn sample_check_follows_the_squared_norm() {
+        for mode in [FilterMode::Full, FilterMode::light()] {
+            let params = Params::<T> { mode, ..Params::default() };
+            let range = params.accel_range;
+            let mut f = Estimator::try_new(params).unwrap();
+            let dt = T::from_f64(0.005);
+            let g = Vec3::<T>::new(T::from_f64(0.01), T::ZERO, T::ZERO);
+            let (a, m) = (vec3::<T>(UP), vec3::<T>(FIELD));
+            f.update_9d(g, a, m, dt).unwrap();
+            let mut checked = 0;
+            for e in -1100..=1023 {
+                for mantissa in [1.0, 1.5, 1.999] {
+                    let x = mantissa * 2f64.powi(e);
+                    let x = T::from_f64(x);
+                    if !x.is_finite() {
+                        continue;
+                    }
+                    for v in [Vec3::new(x, T::ZERO, T::ZERO), Vec3::new(x, -x, x), Vec3::new(T::ZERO, x * T::HALF, -x)] {
+                        let n2 = v.norm_squared();
+                        let expected = if !n2.is_finite() {
+                            SensorUse::Saturated
+                        } else if n2 == T::ZERO {
+                            SensorUse::Zero
+                        } else {
+                            SensorUse::Used
+                        };
+                        let o = f.update_9d(g, a, v, dt).unwrap();
+                        match expected {
+                            SensorUse::Used => assert!(!matches!(o.mag, SensorUse::Zero | SensorUse::Saturated | SensorUse::NonFinite), "{v:?}: {:?}", o.mag),
+                            _ => assert_eq!(o.mag, expected, "{v:?}"),
+                        }
+                        let o = f.update_9d(g, v, m, dt).unwrap();
+                        let expected = if v.max_abs() >= range { SensorUse::Saturated } else { expected };
+                        match expected {
+                            SensorUse::Used => assert!(!matches!(o.accel, SensorUse::Zero | SensorUse::Saturated | SensorUse::NonFinite), "{v:?}: {:?}", o.accel),
+                            _ => assert_eq!(o.accel, expected, "{v:?}"),
+                        }
+                        checked += 1;
+                    }
+                }
+            }
+            assert!(checked > 6000);
+        }
+    }
+
     /// The heading update never tilts: with a strongly disturbed field (turned by 40° in heading
     /// and 20° in dip, used because the disturbance weight lets it through), one update changes
     /// the estimated vertical by rounding only, and over 40 s the inclination stays identical to
