@@ -177,13 +177,10 @@ const LAG_MEAN_TIME: f64 = 1.0;
 const LAG_FEED_STEP: f64 = 0.02;
 
 /// The hard-iron fit takes a sample at most once per this time (s) while turning. Its clock
-/// (this feed, its random walk and its statistics' time constants) counts the steps of the rows
-/// with a field sample only, not the magnetometer's interval: with a magnetometer slower than
-/// the gyroscope the fit's times are longer by the ratio of the rates. On the magnetometer's
-/// interval, a fit fed at 50 Hz (the `synthesize` tests' magnetometer beside a 100 Hz
-/// gyroscope, or both at 50 Hz on the old clock) resets on its relative consistency test after
-/// converging (the 30 s level was learned with the noise model still too large) and is offered
-/// 63 s after a magnet is attached instead of 16 s (BENCHMARKS.md).
+/// (this feed, its random walk and its statistics' time constants) is the magnetometer's
+/// interval, true time whatever the gyroscope's rate, each fed sample standing for the time
+/// since the last feed (at most [`MAG_INTERVAL_MAX`]): the fit's physics per second is the same
+/// beside a gyroscope of any rate (test `hard_iron_time_is_the_magnetometers`).
 const HARD_IRON_FEED_STEP: f64 = 0.02;
 
 /// The longest interval (s) one magnetometer sample stands for in the magnetometer's time
@@ -508,7 +505,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             (Some(m), SensorUse::Used) => {
                 let mag_dt = (self.mag_clock + dt).min(T::from_f64(MAG_INTERVAL_MAX));
                 self.mag_clock = T::ZERO;
-                let u = self.mag_update(m, gyro, mag_dt, dt);
+                let u = self.mag_update(m, gyro, mag_dt);
                 if u == SensorUse::Used {
                     let pr = &self.params;
                     self.rest.update_field(m, mag_dt, pr.field.dip, &pr.rest);
@@ -961,33 +958,26 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
     }
 
     /// The heading update from one field sample, `dt` the magnetometer's interval
-    /// ([`Estimator::update`]); `fit_dt` the step of the sample's row, the hard-iron fit's clock
-    /// (see [`HARD_IRON_FEED_STEP`]).
-    fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T, fit_dt: T) -> SensorUse {
+    /// ([`Estimator::update`]), also the hard-iron fit's clock ([`HARD_IRON_FEED_STEP`]).
+    fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
         let pr = MagParams::of(&self.params);
         let rate = length(gyro - self.bias);
         // (The light mode feeds the fit on every sample itself: `light.rs`.)
         if pr.mag_hard_iron_time > T::ZERO && self.params.mode == Mode::Full {
-            self.hard_iron_clock += fit_dt;
+            self.hard_iron_clock = (self.hard_iron_clock + dt).min(T::from_f64(MAG_INTERVAL_MAX));
             let turning = rate >= pr.field.new_field_min_rate;
             if self.hard_iron_clock >= T::from_f64(HARD_IRON_FEED_STEP) {
                 if turning {
                     self.hard_iron
                         .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
                     // A converged offset is offered to the heading update when it is larger
-                    // than the disturbance monitor's norm threshold, or when it explains most of
-                    // the field norm's variation (`HardIron::explains_norm`): a smaller offset
-                    // that does not is of the size of the model's other errors (soft iron, a
-                    // field that varies over the room), which it would not remove.
+                    // than the disturbance monitor's norm threshold (as in the light mode).
                     self.hard_iron_offer = match self.hard_iron.offset() {
-                        Some(h)
-                            if h.norm() > pr.field.norm * self.field.reference().0
-                                || self.hard_iron.explains_norm() =>
-                        {
-                            h
-                        }
+                        Some(h) if h.norm() > pr.field.norm * self.field.reference().0 => h,
                         _ => Vec3::ZERO,
                     };
+                } else {
+                    self.hard_iron.idle();
                 }
                 self.hard_iron_clock = T::ZERO;
             }

@@ -13,13 +13,33 @@
 //! while the fit is settled (`HPHᵀ` below 4 R), `R = E[ν²]/0.774 − E[HPHᵀ]` (0.774 the variance
 //! of a unit normal truncated at ±2σ), between 0.2 % and 8 % of the squared norm: a fixed `R`
 //! that suits one magnetometer is 10–100 times the variance of a quieter one, whose fit then
-//! converges slowly and whose innovations cannot show a jump. A mean normalised innovation
-//! squared (1 s) above 25, or above 4 times its long-run mean (30 s) and above 1, means the
-//! samples are not on one sphere (a magnet attached or removed, the field changed in the earth
-//! frame, a gradient met while moving): the covariance is reset to the prior and the estimate
-//! is not offered until it has converged again. The fit is fed only while the device turns
-//! (the filter's gate): samples of a still sensor differ by noise alone, and a sphere fitted to noise about one point is a
-//! small one centred on that point (the regressor's own noise would pass for information).
+//! converges slowly and whose innovations cannot show a jump.
+//!
+//! The regressor is noisy: the sample's white noise `n` (σ per axis, in reference norms) is in
+//! `H` as well as in `z`, and `E[H ν] = (4σ²(u − h), 0)` (errors in variables, the algebraic
+//! sphere fit's bias): a filter that takes `H` as exact adds `P⁺(4σ²(u − h), 0)/R` to its
+//! estimate on every sample, which pulls the centre towards the samples in the directions the
+//! recent rotation has not covered, the more the more samples a second it is fed. It is removed
+//! while the fit is settled (`HPHᵀ` below 4 R), `x ← x − P⁺(4σ²(u − h), 0)/R` with
+//! `4σ²/R = (W/R)/r²`: `r² = c + |h|²` the squared radius, `W` the white part of the noise, half
+//! the mean square of the change of `|u − h|²` between consecutive fed samples (the sensor's
+//! noise, not the model's slowly varying error that `R` also holds; at most `R`).
+//!
+//! The fit is judged by its own drift (time in seconds of fed samples, whatever the rates): once
+//! every offset component's variance is below the offer's bound the estimate is anchored, and
+//! every 4 s a component that moved from the anchor by more than 3 standard deviations of a
+//! consistent fit's move, `(h_i − h_a,i)² > 9·max(P_a,ii − P_ii + w, w)` (`P_a − P` what the
+//! samples since have taken out of the estimate's variance, `w = (0.01)²·T/τ_h` the random walk
+//! over the window), means the samples are not on one sphere (a magnet attached or removed, the
+//! field changed in the earth frame, a gradient met while moving): the covariance is reset to
+//! the prior and the estimate is not offered until it has converged again. Before the fit has
+//! settled the same test runs over 1 s windows (a magnet attached while the fit still
+//! converges), and a mean normalised innovation squared (1 s) above 25 resets at any time. A
+//! test on the innovations against a level learned from the log would judge a converged fit
+//! against the time its noise model was still converging. The fit is fed only while the device
+//! turns (the filter's gate): samples of a still sensor differ by noise alone, and a sphere
+//! fitted to noise about one point is a small one centred on that point (the regressor's own
+//! noise would pass for information).
 //!
 //! Whether a converged offset is worth subtracting is tested on the data
 //! ([`HardIron::explains_norm`]): over the last 30 s of fed samples, the variance of the squared
@@ -60,15 +80,19 @@ const NOISE_SETTLED: f64 = 4.0;
 const DRIFT: f64 = 0.01;
 /// Time constant (s) of the mean normalised innovation squared.
 const NIS_TIME: f64 = 1.0;
-/// A mean normalised innovation squared above this resets the covariance …
+/// A mean normalised innovation squared above this resets the covariance.
 const NIS_RESET: f64 = 25.0;
-/// … and so does one above this multiple of its long-run mean (the noise model's `σ` fits no
-/// sensor exactly: a quiet magnetometer's innovations are far below it, and a jump of the
-/// offset must be judged against the sensor's own level) …
-const NIS_RESET_RATIO: f64 = 4.0;
-/// … when it is above this (a ratio of two small numbers is no evidence).
-const NIS_RESET_MIN: f64 = 1.0;
-/// Time constant (s of fed samples) of the long-run mean normalised innovation squared.
+/// The drift test's window (s of fed time): the settled fit's estimate is compared with the
+/// one this long before …
+const DRIFT_WINDOW: f64 = 4.0;
+/// The drift test's window (s of fed time) while the fit has not settled: an offset that
+/// changes while the fit is still converging (a magnet attached in the first seconds) is a
+/// move of several standard deviations of `P_a − P` within a second …
+const DRIFT_WINDOW_UNSETTLED: f64 = 1.0;
+/// … and either resets the covariance when a component moved more than this many standard
+/// deviations of a consistent fit's move (`P_a − P` plus the random walk).
+const DRIFT_K: f64 = 3.0;
+/// Time constant (s of fed samples) of the norm's steadiness statistics.
 const NIS_BASE_TIME: f64 = 30.0;
 /// The estimate is offered when the mean normalised innovation squared is below this …
 const NIS_READY: f64 = 3.0;
@@ -84,9 +108,23 @@ pub struct HardIron<T> {
     x: [T; 4],
     p: [[T; 4]; 4],
     nis: T,
-    /// The long-run mean normalised innovation squared (time constant 30 s; 0 before the
-    /// first sample).
-    nis_base: T,
+    /// The drift test's anchor: the offset estimate (reference norms) and its per-axis
+    /// variances when it was taken, and the fed time since (s); `anchored` false until the fit
+    /// has settled (and after each reset).
+    anchor: [T; 3],
+    anchor_var: [T; 3],
+    anchor_time: T,
+    anchored: bool,
+    /// Whether an anchor is held while the fit has not settled (the 1 s window).
+    early: bool,
+    /// The previous fed sample (units of `n₀`) and whether it was the previous feed.
+    prev: Vec3<T>,
+    prev_valid: bool,
+    /// The white part of the noise (squared reference norms, squared): half the running mean
+    /// square of the change of `|u − h|²` between consecutive fed samples; `white_n` counts
+    /// its samples (a plain mean over the first).
+    white: T,
+    white_n: u8,
     /// The variance of one sample's `|B|²` (squared reference norms, squared) in use.
     r: T,
     /// The running means of `ν²/0.774` and of `HPHᵀ` over the settled samples within 2σ;
@@ -138,6 +176,15 @@ impl<T: Real> HardIron<T> {
         }
         self.p[3][3] = pc;
         self.nis = T::ZERO;
+        self.anchored = false;
+        self.early = false;
+        self.prev_valid = false;
+    }
+
+    /// A feed not taken (the device not turning): the next sample does not follow the last
+    /// one fed, and their difference is not used for the white noise.
+    pub fn idle(&mut self) {
+        self.prev_valid = false;
     }
 
     /// One field sample `b` (input units) standing for `dt` seconds of samples; `tau` (s) the
@@ -147,8 +194,10 @@ impl<T: Real> HardIron<T> {
     }
 
     /// [`HardIron::update`] without the norm's steadiness statistics
-    /// ([`HardIron::norm_variances`] stay as they were): the light mode, which does not use
-    /// them, saves their cost on a soft-float core.
+    /// ([`HardIron::norm_variances`] stay as they were), the white-noise statistics and the
+    /// regressor-noise bias removal (module docs): the light mode saves their cost on a
+    /// soft-float core, and its fit keeps the algebraic fit's bias (it still passes the
+    /// hard-iron tests of `tools/tests/tools/synthesize.rs`).
     pub(crate) fn update_fit_only(&mut self, b: Vec3<T>, dt: T, tau: T) {
         self.step(b, dt, tau, false);
     }
@@ -188,6 +237,27 @@ impl<T: Real> HardIron<T> {
             return;
         }
         let nis = innov * innov / s;
+        let settled = hph < T::from_f64(NOISE_SETTLED) * self.r;
+        // The white noise, from consecutive samples: both lie on the sphere, so the change of
+        // `|u − h|²` between them is their noises' radial parts (`E[d²] = 2·4σ²r²`) and the
+        // model's error over one feed step, which changes slowly with the attitude. A change
+        // beyond `2√(2R)` is a jump, not noise; only while the fit is settled.
+        if steadiness {
+            let h = Vec3::new(self.x[0], self.x[1], self.x[2]);
+            if self.prev_valid && settled {
+                let d = (u - h).norm_squared() - (self.prev - h).norm_squared();
+                let d2 = d * d;
+                if d2 < T::from_f64(8.0) * self.r {
+                    let n = T::from_f64(f64::from(self.white_n) + 1.0);
+                    let k = super::lowpass::first_order_gain(dt, T::from_f64(NOISE_TIME))
+                        .max(T::ONE / n);
+                    self.white += k * (d2 * T::HALF - self.white);
+                    self.white_n = self.white_n.saturating_add(1);
+                }
+            }
+            self.prev = u;
+            self.prev_valid = true;
+        }
         let k_base = super::lowpass::first_order_gain(dt, T::from_f64(NIS_BASE_TIME));
         // The norm's steadiness with and without the offset (out of sample: `h` before this
         // sample).
@@ -218,22 +288,27 @@ impl<T: Real> HardIron<T> {
         }
         let k_nis = super::lowpass::first_order_gain(dt, T::from_f64(NIS_TIME));
         self.nis += k_nis * (nis - self.nis);
-        let base = self.nis_base;
-        if self.nis > T::from_f64(NIS_RESET)
-            || (base > T::ZERO
-                && self.nis > T::from_f64(NIS_RESET_MIN)
-                && self.nis > T::from_f64(NIS_RESET_RATIO) * base)
-        {
+        if self.nis > T::from_f64(NIS_RESET) {
             self.reset();
             return;
         }
-        // The long-run level, from the samples the fit accepts (a jump resets before it can
-        // raise the level much).
-        self.nis_base = if base > T::ZERO {
-            base + k_base * (nis - base)
+        // The regressor's own noise: `H` holds the sample's noise as `z` does, so each update
+        // pulls the centre towards the sample by `P⁺·4σ²(u − h)/R` (the algebraic sphere fit's
+        // bias); with `4σ²/R` taken as `1/r²` (`R` all white noise, `r` the sphere's radius)
+        // it is removed while the fit is settled.
+        let w = if settled && steadiness && self.r > T::ZERO {
+            let radius2 =
+                self.x[3] + self.x[0] * self.x[0] + self.x[1] * self.x[1] + self.x[2] * self.x[2];
+            let ratio = (self.white / self.r).min(T::ONE);
+            ratio / radius2.max(T::from_f64(0.25))
         } else {
-            nis
+            T::ZERO
         };
+        let g = [
+            w * (u.x - self.x[0]),
+            w * (u.y - self.x[1]),
+            w * (u.z - self.x[2]),
+        ];
         let inv = T::ONE / s;
         for (xi, &phi) in self.x.iter_mut().zip(ph.iter()) {
             *xi += phi * inv * innov;
@@ -250,6 +325,71 @@ impl<T: Real> HardIron<T> {
                 self.p[i][j] = v;
                 self.p[j][i] = v;
             }
+        }
+        if w > T::ZERO {
+            for (xi, row) in self.x.iter_mut().zip(self.p.iter()) {
+                *xi -= row[0] * g[0] + row[1] * g[1] + row[2] * g[2];
+            }
+        }
+        self.drift_test(dt, tau);
+    }
+
+    /// The fit's consistency judged by its own drift (module docs): once settled (each offset
+    /// component's variance below the offer's bound) the estimate is anchored; each time `T_w`
+    /// of fed time has passed, a component that moved further than a consistent fit's move
+    /// allows, `(h_i − h_a,i)² > k²·max(P_a,ii − P_ii + w, w)` with `w = DRIFT²·T_w/τ_h`, resets
+    /// the covariance, else the anchor moves to the estimate. Before the fit has settled, the
+    /// same over `T_w` = 1 s from an anchor taken at the first sample after a reset.
+    fn drift_test(&mut self, dt: T, tau: T) {
+        let p = [self.p[0][0], self.p[1][1], self.p[2][2]];
+        if !self.anchored {
+            let settle = T::from_f64(READY_STD * READY_STD);
+            if p[0] < settle && p[1] < settle && p[2] < settle {
+                self.anchor = [self.x[0], self.x[1], self.x[2]];
+                self.anchor_var = p;
+                self.anchor_time = T::ZERO;
+                self.anchored = true;
+                return;
+            }
+            if !self.early {
+                self.anchor = [self.x[0], self.x[1], self.x[2]];
+                self.anchor_var = p;
+                self.anchor_time = T::ZERO;
+                self.early = true;
+                return;
+            }
+            self.anchor_time += dt;
+            if self.anchor_time < T::from_f64(DRIFT_WINDOW_UNSETTLED) {
+                return;
+            }
+        } else {
+            self.anchor_time += dt;
+            if self.anchor_time < T::from_f64(DRIFT_WINDOW) {
+                return;
+            }
+        }
+        let walk = T::from_f64(DRIFT * DRIFT) * self.anchor_time / tau;
+        let k2 = T::from_f64(DRIFT_K * DRIFT_K);
+        let mut moved = false;
+        for (((&xi, &ai), &vi), &pi) in self
+            .x
+            .iter()
+            .zip(self.anchor.iter())
+            .zip(self.anchor_var.iter())
+            .zip(p.iter())
+        {
+            let d = xi - ai;
+            let var = (vi + walk - pi).max(walk);
+            if d * d > k2 * var {
+                moved = true;
+            }
+        }
+        if moved {
+            self.reset();
+        } else {
+            self.anchor = [self.x[0], self.x[1], self.x[2]];
+            self.anchor_var = p;
+            self.anchor_time = T::ZERO;
         }
     }
 

@@ -211,7 +211,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
                 q_gyro: self.q_gyro.attitude(),
                 elapsed: self.light.elapsed,
             });
-            self.light_hard_iron(m, gyro, dt);
+            self.light_hard_iron(m, gyro);
         }
         out.at_rest = self.light.at_rest && accel_use == SensorUse::Used;
         out.accel = accel_use;
@@ -234,6 +234,9 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         self.light.steps = s.steps;
         self.light.unnormalised = s.unnormalised;
         let tc = s.elapsed;
+        // The hard-iron fit's last feed, restated from this period's start to the next's (no
+        // arithmetic per sample: `light_hard_iron`).
+        self.hard_iron_clock = (self.hard_iron_clock - tc).max(T::from_f64(-MAG_INTERVAL_MAX));
         // The covariance over the interval, R̂ at its end.
         let f = self.attitude_enu().to_rotation_matrix().scale(-tc);
         let q_theta = pr.gyro_noise_density * pr.gyro_noise_density * tc + s.q_scale;
@@ -264,7 +267,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
                 let interval = (self.mag_clock + p.elapsed).min(T::from_f64(MAG_INTERVAL_MAX));
                 // From its row to this correction.
                 self.mag_clock = tc - p.elapsed;
-                let u = self.mag_update(p.mag, gyro, interval, tc);
+                let u = self.mag_update(p.mag, gyro, interval);
                 self.light.field = None;
                 u
             }
@@ -295,20 +298,25 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
     /// The full mode's hard-iron feed (`mag_update`) on every sample rather than at the
     /// corrections: the fit's information grows with the samples it is fed (measured on BROAD
     /// trial 36: fed at the 25 ms corrections 1.86°, on every sample 1.2°, as the full mode).
-    /// `dt` is the row's step (the fit's clock: [`HARD_IRON_FEED_STEP`]).
-    fn light_hard_iron(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) {
+    /// The fit's clock is the magnetometer's time since the last feed (true time, as the full
+    /// mode's), each fed sample standing for at most [`MAG_INTERVAL_MAX`]
+    /// ([`HARD_IRON_FEED_STEP`]). In this mode `hard_iron_clock` holds the time of the last
+    /// feed from the start of the current correction period (`light.elapsed`'s origin; at most
+    /// [`MAG_INTERVAL_MAX`] before it), so that no arithmetic is added per sample.
+    fn light_hard_iron(&mut self, mag: Vec3<T>, gyro: Vec3<T>) {
         let pr = &self.params;
         if pr.mag_hard_iron_time <= T::ZERO {
             return;
         }
-        self.hard_iron_clock += dt;
-        if self.hard_iron_clock < T::from_f64(HARD_IRON_FEED_STEP) {
+        let since = self.light.elapsed - self.hard_iron_clock;
+        if since < T::from_f64(HARD_IRON_FEED_STEP) {
             return;
         }
         let min_rate = pr.field.new_field_min_rate;
         if (gyro - self.bias).norm_squared() >= min_rate * min_rate {
+            let credit = since.min(T::from_f64(MAG_INTERVAL_MAX));
             self.hard_iron
-                .update_fit_only(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
+                .update_fit_only(mag, credit, pr.mag_hard_iron_time);
             // Offered above the disturbance monitor's norm threshold only: the full mode's second
             // condition (`HardIron::explains_norm`) loses in the light mode on BROAD (trial 26:
             // 1.840° → 1.979°, mean 1.190° → 1.199°; BENCHMARKS.md).
@@ -317,7 +325,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
                 _ => Vec3::ZERO,
             };
         }
-        self.hard_iron_clock = T::ZERO;
+        self.hard_iron_clock = self.light.elapsed;
     }
 
     /// The inclination update from the low-passed specific force `v` (gyroscope frame): the

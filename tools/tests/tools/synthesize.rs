@@ -880,9 +880,9 @@ fn hard_iron_run(rows: &[Row]) -> Vec<(f64, [f64; 3], [f64; 3], bool, [f64; 3], 
 /// deviations below 1 % of the field's norm (0.44 µT); the offset is offered and subtracted
 /// on more than half of the samples from t = 35 s (the fit restarts when its samples stop
 /// fitting one sphere and offers nothing until it has converged again). Before the attachment
-/// no offset is subtracted. (Measured, seed 3: offered 16.2 s after the attachment; the largest
-/// error from t = 35 s 0.80 µT, 1.9 σ; offered on 62 % of those samples.) Before the attachment the fit follows the residual alone. (Measured:
-/// offered 13.4 s after the attachment; the largest error 0.29 µT, 1.9 σ.)
+/// no offset is subtracted; before it the fit follows the residual alone. (Measured, seed 3:
+/// offered 16.0 s after the attachment; the largest error from t = 35 s 0.437 µT, 1.32 σ;
+/// offered on 68 % of those samples.)
 #[test]
 fn hard_iron_converges_on_a_fixed_magnet() {
     let spec = write_spec("hard-iron.spec", HARD_IRON_SPEC);
@@ -956,7 +956,7 @@ fn hard_iron_converges_on_a_fixed_magnet() {
 /// The passing magnet of the synthetic grid (`--magnet-pass 1,0.2,0.05`, up to 25 µT in the
 /// middle of each phase): a field that changes in the earth frame is not a sphere about any
 /// offset. The fit never offers an offset more than 2 µT from the residual (a tenth of the
-/// pass; measured 1.6 µT: the pass bends the samples' sphere a little), no offset is
+/// pass; measured 1.48 µT: the pass bends the samples' sphere a little), no offset is
 /// subtracted, and the heading update rejects the field near the magnet: at the peak of each
 /// pass (t = 20 s and 55 s, ±1 s) no field sample is used.
 #[test]
@@ -1001,13 +1001,10 @@ fn hard_iron_rejects_a_passing_magnet() {
 /// and the light mode. The time from the attachment to the first offer of the offset differs
 /// by less than 4 s on average over the seeds. On a clock that counts the rows' steps instead
 /// (the fit fed at half or a tenth of its samples, each standing for one row's step) it
-/// differs by about 16 s: the random walk and the consistency statistics run five times slower beside the 20 Hz
-/// magnetometer. (Measured on the rows' clock, which this tree has: 16.2 s on average, the
-/// largest 29.0 s, so the test is ignored; on the magnetometer's clock with the fit's
-/// regressor-noise bias removed, branch `hic-fit`: 2.3 s, the largest 10.2 s.)
+/// differs by about 16 s: the random walk and the consistency statistics run five times slower
+/// beside the 20 Hz magnetometer (measured on that clock: 16.2 s on average, the largest
+/// 29.0 s). Measured on the magnetometer's clock: full mode 2.05 s, light mode 2.80 s.
 #[test]
-#[ignore = "fails on the rows' clock (issue 28 item 1): the fit's clock is not yet the \
-            magnetometer's (BENCHMARKS.md, 'The hard-iron fit's clock')"]
 fn hard_iron_time_is_the_magnetometers() {
     use gyrostat::Vec3;
     use gyrostat::estimation::{Estimator, Mode, Params};
