@@ -193,9 +193,21 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             let a_gyro = self.q_gyro.attitude().rotate(accel);
             if self.lowpass_stale {
                 self.accel_lp = LowPass::at(a_gyro);
+                self.accel_warm = T::ZERO;
+                self.tilt_from_mean = false;
                 self.lowpass_stale = false;
             }
-            if pr.accel_time_constant > T::ZERO {
+            if self.accel_warm < pr.accel_time_constant {
+                // The full mode's start (`Estimator::accel_update`): the running mean over the
+                // first `τ_a`, the starting sample counting as one step of this length.
+                let prior = if self.accel_warm > T::ZERO {
+                    self.accel_warm
+                } else {
+                    dt
+                };
+                self.accel_warm = prior + dt;
+                self.accel_lp.mean_update(a_gyro, dt / self.accel_warm);
+            } else if pr.accel_time_constant > T::ZERO {
                 self.accel_lp.update(a_gyro, factors.lowpass_gain);
             } else {
                 self.accel_lp = LowPass::at(a_gyro);
@@ -339,6 +351,14 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         }
         let v = self.q_corr.rotate(v);
         let (ex, ey) = tilt_error(v);
+        if self.tilt_from_mean {
+            // As the full mode: the inclination from the running mean in full until the
+            // low-pass takes over.
+            self.tilt_from_mean = self.accel_warm < pr.accel_time_constant;
+            x[0] = ex;
+            x[1] = ey;
+            return SensorUse::Used;
+        }
         let r = self.tilt_variance(dt);
         match pr.gains {
             Gains::Kalman => {

@@ -504,21 +504,37 @@ host_tests::per_type! {
     #[test]
     fn initial_inclination_is_the_first_time_constants_mean() {
         let dt = 0.001;
-        let mut f = Estimator::<T>::try_new(Params::<T>::default()).unwrap();
-        let tilt = 0.5f64.to_radians();
-        let first = [0.0, 9.81 * tilt.sin(), 9.81 * tilt.cos()];
-        f.update_6d(vec3([0.0; 3]), vec3(first), T::from_f64(dt)).unwrap();
-        let mut rng = Lcg(41);
-        for _ in 0..4000 {
-            let n = rng.v3();
-            let acc = [0.05 * n[0], 0.05 * n[1], 9.81 + 0.05 * n[2]];
-            f.update_6d(vec3([0.0; 3]), vec3(acc), T::from_f64(dt)).unwrap();
+        // The full mode and the light mode (the same start, its corrections every 25 ms).
+        for light in [false, true] {
+            let mut p = Params::<T>::default();
+            if light {
+                p.mode = FilterMode::light();
+            }
+            let mut f = Estimator::<T>::try_new(p).unwrap();
+            let tilt = 0.5f64.to_radians();
+            let first = [0.0, 9.81 * tilt.sin(), 9.81 * tilt.cos()];
+            f.update_6d(vec3([0.0; 3]), vec3(first), T::from_f64(dt)).unwrap();
+            let mut rng = Lcg(41);
+            for _ in 0..4000 {
+                let n = rng.v3();
+                let acc = [0.05 * n[0], 0.05 * n[1], 9.81 + 0.05 * n[2]];
+                f.update_6d(vec3([0.0; 3]), vec3(acc), T::from_f64(dt)).unwrap();
+            }
+            let q = q64(f.attitude());
+            // 2 asin √(x² + y²): the tilt of a unit quaternion, precise near level in f32 too.
+            let incl = 2.0 * (q[1] * q[1] + q[2] * q[2]).sqrt().min(1.0).asin();
+            eprintln!(
+                "{} (light {light}): inclination {:.4}° after 4 s",
+                T::NAME,
+                incl.to_degrees()
+            );
+            assert!(
+                incl.to_degrees() < 0.02,
+                "{} (light {light}): {}°",
+                T::NAME,
+                incl.to_degrees()
+            );
         }
-        let q = q64(f.attitude());
-        // 2 asin √(x² + y²): the tilt of a unit quaternion, precise near level in f32 too.
-        let incl = 2.0 * (q[1] * q[1] + q[2] * q[2]).sqrt().min(1.0).asin();
-        eprintln!("{}: inclination {:.4}° after 4 s", T::NAME, incl.to_degrees());
-        assert!(incl.to_degrees() < 0.02, "{}: {}°", T::NAME, incl.to_degrees());
     }
 
     /// The online hard iron: a sensor turning continuously (non-repeating rates up to about
