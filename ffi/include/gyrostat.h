@@ -225,12 +225,12 @@
 /**
  * Words of `gyro_estimator_f32`'s storage.
  */
-#define GYRO_ESTIMATOR_F32_WORDS 141
+#define GYRO_ESTIMATOR_F32_WORDS 139
 
 /**
  * Words of `gyro_estimator_f64`'s storage.
  */
-#define GYRO_ESTIMATOR_F64_WORDS 278
+#define GYRO_ESTIMATOR_F64_WORDS 274
 
 /**
  * `gyro_sample_clock_*_interval`: the first time stamp (or the first after a restart): no

@@ -2097,9 +2097,9 @@ pub unsafe extern "C" fn gyro_gyrostat_f64_step(
 // --- Estimator ---------------------------------------------------------------------------------
 
 /// Words of `gyro_estimator_f32`'s storage.
-pub const GYRO_ESTIMATOR_F32_WORDS: usize = 141;
+pub const GYRO_ESTIMATOR_F32_WORDS: usize = 139;
 /// Words of `gyro_estimator_f64`'s storage.
-pub const GYRO_ESTIMATOR_F64_WORDS: usize = 278;
+pub const GYRO_ESTIMATOR_F64_WORDS: usize = 274;
 
 /// The attitude and gyro-bias estimator, f32 (`Estimator`, the library's default parameters).
 /// Contents private.

@@ -212,6 +212,21 @@ const NORM_CHECK_MIN: f64 = 1.0 / NORM_CHECK_MAX;
 /// See [`NORM_CHECK_MIN`].
 const NORM_CHECK_MAX: f64 = (1u64 << 60) as f64;
 
+/// One sample `a_gyro` of the accelerometer low-pass's first `accel_time_constant`, `warm` the
+/// time it has averaged so far (0: only its starting sample): the running mean of the samples
+/// ([`LowPass::mean_update`]), the starting sample counting as one step of this length `dt`.
+/// Both modes.
+fn accel_mean_update<T: Real>(
+    lp: &mut LowPass<T>,
+    warm: &mut T,
+    a_gyro: Vec3<T>,
+    dt: T,
+) -> Vec3<T> {
+    let prior = if *warm > T::ZERO { *warm } else { dt };
+    *warm = prior + dt;
+    lp.mean_update(a_gyro, dt / *warm)
+}
+
 impl<T: Real> Estimator<T> {
     /// An estimator with these parameters, waiting for its first sample; the strapdown
     /// attitude a plain [`UnitQuat`].
@@ -855,20 +870,10 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         // Filter in the gyroscope frame, map to the earth frame by the corrections.
         let a_gyro = self.q_gyro.attitude().rotate(accel);
         if self.lowpass_stale {
-            self.accel_lp = LowPass::at(a_gyro);
-            self.accel_warm = T::ZERO;
-            self.tilt_from_mean = false;
-            self.lowpass_stale = false;
+            self.restart_accel_lowpass(a_gyro);
         }
         let v = if self.accel_warm < tau_a {
-            // The starting sample counts as one step of this length.
-            let prior = if self.accel_warm > T::ZERO {
-                self.accel_warm
-            } else {
-                dt
-            };
-            self.accel_warm = prior + dt;
-            self.accel_lp.mean_update(a_gyro, dt / self.accel_warm)
+            accel_mean_update(&mut self.accel_lp, &mut self.accel_warm, a_gyro, dt)
         } else {
             let k = if tau_a > T::ZERO {
                 LowPass::gain(tau_a, dt)
@@ -892,13 +897,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         } else {
             (T::ZERO, T::ZERO)
         };
-        if self.tilt_from_mean {
-            // The initial inclination came from one sample, whose noise grows as the square
-            // root of the sample rate; the running mean shares that sample's offset and has
-            // less of its noise, so it replaces it in full until the low-pass takes over.
-            self.tilt_from_mean = self.accel_warm < tau_a;
-            x[0] = ex;
-            x[1] = ey;
+        if self.tilt_from_the_mean(ex, ey, x) {
             return SensorUse::Used;
         }
         self.persistent_tilt(ex, ey);
@@ -957,6 +956,40 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         s * s * (pr.accel_correlation_time / dt).max(T::ONE)
     }
 
+    /// Restarts the accelerometer's low-pass on `a_gyro` (after a saturated step): no running
+    /// mean and no inclination taken from it.
+    fn restart_accel_lowpass(&mut self, a_gyro: Vec3<T>) {
+        self.accel_lp = LowPass::at(a_gyro);
+        self.accel_warm = T::ZERO;
+        self.tilt_from_mean = false;
+        self.lowpass_stale = false;
+    }
+
+    /// The inclination error `(ex, ey)` taken in full into `x` while the low-pass holds the
+    /// running mean of its first `accel_time_constant` after initialisation (true then): the
+    /// initial inclination came from one sample, whose noise grows as the square root of the
+    /// sample rate, and the mean shares that sample's offset with less of its noise. Both
+    /// modes.
+    fn tilt_from_the_mean(&mut self, ex: T, ey: T, x: &mut [T; 6]) -> bool {
+        if !self.tilt_from_mean {
+            return false;
+        }
+        self.tilt_from_mean = self.accel_warm < self.params.accel_time_constant;
+        x[0] = ex;
+        x[1] = ey;
+        true
+    }
+
+    /// The hard-iron offset offered to the heading update: the fit's converged offset when it
+    /// is larger than the disturbance monitor's norm threshold (`field.norm` of the reference
+    /// norm), else zero (module docs of `hard_iron`). Both modes, after each feed of the fit.
+    fn hard_iron_offer_now(&self) -> Vec3<T> {
+        match self.hard_iron.offset() {
+            Some(h) if h.norm() > self.params.field.norm * self.field.reference().0 => h,
+            _ => Vec3::ZERO,
+        }
+    }
+
     /// The heading update from one field sample, `dt` the magnetometer's interval
     /// ([`Estimator::update`]), also the hard-iron fit's clock ([`HARD_IRON_FEED_STEP`]).
     fn mag_update(&mut self, mag: Vec3<T>, gyro: Vec3<T>, dt: T) -> SensorUse {
@@ -970,12 +1003,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
                 if turning {
                     self.hard_iron
                         .update(mag, self.hard_iron_clock, pr.mag_hard_iron_time);
-                    // A converged offset is offered to the heading update when it is larger
-                    // than the disturbance monitor's norm threshold (as in the light mode).
-                    self.hard_iron_offer = match self.hard_iron.offset() {
-                        Some(h) if h.norm() > pr.field.norm * self.field.reference().0 => h,
-                        _ => Vec3::ZERO,
-                    };
+                    self.hard_iron_offer = self.hard_iron_offer_now();
                 } else {
                     self.hard_iron.idle();
                 }

@@ -41,13 +41,10 @@
 //! fitted to noise about one point is a small one centred on that point (the regressor's own
 //! noise would pass for information).
 //!
-//! Whether a converged offset is worth subtracting is tested on the data
-//! ([`HardIron::explains_norm`]): over the last 30 s of fed samples, the variance of the squared
-//! norm corrected by the offset the fit held *before* each sample (a prediction, not a fit to
-//! the sample) against the raw squared norm's variance. An offset that removes more than half
-//! of the variation is the main reason the norm changes as the device turns; one that removes
-//! less is of the size of the model's other errors (soft iron, a field that varies over the
-//! room, the sensor's calibration) and subtracting it does not make the field one sphere.
+//! A converged offset is subtracted by the heading update only when it is larger than the field
+//! monitor's norm threshold (`field.norm` of the norm; `Estimator`): a smaller one is of the size
+//! of the model's other errors (soft iron, a field that varies over the room, the sensor's
+//! calibration), which subtracting it would not remove.
 //!
 //! A field that changes in the earth frame without translation (a stationary magnet seen from
 //! one place) is still a sphere, about `h` and of another radius: the fit keeps `h` and only
@@ -92,8 +89,6 @@ const DRIFT_WINDOW_UNSETTLED: f64 = 1.0;
 /// … and either resets the covariance when a component moved more than this many standard
 /// deviations of a consistent fit's move (`P_a − P` plus the random walk).
 const DRIFT_K: f64 = 3.0;
-/// Time constant (s of fed samples) of the norm's steadiness statistics.
-const NIS_BASE_TIME: f64 = 30.0;
 /// The estimate is offered when the mean normalised innovation squared is below this …
 const NIS_READY: f64 = 3.0;
 /// … and each offset component's standard deviation below this (reference norms).
@@ -131,15 +126,6 @@ pub struct HardIron<T> {
     /// `r` is their difference.
     nu2: T,
     hph: T,
-    /// Running means and variances (time constant [`NIS_BASE_TIME`] of fed samples) of the
-    /// squared norm `|u|²` and of the corrected one `|u − h|²` with the offset *before* the
-    /// sample (a prediction): the norm's variation with and without the offset.
-    raw_mean: T,
-    raw_var: T,
-    corr_mean: T,
-    corr_var: T,
-    /// Whether the means above have their first sample.
-    steadiness_started: bool,
 }
 
 impl<T: Real> HardIron<T> {
@@ -193,16 +179,15 @@ impl<T: Real> HardIron<T> {
         self.step(b, dt, tau, true);
     }
 
-    /// [`HardIron::update`] without the norm's steadiness statistics
-    /// ([`HardIron::norm_variances`] stay as they were), the white-noise statistics and the
-    /// regressor-noise bias removal (module docs): the light mode saves their cost on a
-    /// soft-float core, and its fit keeps the algebraic fit's bias (it still passes the
-    /// hard-iron tests of `tools/tests/tools/synthesize.rs`).
+    /// [`HardIron::update`] without the white-noise statistics and the regressor-noise bias
+    /// removal (module docs): the light mode saves their cost on a soft-float core, and its fit
+    /// keeps the algebraic fit's bias (it still passes the hard-iron tests of
+    /// `tools/tests/tools/synthesize.rs`).
     pub(crate) fn update_fit_only(&mut self, b: Vec3<T>, dt: T, tau: T) {
         self.step(b, dt, tau, false);
     }
 
-    fn step(&mut self, b: Vec3<T>, dt: T, tau: T, steadiness: bool) {
+    fn step(&mut self, b: Vec3<T>, dt: T, tau: T, bias_removal: bool) {
         if self.scale <= T::ZERO {
             *self = Self::new(b);
             return;
@@ -242,7 +227,7 @@ impl<T: Real> HardIron<T> {
         // `|u − h|²` between them is their noises' radial parts (`E[d²] = 2·4σ²r²`) and the
         // model's error over one feed step, which changes slowly with the attitude. A change
         // beyond `2√(2R)` is a jump, not noise; only while the fit is settled.
-        if steadiness {
+        if bias_removal {
             let h = Vec3::new(self.x[0], self.x[1], self.x[2]);
             if self.prev_valid && settled {
                 let d = (u - h).norm_squared() - (self.prev - h).norm_squared();
@@ -257,25 +242,6 @@ impl<T: Real> HardIron<T> {
             }
             self.prev = u;
             self.prev_valid = true;
-        }
-        let k_base = super::lowpass::first_order_gain(dt, T::from_f64(NIS_BASE_TIME));
-        // The norm's steadiness with and without the offset (out of sample: `h` before this
-        // sample).
-        if steadiness {
-            let h = Vec3::new(self.x[0], self.x[1], self.x[2]);
-            let corr = (u - h).norm_squared();
-            if self.steadiness_started {
-                let k = k_base;
-                let (dr, dc) = (z - self.raw_mean, corr - self.corr_mean);
-                self.raw_mean += k * dr;
-                self.raw_var += k * (dr * dr - self.raw_var);
-                self.corr_mean += k * dc;
-                self.corr_var += k * (dc * dc - self.corr_var);
-            } else {
-                self.raw_mean = z;
-                self.corr_mean = corr;
-                self.steadiness_started = true;
-            }
         }
         // The noise: E[ν²] = HPHᵀ + R.
         if hph < T::from_f64(NOISE_SETTLED) * self.r && nis < T::from_f64(NOISE_GATE) {
@@ -294,9 +260,9 @@ impl<T: Real> HardIron<T> {
         }
         // The regressor's own noise: `H` holds the sample's noise as `z` does, so each update
         // pulls the centre towards the sample by `P⁺·4σ²(u − h)/R` (the algebraic sphere fit's
-        // bias); with `4σ²/R` taken as `1/r²` (`R` all white noise, `r` the sphere's radius)
-        // it is removed while the fit is settled.
-        let w = if settled && steadiness && self.r > T::ZERO {
+        // bias); with `4σ²/R = (W/R)/r²` (`W` the white part of the noise, at most `R`; `r` the
+        // sphere's radius) it is removed while the fit is settled.
+        let w = if settled && bias_removal && self.r > T::ZERO {
             let radius2 =
                 self.x[3] + self.x[0] * self.x[0] + self.x[1] * self.x[1] + self.x[2] * self.x[2];
             let ratio = (self.white / self.r).min(T::ONE);
@@ -403,20 +369,6 @@ impl<T: Real> HardIron<T> {
             && self.p[1][1] < ready
             && self.p[2][2] < ready;
         ok.then(|| Vec3::new(self.x[0], self.x[1], self.x[2]).scale(self.scale))
-    }
-
-    /// The variances (squared reference norms, squared) of the squared norm of the fed samples
-    /// without and with the offset subtracted (running over 30 s of fed samples,
-    /// the offset before each sample).
-    pub fn norm_variances(&self) -> (T, T) {
-        (self.raw_var, self.corr_var)
-    }
-
-    /// Whether the offset explains the norm's variation: the corrected squared norm's variance
-    /// below half the raw one's (the offset removes most of the variation the rotation shows).
-    pub fn explains_norm(&self) -> bool {
-        let (raw, corr) = self.norm_variances();
-        corr + corr < raw
     }
 
     /// The mean normalised innovation squared of the recent samples (about 1 when they lie on

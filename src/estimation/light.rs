@@ -37,7 +37,7 @@
 
 use super::{
     Estimator, GRAVITY, Gains, HARD_IRON_FEED_STEP, MAG_DELAY_MAX, MAG_INTERVAL_MAX, Mode, Outcome,
-    Params, SensorUse, horizontal, length,
+    Params, SensorUse, accel_mean_update, horizontal, length,
 };
 use crate::estimation::lowpass::LowPass;
 use crate::estimation::rate_window::StepRotation;
@@ -192,21 +192,15 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
                 .update_with_factors(gyro, accel, dt, factors.rest, &pr.rest);
             let a_gyro = self.q_gyro.attitude().rotate(accel);
             if self.lowpass_stale {
+                // `Estimator::restart_accel_lowpass` (the fields, `pr` borrowed).
                 self.accel_lp = LowPass::at(a_gyro);
                 self.accel_warm = T::ZERO;
                 self.tilt_from_mean = false;
                 self.lowpass_stale = false;
             }
             if self.accel_warm < pr.accel_time_constant {
-                // The full mode's start (`Estimator::accel_update`): the running mean over the
-                // first `τ_a`, the starting sample counting as one step of this length.
-                let prior = if self.accel_warm > T::ZERO {
-                    self.accel_warm
-                } else {
-                    dt
-                };
-                self.accel_warm = prior + dt;
-                self.accel_lp.mean_update(a_gyro, dt / self.accel_warm);
+                // The full mode's start: the running mean over the first `τ_a`.
+                accel_mean_update(&mut self.accel_lp, &mut self.accel_warm, a_gyro, dt);
             } else if pr.accel_time_constant > T::ZERO {
                 self.accel_lp.update(a_gyro, factors.lowpass_gain);
             } else {
@@ -329,13 +323,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
             let credit = since.min(T::from_f64(MAG_INTERVAL_MAX));
             self.hard_iron
                 .update_fit_only(mag, credit, pr.mag_hard_iron_time);
-            // Offered above the disturbance monitor's norm threshold only: the full mode's second
-            // condition (`HardIron::explains_norm`) loses in the light mode on BROAD (trial 26:
-            // 1.840° → 1.979°, mean 1.190° → 1.199°; BENCHMARKS.md).
-            self.hard_iron_offer = match self.hard_iron.offset() {
-                Some(h) if h.norm() > pr.field.norm * self.field.reference().0 => h,
-                _ => Vec3::ZERO,
-            };
+            self.hard_iron_offer = self.hard_iron_offer_now();
         }
         self.hard_iron_clock = self.light.elapsed;
     }
@@ -351,12 +339,7 @@ impl<T: Real, A: PropagatedAttitude<T>> Estimator<T, A> {
         }
         let v = self.q_corr.rotate(v);
         let (ex, ey) = tilt_error(v);
-        if self.tilt_from_mean {
-            // As the full mode: the inclination from the running mean in full until the
-            // low-pass takes over.
-            self.tilt_from_mean = self.accel_warm < pr.accel_time_constant;
-            x[0] = ex;
-            x[1] = ey;
+        if self.tilt_from_the_mean(ex, ey, x) {
             return SensorUse::Used;
         }
         let r = self.tilt_variance(dt);

@@ -5,8 +5,7 @@
 //! the light mode. The times are the disturbance monitor's (`FieldMonitor`): how long after a
 //! disturbance ends the field is used again (`field.min_undisturbed`, 0.5 s), and how long after
 //! the field changes for good, while the sensor turns, the new field becomes the reference
-//! (`field.new_field_time`, 20 s of turning faster than `field.new_field_min_rate`). And the
-//! hard-iron fit's test of its offset on the data (`HardIron::explains_norm`).
+//! (`field.new_field_time`, 20 s of turning faster than `field.new_field_min_rate`).
 
 use super::{FIELD, Motion, qexp, qrotate};
 use gyrostat::estimation::{Estimator, Mode as FilterMode, Params, SensorUse};
@@ -149,41 +148,4 @@ host_tests::per_type! {
             }
         }
     }
-
-    /// `HardIron::explains_norm` on spheres with known errors: a 0.78 µT offset (1.8 % of the
-    /// 43.7 µT field) with 0.1 µT of noise explains the norm's variation (the offset alone
-    /// moves the squared norm by 2·|B|·|h|·cos, the noise by about 2·|B|·0.06 µT: the corrected
-    /// variance is a few per cent of the raw one); no offset and 1 % soft iron on x and y (the
-    /// norm varies by up to 1 % with no offset to remove) does not, although the fit's offset
-    /// is then as small as the first case's noise (its corrected variance stays near the raw
-    /// one: the ellipsoid is no shifted sphere).
-    #[test]
-    fn hard_iron_explains_the_norm_only_when_it_is_the_cause() {
-        let fit = fed_fit::<T>([0.5, -0.3, 0.5], [1.0; 3], 0.1);
-        let (raw, corr) = fit.norm_variances();
-        assert!(fit.explains_norm(), "{} offset: raw {raw:e}, corrected {corr:e}", T::NAME);
-        assert!(corr < 0.2 * raw, "{} offset: raw {raw:e}, corrected {corr:e}", T::NAME);
-        let fit = fed_fit::<T>([0.0; 3], [1.01, 0.99, 1.0], 0.1);
-        let (raw, corr) = fit.norm_variances();
-        assert!(!fit.explains_norm(), "{} soft iron: raw {raw:e}, corrected {corr:e}", T::NAME);
-    }
-}
-
-/// Feeds a hard-iron fit 60 s of field samples (50 per second, the fit's feed) at attitudes that
-/// do not repeat: `B = S·Rᵀ·B_e + h + noise` (`S` soft iron, noise uniform ±`noise` µT per
-/// axis); returns the fit.
-fn fed_fit<T: gyrostat::Real>(
-    h: [f64; 3],
-    soft: [f64; 3],
-    noise: f64,
-) -> gyrostat::estimation::HardIron<T> {
-    let mut rng = super::Lcg(11);
-    let mut fit = gyrostat::estimation::HardIron::<T>::default();
-    for _ in 0..3000 {
-        let q = super::qnormalize([rng.next(), rng.next(), rng.next(), rng.next()]);
-        let b = qrotate(super::qconj(q), FIELD);
-        let m = [0, 1, 2].map(|i| soft[i] * b[i] + h[i] + noise * rng.next());
-        fit.update(vec3::<T>(m), T::from_f64(0.02), T::from_f64(10.0));
-    }
-    fit
 }
