@@ -244,7 +244,7 @@ impl<T: Real> HardIron<T> {
             self.prev_valid = true;
         }
         // The noise: E[ν²] = HPHᵀ + R.
-        if hph < T::from_f64(NOISE_SETTLED) * self.r && nis < T::from_f64(NOISE_GATE) {
+        if settled && nis < T::from_f64(NOISE_GATE) {
             let k = super::lowpass::first_order_gain(dt, T::from_f64(NOISE_TIME));
             self.nu2 += k * (innov * innov / T::from_f64(NOISE_GATE_VARIANCE) - self.nu2);
             self.hph += k * (hph - self.hph);
@@ -270,11 +270,14 @@ impl<T: Real> HardIron<T> {
         } else {
             T::ZERO
         };
-        let g = [
-            w * (u.x - self.x[0]),
-            w * (u.y - self.x[1]),
-            w * (u.z - self.x[2]),
-        ];
+        // Formed with the offset before the update; only when it is removed.
+        let g = (w > T::ZERO).then(|| {
+            [
+                w * (u.x - self.x[0]),
+                w * (u.y - self.x[1]),
+                w * (u.z - self.x[2]),
+            ]
+        });
         let inv = T::ONE / s;
         for (xi, &phi) in self.x.iter_mut().zip(ph.iter()) {
             *xi += phi * inv * innov;
@@ -292,7 +295,7 @@ impl<T: Real> HardIron<T> {
                 self.p[j][i] = v;
             }
         }
-        if w > T::ZERO {
+        if let Some(g) = g {
             for (xi, row) in self.x.iter_mut().zip(self.p.iter()) {
                 *xi -= row[0] * g[0] + row[1] * g[1] + row[2] * g[2];
             }
@@ -311,16 +314,12 @@ impl<T: Real> HardIron<T> {
         if !self.anchored {
             let settle = T::from_f64(READY_STD * READY_STD);
             if p[0] < settle && p[1] < settle && p[2] < settle {
-                self.anchor = [self.x[0], self.x[1], self.x[2]];
-                self.anchor_var = p;
-                self.anchor_time = T::ZERO;
+                self.anchor_at(p);
                 self.anchored = true;
                 return;
             }
             if !self.early {
-                self.anchor = [self.x[0], self.x[1], self.x[2]];
-                self.anchor_var = p;
-                self.anchor_time = T::ZERO;
+                self.anchor_at(p);
                 self.early = true;
                 return;
             }
@@ -353,10 +352,15 @@ impl<T: Real> HardIron<T> {
         if moved {
             self.reset();
         } else {
-            self.anchor = [self.x[0], self.x[1], self.x[2]];
-            self.anchor_var = p;
-            self.anchor_time = T::ZERO;
+            self.anchor_at(p);
         }
+    }
+
+    /// The drift test's anchor moved to the current estimate, its per-axis variances `p`.
+    fn anchor_at(&mut self, p: [T; 3]) {
+        self.anchor = [self.x[0], self.x[1], self.x[2]];
+        self.anchor_var = p;
+        self.anchor_time = T::ZERO;
     }
 
     /// The offset (input units), when the fit has converged: each component's standard
